@@ -1,1 +1,53 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Feed rotation, parallactic angle and carrier-phase wind-up.
 
+A unified model of the phase rotation seen by radio telescopes of every mount
+and focus type and by GNSS antennas, observing natural radio sources and
+satellites (Skeens et al., "A unified model of feed rotation in radio
+telescopes and GNSS antennas").
+"""
+
+from .antenna import Antenna
+from .config import conf
+from .exceptions import DegenerateGeometryWarning
+from .focus import (
+    BeamWaveguideFocus,
+    CassegrainFocus,
+    Focus,
+    GregorianFocus,
+    MirrorTrain,
+    NasmythFocus,
+    PrimeFocus,
+)
+from .mounts import (
+    AltAzMount,
+    EquatorialMount,
+    FixedAxisMount,
+    Mount,
+    StationaryMount,
+    XYMount,
+)
+
+try:
+    from ._version import version as __version__
+except ImportError:  # pragma: no cover - running from a source tree without a build
+    __version__ = "unknown"
+
+__all__ = [
+    "Antenna",
+    "Mount",
+    "FixedAxisMount",
+    "AltAzMount",
+    "EquatorialMount",
+    "XYMount",
+    "StationaryMount",
+    "Focus",
+    "PrimeFocus",
+    "CassegrainFocus",
+    "GregorianFocus",
+    "NasmythFocus",
+    "BeamWaveguideFocus",
+    "MirrorTrain",
+    "DegenerateGeometryWarning",
+    "conf",
+]

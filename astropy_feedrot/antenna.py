@@ -1,0 +1,287 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""An antenna: a site, a mount and a focus, and its feed rotation."""
+
+import warnings
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import Angle
+
+from . import kernel
+from .exceptions import DegenerateGeometryWarning
+from .focus import CassegrainFocus, Focus
+from .frames import VERTICALS, as_location, local_frame, source_direction
+from .mounts import Mount, StationaryMount
+from .polarization import polarization_sign
+
+__all__ = ["Antenna"]
+
+
+def _check_instance(value, cls, name):
+    if isinstance(value, type) and issubclass(value, cls):
+        raise TypeError(f"{name} must be an instance; did you mean {value.__name__}()?")
+    if not isinstance(value, cls):
+        raise TypeError(
+            f"{name} must be a {cls.__name__} instance (e.g. AltAzMount(), "
+            f"CassegrainFocus()), got {type(value).__name__}"
+        )
+    return value
+
+
+def _to_angle(radians):
+    """Radians to an `~astropy.coordinates.Angle` in degrees; 0-d becomes scalar."""
+    radians = np.asarray(radians)
+    return Angle(radians[()] if radians.ndim == 0 else radians, u.rad).to(u.deg)
+
+
+class Antenna:
+    """A receiving antenna: where it is, how it is mounted, where its feed sits.
+
+    Parameters
+    ----------
+    location : `~astropy.coordinates.EarthLocation`
+        The antenna's reference point (a single site).
+    mount : `~astropy_feedrot.mounts.Mount`
+        `AltAzMount`, `EquatorialMount`, `XYMount`, `FixedAxisMount` or
+        `StationaryMount`.
+    focus : `~astropy_feedrot.focus.Focus`, optional
+        Where the feed sits: `CassegrainFocus` (default), `PrimeFocus`,
+        `GregorianFocus`, `NasmythFocus`, `BeamWaveguideFocus` or a
+        `MirrorTrain`. A `StationaryMount` takes only the conventional ones,
+        which add nothing.
+    name : str, optional
+        A label (e.g. the station name).
+    vertical : {'geodetic', 'geocentric'}, optional
+        Definition of the local vertical (the alt-az axis, the GNSS boresight,
+        the reference of azimuth and elevation). ``'geodetic'`` (default) is
+        the ellipsoid normal, which a levelled antenna follows; ``'geocentric'``
+        is :math:`r_\\mathrm{ant}/|r_\\mathrm{ant}|` as printed in Eq 28.
+
+    Raises
+    ------
+    TypeError
+        If an argument is not of the expected kind.
+    ValueError
+        If ``location`` is not a single site, for an unknown ``vertical``, or if
+        ``focus`` does not fit ``mount``.
+
+    Examples
+    --------
+    The parallactic angle of 3C 84 seen from the Wettzell 13 m telescope:
+
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation, SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import Antenna, AltAzMount
+    >>> wettzell = EarthLocation.from_geocentric(4075659.180, 931824.551,
+    ...                                          4801516.102, unit=u.m)
+    >>> antenna = Antenna(wettzell, AltAzMount(), name="WETTZ13S")
+    >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+    >>> antenna.feed_rotation(source, Time("2023-01-25T20:00"))  # doctest: +FLOAT_CMP
+    <Angle 59.12271470 deg>
+    """
+
+    def __init__(self, location, mount, focus=None, name=None, vertical="geodetic"):
+        self.location = as_location(location)
+        if not self.location.isscalar:
+            raise ValueError(
+                f"an Antenna has one location, got an array of shape {self.location.shape}; "
+                "make one Antenna per site"
+            )
+        self.mount = _check_instance(mount, Mount, "mount")
+        if focus is None:
+            focus = CassegrainFocus()
+        self.focus = _check_instance(focus, Focus, "focus")
+        if vertical not in VERTICALS:
+            raise ValueError(f"vertical must be one of {VERTICALS}, got {vertical!r}")
+        self.vertical = vertical
+        self.name = name
+        self._local = local_frame(self.location, vertical=vertical)
+        if isinstance(self.mount, StationaryMount):
+            if type(self.focus).receiver_phase is not Focus.receiver_phase:
+                raise ValueError(
+                    f"a StationaryMount has no optics to add terms; {self.focus!r} needs a "
+                    "steerable mount"
+                )
+        else:
+            self.focus.check_mount(self.mount, self._local)
+
+    def __repr__(self):
+        label = f"{self.name!r}, " if self.name else ""
+        x, y, z = (c.to_value(u.m) for c in self.location.to_geocentric())
+        return (
+            f"<Antenna {label}({x:.3f}, {y:.3f}, {z:.3f}) m, {self.mount!r}, {self.focus!r}>"
+        )
+
+    @property
+    def local_frame(self):
+        """East, north and up unit vectors of the site in ITRS.
+
+        Returns
+        -------
+        `~astropy_feedrot.frames.LocalFrame`
+        """
+        return self._local
+
+    def _direction(self, target, obstime):
+        return source_direction(target, self.location, obstime)
+
+    def _receiver_phase(self, s, t):
+        """Feed rotation (radians, RCP) of an arriving effective dipole ``t``."""
+        if self.mount.tracks:
+            axis = self.mount.fixed_axis(self._local)
+            return self.focus.receiver_phase(s, t, axis, self._local)
+        east, north, _ = self.mount.dipoles(self._local)
+        return kernel.wu_phase(s, kernel.receiver_effective_dipole(s, east, north), t)
+
+    def _finish(self, phase, s, what="feed rotation"):
+        """Warn once about degenerate epochs; return an Angle."""
+        degenerate = np.isnan(phase) & np.all(np.isfinite(s), axis=-1)
+        count = int(np.count_nonzero(degenerate))
+        if count:
+            warnings.warn(
+                f"{what} is undefined at {count} of {degenerate.size} epochs, where the "
+                f"line of sight is within 0.2 mas of a singular direction of {self.mount!r} "
+                f"with {self.focus!r} (a fixed axis such as the zenith of an alt-az "
+                "mount) or of the celestial pole; NaN is returned there",
+                DegenerateGeometryWarning,
+                stacklevel=3,
+            )
+        return _to_angle(phase)
+
+    def feed_rotation(self, target, obstime, polarization="RCP"):
+        """Feed rotation of the antenna observing a target.
+
+        Parameters
+        ----------
+        target : `~astropy.coordinates.SkyCoord`
+            Natural source(s) in any celestial frame.
+        obstime : `~astropy.time.Time`
+            Epoch(s) of observation (UTC scale or any other).
+        polarization : {'RCP', 'LCP'}, optional
+            Hand of the receiver. The LCP feed rotation is the negative of the
+            RCP one (Appendix D).
+
+        Returns
+        -------
+        `~astropy.coordinates.Angle`
+            The feed rotation :math:`\\Phi` in degrees, in (-180, 180], with the
+            broadcast shape of ``target`` and ``obstime`` (a scalar for scalar
+            inputs); NaN where undefined. Subtract it from measured RCP phases,
+            add it to LCP ones; for a continuous series see
+            `~astropy_feedrot.kernel.unwrap_phase`.
+
+        Raises
+        ------
+        TypeError
+            If ``target`` is not a coordinate or ``obstime`` not a time.
+        ValueError
+            For an unknown ``polarization``, a frame without data, or shapes of
+            ``target`` and ``obstime`` that do not broadcast.
+
+        Warns
+        -----
+        DegenerateGeometryWarning
+            Once, with the count, if some epochs are degenerate.
+
+        Notes
+        -----
+        For a natural source the transmitter's effective dipole is the
+        projected celestial pole (Eq 11), and the feed rotation is the
+        receiver term alone: Eq 13 for a fixed-axis mount (the parallactic
+        angle Eq 15 for alt-az, 0 for equatorial), Eq 33 for a stationary
+        crossed dipole, Eqs 38-39 for Nasmyth and beam-waveguide foci, and
+        Eqs 42-45 for a `MirrorTrain`.
+
+        Examples
+        --------
+        The Yebes 40 m telescope (Nasmyth, right-handed third mirror) sees a
+        feed rotation of parallactic angle plus elevation:
+
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import EarthLocation, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Antenna, AltAzMount, NasmythFocus
+        >>> yebes = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
+        >>> antenna = Antenna(yebes, AltAzMount(), NasmythFocus("right"))
+        >>> times = Time("2023-01-25T20:00") + [0, 2, 4] * u.hour
+        >>> antenna.feed_rotation(SkyCoord("03h19m48.16s +41d30m42.1s"), times)  # doctest: +FLOAT_CMP
+        <Angle [174.60305791, 136.86281049, 103.27155036] deg>
+        """
+        sign = polarization_sign(polarization)
+        s = self._direction(target, obstime)
+        t = kernel.project(kernel.NORTH_POLE, s)  # Eq 11
+        return self._finish(sign * self._receiver_phase(s, t), s)
+
+    def parallactic_angle(self, target, obstime):
+        """Parallactic angle of a target at the antenna's site (Eq 15).
+
+        The feed rotation of an alt-az antenna with a conventional focus, and
+        the first term of the Nasmyth and beam-waveguide forms. Positive west of
+        the meridian, as ERFA's ``hd2pa``.
+
+        Parameters
+        ----------
+        target : `~astropy.coordinates.SkyCoord`
+            Natural source(s).
+        obstime : `~astropy.time.Time`
+            Epoch(s) of observation.
+
+        Returns
+        -------
+        `~astropy.coordinates.Angle`
+            :math:`\\Psi` in degrees, broadcast shape of the inputs; NaN at the
+            zenith and at the pole.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import EarthLocation, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Antenna, EquatorialMount
+        >>> site = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
+        >>> Antenna(site, EquatorialMount()).parallactic_angle(
+        ...     SkyCoord("03h19m48.16s +41d30m42.1s"), Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
+        <Angle 77.88951063 deg>
+        """
+        s = self._direction(target, obstime)
+        return self._finish(kernel.receiver_term(s, self._local.up), s, "parallactic angle")
+
+    def altaz(self, target, obstime):
+        """Azimuth and elevation of a target above the antenna's horizon.
+
+        Azimuth from north through east, elevation above the plane normal to
+        the antenna's vertical; no refraction.
+
+        Parameters
+        ----------
+        target : `~astropy.coordinates.SkyCoord`
+            Natural source(s).
+        obstime : `~astropy.time.Time`
+            Epoch(s) of observation.
+
+        Returns
+        -------
+        azimuth, elevation : `~astropy.coordinates.Angle`
+            In degrees, broadcast shape of the inputs; azimuth in [0, 360).
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import EarthLocation, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Antenna, AltAzMount
+        >>> site = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
+        >>> az, el = Antenna(site, AltAzMount()).altaz(
+        ...     SkyCoord("03h19m48.16s +41d30m42.1s"), Time("2023-01-25T22:00"))
+        >>> round(float(el.deg), 3)
+        58.973
+        """
+        s = self._direction(target, obstime)
+        return self._altaz(s)
+
+    def _altaz(self, s):
+        east, north, up = self._local
+        az = np.mod(np.arctan2(kernel.dot(s, east), kernel.dot(s, north)), 2 * np.pi)
+        el = np.arcsin(np.clip(kernel.dot(s, up), -1.0, 1.0))
+        return _to_angle(az), _to_angle(el)

@@ -1,0 +1,523 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Focus types: what the optics between the sky and the feed add to the feed rotation.
+
+Conventional foci (prime, Cassegrain, Gregorian) add nothing (Eq 13). A full
+Nasmyth focus adds the elevation (Eq 38) and a beam-waveguide focus the
+elevation and the azimuth (Eq 39), with a sign fixed by the handedness of the
+third mirror. A `MirrorTrain` traces the wave's effective dipole through any
+sequence of mirrors (Eqs 42-45) and reproduces those closed forms.
+"""
+
+import numpy as np
+
+from . import kernel
+from .mounts import AltAzMount, FixedAxisMount
+
+__all__ = [
+    "Focus",
+    "PrimeFocus",
+    "CassegrainFocus",
+    "GregorianFocus",
+    "NasmythFocus",
+    "BeamWaveguideFocus",
+    "MirrorTrain",
+]
+
+HANDEDNESS = ("right", "left")
+
+# Tolerance on the orthonormality of user-given feed dipoles.
+_ORTHONORMAL_TOL = 1e-6
+
+
+def _elevation(s, up):
+    return np.arcsin(np.clip(kernel.dot(s, up), -1.0, 1.0))
+
+
+def _azimuth(s, local):
+    """Azimuth from north through east (Eq 39)."""
+    return np.arctan2(kernel.dot(s, local.east), kernel.dot(s, local.north))
+
+
+class Focus:
+    """Base class of focus types.
+
+    A focus turns the effective dipole :math:`t` of the arriving wave into the
+    phase measured at the feed of a tracking antenna.
+    """
+
+    def __eq__(self, other):
+        return type(self) is type(other) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash((type(self), self._key()))
+
+    def _key(self):
+        return ()
+
+    def __repr__(self):
+        return f"{type(self).__name__}()"
+
+    def check_mount(self, mount, local):
+        """Raise if this focus cannot be used with ``mount``.
+
+        Parameters
+        ----------
+        mount : `~astropy_feedrot.mounts.Mount`
+            The mount of the antenna.
+        local : `~astropy_feedrot.frames.LocalFrame`
+            East, north and up vectors of the site.
+
+        Raises
+        ------
+        ValueError
+            If the combination is not defined.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import CassegrainFocus, EquatorialMount
+        >>> from astropy_feedrot.frames import LocalFrame
+        >>> CassegrainFocus().check_mount(EquatorialMount(), LocalFrame(*np.eye(3)))
+        """
+
+    def receiver_phase(self, s, t, axis, local):
+        """Phase at the feed of the arriving effective dipole, in radians.
+
+        Parameters
+        ----------
+        s : ndarray, shape (..., 3)
+            Source unit vectors in ITRS.
+        t : ndarray, shape (..., 3)
+            Effective dipole of the arriving wave (Eq 8; :math:`P\\hat{z}` for a
+            natural source, Eq 11).
+        axis : ndarray, shape (..., 3)
+            Fixed-axis unit vector of the mount in ITRS.
+        local : `~astropy_feedrot.frames.LocalFrame`
+            East, north and up vectors of the site.
+
+        Returns
+        -------
+        ndarray, shape (...)
+            The feed rotation :math:`\\Phi` (RCP), NaN where undefined.
+
+        Examples
+        --------
+        An alt-az telescope with a Cassegrain focus measures the parallactic
+        angle; here a source due west at latitude 45 deg (local frame):
+
+        >>> import numpy as np
+        >>> from astropy_feedrot import CassegrainFocus
+        >>> from astropy_feedrot.frames import LocalFrame
+        >>> from astropy_feedrot.kernel import project
+        >>> enu = LocalFrame(*np.eye(3))
+        >>> s = np.array([-1.0, 0.0, 0.0])
+        >>> t = project([0.0, np.sqrt(0.5), np.sqrt(0.5)], s)
+        >>> float(np.degrees(CassegrainFocus().receiver_phase(s, t, enu.up, enu)))  # doctest: +FLOAT_CMP
+        45.0
+        """
+        return kernel.wu_phase(s, axis, t)
+
+
+class PrimeFocus(Focus):
+    """Feed at the prime focus: no term beyond the mount's (Eq 13).
+
+    Examples
+    --------
+    >>> from astropy_feedrot import PrimeFocus
+    >>> PrimeFocus()
+    PrimeFocus()
+    """
+
+
+class CassegrainFocus(Focus):
+    """Feed at a Cassegrain focus: no term beyond the mount's (Eq 13).
+
+    Examples
+    --------
+    >>> from astropy_feedrot import CassegrainFocus
+    >>> CassegrainFocus() == CassegrainFocus()
+    True
+    """
+
+
+class GregorianFocus(Focus):
+    """Feed at a Gregorian focus: no term beyond the mount's (Eq 13).
+
+    Examples
+    --------
+    >>> from astropy_feedrot import GregorianFocus
+    >>> GregorianFocus()
+    GregorianFocus()
+    """
+
+
+class _HandedFocus(Focus):
+    """A closed-form focus of an alt-az antenna with a handed third mirror."""
+
+    def __init__(self, handedness):
+        if handedness not in HANDEDNESS:
+            raise ValueError(
+                f"{type(self).__name__} handedness must be one of {HANDEDNESS}, "
+                f"got {handedness!r}"
+            )
+        self._handedness = handedness
+
+    @property
+    def handedness(self):
+        """``'right'`` or ``'left'``: the handedness of the third mirror."""
+        return self._handedness
+
+    @property
+    def sign(self):
+        """+1 for a right-handed, -1 for a left-handed third mirror."""
+        return 1 if self._handedness == "right" else -1
+
+    def _key(self):
+        return (self._handedness,)
+
+    def __repr__(self):
+        return f"{type(self).__name__}(handedness={self._handedness!r})"
+
+    def check_mount(self, mount, local):
+        if not isinstance(mount, AltAzMount):
+            raise ValueError(
+                f"{type(self).__name__} is defined for an AltAzMount (its extra terms "
+                f"are elevation and azimuth), not for {mount!r}; describe other optics "
+                "with a MirrorTrain"
+            )
+
+
+class NasmythFocus(_HandedFocus):
+    """Full Nasmyth focus of an alt-az antenna (Eq 38).
+
+    The feed sits in a cabin that turns in azimuth but not in elevation; the
+    feed rotation is :math:`\\Psi + E` for a right-handed third mirror and
+    :math:`\\Psi - E` for a left-handed one (:math:`E` the elevation), as in
+    casacore, HOPS and PolConvert.
+
+    Parameters
+    ----------
+    handedness : {'right', 'left'}
+        Handedness of the reflection at the third mirror (YEBES40M: right).
+
+    Raises
+    ------
+    ValueError
+        For another ``handedness``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import NasmythFocus
+    >>> NasmythFocus("right").sign
+    1
+    """
+
+    def receiver_phase(self, s, t, axis, local):
+        return kernel.wu_phase(s, axis, t) + self.sign * _elevation(s, axis)
+
+
+class BeamWaveguideFocus(_HandedFocus):
+    """Beam-waveguide focus of an alt-az antenna (Eq 39).
+
+    The feed is fixed to the ground; the feed rotation is
+    :math:`\\Psi + E - A` for a right-handed third mirror and
+    :math:`\\Psi - E + A` for a left-handed one (:math:`A` the azimuth from
+    north through east), as casacore's ``BWG-R`` and ``BWG-L``.
+
+    Parameters
+    ----------
+    handedness : {'right', 'left'}
+        Handedness of the reflection at the third mirror (WARK30M: right).
+
+    Raises
+    ------
+    ValueError
+        For another ``handedness``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import BeamWaveguideFocus
+    >>> BeamWaveguideFocus("left")
+    BeamWaveguideFocus(handedness='left')
+    """
+
+    def receiver_phase(self, s, t, axis, local):
+        extra = _elevation(s, axis) - _azimuth(s, local)
+        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * extra)
+
+
+def _as_vectors(values, name):
+    try:
+        array = np.array(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numbers, got {values!r}") from None
+    if array.ndim == 1:
+        array = array[np.newaxis]
+    if array.ndim != 2 or array.shape[-1] != 3 or len(array) == 0:
+        raise ValueError(f"{name} must be one or more 3-vectors, got shape {np.shape(values)}")
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be finite, got {values!r}")
+    return array
+
+
+class MirrorTrain(Focus):
+    """A feed behind a train of mirrors, traced reflection by reflection (Eqs 42-45).
+
+    The wave arrives along :math:`\\hat{k}_1 = -\\hat{s}` after the primary and
+    secondary mirrors (whose two phase flips cancel, Appendix C.1). Each
+    further wave vector defines one more mirror (its normal by Eq 42), at which
+    the effective dipole is reflected with a phase flip (Eqs 43, 44). The phase
+    is then read by the feed's dipoles with Eq 45. After an odd number of
+    mirrors the correlator relabels the hands, and the angle is negated
+    (Sec. 3.2; Notes item 3).
+
+    Wave vectors and feed dipoles are given in the antenna's local frame of
+    Eq C15, :math:`(\\hat{\\xi}, \\hat{\\eta}, \\hat{u})`: :math:`\\hat{u}` the
+    fixed axis of the mount (the local vertical of an alt-az mount),
+    :math:`\\hat{\\xi}` the direction of the source projected on the plane
+    perpendicular to it, and :math:`\\hat{\\eta} = \\hat{u} \\times
+    \\hat{\\xi}`.
+
+    Parameters
+    ----------
+    wave_vectors : array-like, shape (N, 3)
+        :math:`\\hat{k}_2, \\ldots, \\hat{k}_{N+1}` in
+        :math:`(\\hat{\\xi}, \\hat{\\eta}, \\hat{u})` components (normalized
+        here); the last one is the wave entering the feed. ``N`` is the number
+        of mirrors after the secondary.
+    feed_aligned, feed_transverse : array-like of 3 floats
+        The feed's aligned and transverse dipoles: an orthonormal pair with
+        ``feed_aligned x feed_transverse`` (the boresight) along
+        :math:`-\\hat{k}_{N+1}`. In :math:`(\\hat{\\xi}, \\hat{\\eta},
+        \\hat{u})` components if ``feed_rotates``, else in east-north-up ones.
+    feed_rotates : bool, optional
+        True (default) if the feed turns with the antenna in azimuth (Nasmyth
+        cabin); False if it is fixed to the ground (beam waveguide), in which
+        case the last wave vector must lie along the fixed axis.
+    name : str, optional
+        A label for the train.
+
+    Raises
+    ------
+    ValueError
+        If a wave vector is zero or two consecutive ones are equal (no mirror
+        between them), if the feed dipoles are not an orthonormal,
+        right-handed pair facing the last wave vector, or if a ground-fixed feed
+        does not receive the beam along the fixed axis.
+
+    Notes
+    -----
+    The traced angle equals the closed forms up to a constant that depends on
+    which feed dipole is called aligned (Notes item 4): the ready-made
+    `yebes40m` trains trace to :math:`\\Psi + E + c` (Nasmyth right, Eq 38)
+    and `wark30m` to :math:`\\Psi + E - A + c` (beam waveguide right,
+    Eq 39), with the constants :math:`c` given in their docstrings. A
+    constant is absorbed by the clock in phase analyses.
+
+    Examples
+    --------
+    The simplest Nasmyth focus: one tertiary mirror sends the beam along the
+    elevation axis to the telescope's left (:math:`-\\hat{\\eta}`), into a
+    feed that faces it. One reflection is odd, so the angle is negated; the
+    result is the right-handed Nasmyth form :math:`\\Psi + E` plus 180 deg.
+
+    >>> from astropy_feedrot import MirrorTrain
+    >>> train = MirrorTrain([[0, -1, 0]], feed_aligned=[0, 0, 1], feed_transverse=[1, 0, 0])
+    >>> train.reflections
+    1
+    >>> train
+    MirrorTrain(<1 mirrors>, feed_rotates=True)
+    """
+
+    def __init__(self, wave_vectors, feed_aligned, feed_transverse, feed_rotates=True, name=None):
+        k = _as_vectors(wave_vectors, "wave_vectors")
+        norms = np.linalg.norm(k, axis=-1)
+        if np.any(norms == 0):
+            raise ValueError(f"wave vector {int(np.argmin(norms)) + 2} has zero length")
+        k = k / norms[:, np.newaxis]
+        for i in range(len(k) - 1):
+            if np.allclose(k[i], k[i + 1], atol=1e-12):
+                raise ValueError(
+                    f"wave vectors k_{i + 2} and k_{i + 3} are equal: there is no mirror "
+                    "between them"
+                )
+        fa = _as_vectors(feed_aligned, "feed_aligned")
+        ft = _as_vectors(feed_transverse, "feed_transverse")
+        if fa.shape != (1, 3) or ft.shape != (1, 3):
+            raise ValueError("feed_aligned and feed_transverse must each be one 3-vector")
+        fa, ft = fa[0], ft[0]
+        for label, v in (("feed_aligned", fa), ("feed_transverse", ft)):
+            if abs(np.linalg.norm(v) - 1) > _ORTHONORMAL_TOL:
+                raise ValueError(
+                    f"{label} must be a unit vector, got length {np.linalg.norm(v):.9g}"
+                )
+        if abs(fa @ ft) > _ORTHONORMAL_TOL:
+            raise ValueError(
+                f"feed dipoles must be orthogonal, got feed_aligned . feed_transverse = "
+                f"{fa @ ft:.3g}"
+            )
+        k_out = k[-1]
+        boresight = np.cross(fa, ft)
+        if not feed_rotates:
+            if abs(abs(k_out[2]) - 1) > _ORTHONORMAL_TOL:
+                raise ValueError(
+                    "a feed fixed to the ground must receive the beam along the fixed "
+                    f"axis, i.e. a last wave vector (0, 0, +-1); got {k_out}"
+                )
+        elif np.linalg.norm(boresight + k_out) > _ORTHONORMAL_TOL:
+            raise ValueError(
+                "the feed must face the arriving wave: feed_aligned x feed_transverse "
+                f"= {boresight} must equal -k_out = {-k_out} (a right-handed triad with "
+                "the boresight against the last wave vector)"
+            )
+        for array in (k, fa, ft):
+            array.flags.writeable = False
+        self._k = k
+        self._fa = fa
+        self._ft = ft
+        self._rotates = bool(feed_rotates)
+        self.name = name
+
+    @property
+    def wave_vectors(self):
+        """The unit wave vectors after the secondary mirror, shape (N, 3)."""
+        return self._k
+
+    @property
+    def feed_aligned(self):
+        """The feed's aligned dipole (local or east-north-up components)."""
+        return self._fa
+
+    @property
+    def feed_transverse(self):
+        """The feed's transverse dipole (local or east-north-up components)."""
+        return self._ft
+
+    @property
+    def feed_rotates(self):
+        """Whether the feed turns with the antenna in azimuth."""
+        return self._rotates
+
+    @property
+    def reflections(self):
+        """Number of mirrors traced (after the secondary)."""
+        return len(self._k)
+
+    def _key(self):
+        return (self._k.tobytes(), self._fa.tobytes(), self._ft.tobytes(), self._rotates)
+
+    def __repr__(self):
+        label = f", name={self.name!r}" if self.name else ""
+        return (
+            f"MirrorTrain(<{self.reflections} mirrors>, feed_rotates={self._rotates}{label})"
+        )
+
+    def check_mount(self, mount, local):
+        if not isinstance(mount, FixedAxisMount):
+            raise ValueError(
+                f"a MirrorTrain needs a steerable mount with a fixed axis, not {mount!r}"
+            )
+        if not self._rotates:
+            axis = mount.fixed_axis(local)
+            boresight = sum(c * v for c, v in zip(np.cross(self._fa, self._ft), local))
+            if np.linalg.norm(boresight + self._k[-1][2] * axis) > _ORTHONORMAL_TOL:
+                raise ValueError(
+                    "the ground-fixed feed must face the arriving wave: feed_aligned x "
+                    "feed_transverse (east-north-up) must point along -k_out, i.e. "
+                    f"{'down' if self._k[-1][2] > 0 else 'up'} the fixed axis of {mount!r}"
+                )
+
+    def receiver_phase(self, s, t, axis, local):
+        s = np.asarray(s, dtype=float)
+        eta = kernel.unit(np.cross(axis, s))
+        xi = np.cross(eta, axis)
+
+        def in_local(c):
+            return c[0] * xi + c[1] * eta + c[2] * axis
+
+        waves = [-s] + [in_local(c) for c in self._k]
+        q = kernel.trace_dipole(t, waves)
+        if self._rotates:
+            ra, rt = in_local(self._fa), in_local(self._ft)
+        else:
+            ra, rt = (c[0] * local.east + c[1] * local.north + c[2] * local.up
+                      for c in (self._fa, self._ft))
+        phi = kernel.feed_phase(q, waves[-1], ra, rt)
+        return -phi if self.reflections % 2 else phi
+
+    @classmethod
+    def yebes40m(cls, band="X"):
+        """The full Nasmyth optics of the Yebes 40 m telescope (Appendix C.1).
+
+        Parameters
+        ----------
+        band : {'X', 'S', 'C'}
+            ``'S'`` and ``'C'``: feeds behind mirrors M3-M5 (three reflections,
+            Eqs C16-C17, :math:`\\alpha = 51.15^\\circ`); ``'X'``: the feed behind
+            the dichroic mirror M6 (four reflections, :math:`\\beta =
+            53.87^\\circ`), with the transverse dipole
+            :math:`\\hat{u}\\cos\\beta - \\hat{\\xi}\\sin\\beta` (Eq C18 as
+            printed has :math:`\\hat{\\eta}`, which is not orthogonal to the
+            wave; Notes item 2).
+
+        Returns
+        -------
+        MirrorTrain
+
+        Raises
+        ------
+        ValueError
+            For another band.
+
+        Notes
+        -----
+        All three bands trace to :math:`\\Psi + E + 90^\\circ` (Nasmyth right,
+        Eq 38, plus a constant quarter turn set by the choice of aligned
+        dipole), to better than 1e-9 rad over the sky.
+
+        Examples
+        --------
+        >>> from astropy_feedrot import MirrorTrain
+        >>> MirrorTrain.yebes40m("S").reflections
+        3
+        """
+        bands = ("X", "S", "C")
+        if band not in bands:
+            raise ValueError(f"YEBES40M band must be one of {bands}, got {band!r}")
+        alpha = np.radians(51.15)
+        beta = np.radians(53.87)
+        waves = [[0, -1, 0], [-1, 0, 0], [np.cos(alpha), 0, -np.sin(alpha)]]
+        if band == "X":
+            waves.append([-np.cos(beta), 0, -np.sin(beta)])
+            aligned, transverse = [0, 1, 0], [-np.sin(beta), 0, np.cos(beta)]
+        else:
+            aligned, transverse = [0, -1, 0], [np.sin(alpha), 0, np.cos(alpha)]
+        return cls(waves, aligned, transverse, feed_rotates=True, name=f"YEBES40M {band}")
+
+    @classmethod
+    def wark30m(cls):
+        """The slanted beam waveguide of the Warkworth 30 m telescope (Appendix C.2).
+
+        Four mirrors after the secondary (Eq C19), the last sending the beam
+        down the azimuth axis to a feed fixed to the ground with its aligned
+        dipole east and transverse dipole north (Eq C20).
+
+        Returns
+        -------
+        MirrorTrain
+
+        Notes
+        -----
+        Traces to :math:`\\Psi + E - A + c` (beam waveguide right, Eq 39) with
+        the constant :math:`c = 2\\arctan(2500/9500) - 180^\\circ \\approx
+        -150.51^\\circ`, set by the slant of the third wave vector, to better
+        than 1e-9 rad over the sky.
+
+        Examples
+        --------
+        >>> from astropy_feedrot import MirrorTrain
+        >>> MirrorTrain.wark30m().feed_rotates
+        False
+        """
+        waves = [[0, -1, 0], [-2500, 0, -9500], [0, 1, 0], [0, 0, -1]]
+        return cls(waves, [1, 0, 0], [0, 1, 0], feed_rotates=False, name="WARK30M")
