@@ -1,0 +1,12 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Test configuration: everything runs offline."""
+
+from astropy.utils import iers
+from astropy.utils.data import conf as data_conf
+
+
+def pytest_configure(config):
+    # The IERS tables bundled with astropy (astropy-iers-data) are enough; any
+    # attempt to reach the network is an error in the tests.
+    iers.conf.auto_download = False
+    data_conf.allow_internet = False
