@@ -294,7 +294,8 @@ def source_direction(target, location, obstime):
     if isinstance(target.frame, ITRS):
         xyz = _earth_fixed_offset(target, location)
     else:
-        with iers_context():
+        # NaN coordinates propagate as NaN; ERFA's ufuncs need not warn about them.
+        with iers_context(), np.errstate(invalid="ignore"):
             itrs = ITRS(obstime=obstime, location=location)
             xyz = _itrs_xyz(target.transform_to(itrs))
     return np.broadcast_to(unit(xyz), shape + (3,))
