@@ -205,7 +205,8 @@ class Antenna:
         >>> yebes = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
         >>> antenna = Antenna(yebes, AltAzMount(), NasmythFocus("right"))
         >>> times = Time("2023-01-25T20:00") + [0, 2, 4] * u.hour
-        >>> antenna.feed_rotation(SkyCoord("03h19m48.16s +41d30m42.1s"), times)  # doctest: +FLOAT_CMP
+        >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+        >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
         sign = polarization_sign(polarization)
@@ -240,8 +241,9 @@ class Antenna:
         >>> from astropy.time import Time
         >>> from astropy_feedrot import Antenna, EquatorialMount
         >>> site = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
-        >>> Antenna(site, EquatorialMount()).parallactic_angle(
-        ...     SkyCoord("03h19m48.16s +41d30m42.1s"), Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
+        >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+        >>> antenna = Antenna(site, EquatorialMount())
+        >>> antenna.parallactic_angle(source, Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
         <Angle 77.88951063 deg>
         """
         s = self._direction(target, obstime)

@@ -112,7 +112,8 @@ class Focus:
         >>> enu = LocalFrame(*np.eye(3))
         >>> s = np.array([-1.0, 0.0, 0.0])
         >>> t = project([0.0, np.sqrt(0.5), np.sqrt(0.5)], s)
-        >>> float(np.degrees(CassegrainFocus().receiver_phase(s, t, enu.up, enu)))  # doctest: +FLOAT_CMP
+        >>> phi = CassegrainFocus().receiver_phase(s, t, enu.up, enu)
+        >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
         45.0
         """
         return kernel.wu_phase(s, axis, t)
@@ -269,7 +270,7 @@ class MirrorTrain(Focus):
     the effective dipole is reflected with a phase flip (Eqs 43, 44). The phase
     is then read by the feed's dipoles with Eq 45. After an odd number of
     mirrors the correlator relabels the hands, and the angle is negated
-    (Sec. 3.2; Notes item 3).
+    (Sec. 3.2), not shifted by 180 deg.
 
     Wave vectors and feed dipoles are given in the antenna's local frame of
     Eq C15, :math:`(\\hat{\\xi}, \\hat{\\eta}, \\hat{u})`: :math:`\\hat{u}` the
@@ -308,7 +309,7 @@ class MirrorTrain(Focus):
     Notes
     -----
     The traced angle equals the closed forms up to a constant that depends on
-    which feed dipole is called aligned (Notes item 4): the ready-made
+    which feed dipole is called aligned: the ready-made
     `yebes40m` trains trace to :math:`\\Psi + E + c` (Nasmyth right, Eq 38)
     and `wark30m` to :math:`\\Psi + E - A + c` (beam waveguide right,
     Eq 39), with the constants :math:`c` given in their docstrings. A
@@ -458,7 +459,7 @@ class MirrorTrain(Focus):
             53.87^\\circ`), with the transverse dipole
             :math:`\\hat{u}\\cos\\beta - \\hat{\\xi}\\sin\\beta` (Eq C18 as
             printed has :math:`\\hat{\\eta}`, which is not orthogonal to the
-            wave; Notes item 2).
+            wave).
 
         Returns
         -------

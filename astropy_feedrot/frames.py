@@ -33,7 +33,8 @@ __all__ = [
     "source_direction",
 ]
 
-#: Accepted definitions of the local vertical (Notes item 6).
+#: Accepted definitions of the local vertical: the ellipsoid normal or the
+#: geocentric direction (see `local_frame`).
 VERTICALS = ("geodetic", "geocentric")
 
 
@@ -251,7 +252,7 @@ def _itrs_xyz(coord):
 
 
 def source_direction(target, location, obstime):
-    """Topocentric direction of a celestial target in ITRS (Eq 2, Sec. 2.2).
+    """Topocentric direction of a celestial target in ITRS (Eq 2).
 
     Parameters
     ----------
@@ -307,7 +308,7 @@ def _earth_fixed_offset(target, location):
     An ITRS direction without distance (unit sphere) is a source at infinity
     and is returned as it is; a position is differenced with the site (Eq 2),
     which keeps satellites free of the aberration astropy's route through
-    celestial frames would add (Notes item 8).
+    celestial frames would add.
     """
     if target.cartesian.x.unit == u.one:
         return _itrs_xyz(target)

@@ -166,7 +166,7 @@ def cross_matrix(s):
 
 
 def project(v, s):
-    """Apply the projection of Eq 4: ``P v = v - (v . s) s``.
+    """Apply the projection of Eq 4 without forming the matrix.
 
     Parameters
     ----------

@@ -283,4 +283,3 @@ class StationaryMount(Mount):
         array([0., 1., 0.])
         """
         return local.east, local.north, local.up
-

@@ -309,4 +309,3 @@ def test_computations_stay_offline():
         with conf.set_temp("iers_auto_download", True), iers_context():
             assert iers.conf.auto_download is True
         assert iers.conf.auto_download is True
-

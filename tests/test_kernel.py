@@ -235,7 +235,7 @@ def test_reflection_keeps_dipole_on_sky_plane(k_in, k_out, q):
 
 @given(unit3, angle, vec3)
 def test_feed_phase_without_mirrors_is_eq31(s, gamma, t):
-    # Notes item 1: with k_out x q, Eq 45 reduces to Eq 31 when there is no
+    # With k_out x q (not the printed q x k_out), Eq 45 reduces to Eq 31 when there is no
     # mirror (k_out = -s, q = t), for receiver dipoles in any orientation.
     t = k.project(t, s)
     if np.linalg.norm(t) < 1e-3:

@@ -140,7 +140,8 @@ def test_stationary_mount_at_zenith_is_pole_azimuth():
 
 @pytest.mark.parametrize("band", ["S", "C", "X"])
 def test_nasmyth_closed_form_equals_traced_yebes40m(band):
-    # Sec. 3.3 and Notes item 4: equal up to one constant (here +90 deg).
+    # Sec. 3.3: equal up to one constant (here +90 deg, set by which feed
+    # dipole is called aligned).
     site = SITES["YEBES"]
     closed = Antenna(site, AltAzMount(), NasmythFocus("right"))
     traced = Antenna(site, AltAzMount(), MirrorTrain.yebes40m(band))
@@ -271,7 +272,7 @@ def test_broadcasting_targets_and_times():
 
 
 def test_geodetic_and_geocentric_vertical():
-    # Notes item 6: at mid-latitudes the two verticals differ by ~0.17-0.19 deg.
+    # At mid-latitudes the geodetic and geocentric verticals differ by ~0.17-0.19 deg.
     site = SITES["FD-VLBA"]
     geodetic = local_frame(site).up
     geocentric = local_frame(site, vertical="geocentric").up
