@@ -7,8 +7,10 @@ satellites (Skeens et al., "A unified model of feed rotation in radio
 telescopes and GNSS antennas").
 """
 
-from .antenna import Antenna
+from .antenna import Antenna, FeedRotationTerms
+from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
+from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
 from .exceptions import DegenerateGeometryWarning
 from .focus import (
     BeamWaveguideFocus,
@@ -19,6 +21,8 @@ from .focus import (
     NasmythFocus,
     PrimeFocus,
 )
+from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .satellite import Satellite
 from .mounts import (
     AltAzMount,
     EquatorialMount,
@@ -35,6 +39,13 @@ except ImportError:  # pragma: no cover - running from a source tree without a b
 
 __all__ = [
     "Antenna",
+    "FeedRotationTerms",
+    "Satellite",
+    "TLEOrbit",
+    "SP3Orbit",
+    "CoordinateOrbit",
+    "NominalAttitude",
+    "QuaternionAttitude",
     "Mount",
     "FixedAxisMount",
     "AltAzMount",
@@ -48,6 +59,10 @@ __all__ = [
     "NasmythFocus",
     "BeamWaveguideFocus",
     "MirrorTrain",
+    "unwrap",
+    "rotation_delay",
+    "RotationDelay",
     "DegenerateGeometryWarning",
+    "ContinuityWarning",
     "conf",
 ]

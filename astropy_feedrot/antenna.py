@@ -2,6 +2,7 @@
 """An antenna: a site, a mount and a focus, and its feed rotation."""
 
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 from astropy import units as u
@@ -13,8 +14,35 @@ from .focus import CassegrainFocus, Focus
 from .frames import VERTICALS, as_location, local_frame, source_direction
 from .mounts import Mount, StationaryMount
 from .polarization import polarization_sign
+from .satellite import LineOfSight, Satellite
 
-__all__ = ["Antenna"]
+__all__ = ["Antenna", "FeedRotationTerms"]
+
+#: Forms of the wind-up of a stationary crossed dipole seeing a satellite.
+FORMS = ("beyerle", "wu")
+
+
+class FeedRotationTerms(NamedTuple):
+    """The feed rotation split into transmitter and receiver terms (Eq 20).
+
+    Attributes
+    ----------
+    transmitter : `~astropy.coordinates.Angle`
+        :math:`\\Phi_\\mathrm{tx}` (Eq 21): the transmitter's effective dipole
+        measured from the projected north celestial pole; 0 for a natural
+        source.
+    receiver : `~astropy.coordinates.Angle`
+        :math:`\\Phi_\\mathrm{rx}` (Eq 22 and the focus terms): the receiver's
+        feed measured from the same reference, i.e. its feed rotation for a
+        natural source in the same direction.
+    total : `~astropy.coordinates.Angle`
+        Their sum, wrapped to (-180, 180] deg: the effective-dipole (Wu) form of
+        the feed rotation (Eq 7).
+    """
+
+    transmitter: Angle
+    receiver: Angle
+    total: Angle
 
 
 def _check_instance(value, cls, name):
@@ -124,43 +152,93 @@ class Antenna:
         return self._local
 
     def _direction(self, target, obstime):
-        return source_direction(target, self.location, obstime)
+        return self._line_of_sight(target, obstime).s
+
+    def _line_of_sight(self, target, obstime):
+        if isinstance(target, Satellite):
+            return target.line_of_sight(self.location, obstime)
+        return LineOfSight(source_direction(target, self.location, obstime))
+
+    def _sign(self, target, polarization):
+        """+1/-1 for the receiver's hand, checked against a satellite's."""
+        if isinstance(target, Satellite):
+            if polarization is None:
+                return target.sign
+            sign = polarization_sign(polarization)
+            if sign != target.sign:
+                raise ValueError(
+                    f"a {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
+                    f"{target.polarization} signal of {target!r}; use "
+                    f"polarization={target.polarization!r} (or leave it unset)"
+                )
+            return sign
+        return polarization_sign("RCP" if polarization is None else polarization)
+
+    def _below(self, s, min_elevation):
+        """Where the line of sight is below ``min_elevation`` (all False for None)."""
+        if min_elevation is None:
+            return np.zeros(s.shape[:-1], dtype=bool)
+        limit = u.Quantity(min_elevation).to_value(u.rad)
+        return np.arcsin(np.clip(kernel.dot(s, self._local.up), -1.0, 1.0)) < limit
 
     def _receiver_phase(self, s, t):
-        """Feed rotation (radians, RCP) of an arriving effective dipole ``t``."""
+        """Feed rotation (radians, RCP) of an arriving effective dipole ``t`` (Eq 7)."""
         if self.mount.tracks:
             axis = self.mount.fixed_axis(self._local)
             return self.focus.receiver_phase(s, t, axis, self._local)
         east, north, _ = self.mount.dipoles(self._local)
         return kernel.wu_phase(s, kernel.receiver_effective_dipole(s, east, north), t)
 
-    def _finish(self, phase, s, what="feed rotation"):
-        """Warn once about degenerate epochs; return an Angle."""
-        degenerate = np.isnan(phase) & np.all(np.isfinite(s), axis=-1)
+    def _phase(self, los, form):
+        """Feed rotation (radians, RCP) for a line of sight, in the requested form."""
+        if form not in FORMS + (None,):
+            raise ValueError(f"form must be one of {FORMS}, got {form!r}")
+        if not self.mount.tracks and los.aligned is not None and form != "wu":
+            # A stationary crossed dipole and a crossed-dipole transmitter that
+            # need not face each other: Beyerle's form (Eq 30).
+            east, north, _ = self.mount.dipoles(self._local)
+            return kernel.beyerle_phase(los.s, east, north, los.aligned, los.transverse)
+        return self._receiver_phase(los.s, los.t)
+
+    def _finish(self, phase, s, what="feed rotation", below=False):
+        """NaN where ``below``; warn once about degenerate epochs; return an Angle."""
+        degenerate = np.isnan(phase) & np.all(np.isfinite(s), axis=-1) & ~below
+        phase = np.where(below, np.nan, phase)
         count = int(np.count_nonzero(degenerate))
         if count:
             warnings.warn(
                 f"{what} is undefined at {count} of {degenerate.size} epochs, where the "
                 f"line of sight is within 0.2 mas of a singular direction of {self.mount!r} "
                 f"with {self.focus!r} (a fixed axis such as the zenith of an alt-az "
-                "mount) or of the celestial pole; NaN is returned there",
+                "mount) or of the celestial pole, or where a transmitter is seen edge-on; "
+                "NaN is returned there",
                 DegenerateGeometryWarning,
                 stacklevel=3,
             )
         return _to_angle(phase)
 
-    def feed_rotation(self, target, obstime, polarization="RCP"):
+    def feed_rotation(self, target, obstime, polarization=None, form=None,
+                      min_elevation=None):
         """Feed rotation of the antenna observing a target.
 
         Parameters
         ----------
-        target : `~astropy.coordinates.SkyCoord`
-            Natural source(s) in any celestial frame.
+        target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+            Natural source(s) in any celestial frame, or a satellite.
         obstime : `~astropy.time.Time`
             Epoch(s) of observation (UTC scale or any other).
         polarization : {'RCP', 'LCP'}, optional
-            Hand of the receiver. The LCP feed rotation is the negative of the
-            RCP one (Appendix D).
+            Hand of the receiver: RCP by default for a natural source, the
+            satellite's hand for a satellite. The LCP feed rotation is the
+            negative of the RCP one (Sec. 3, Appendix D).
+        form : {'beyerle', 'wu'}, optional
+            For a `StationaryMount` seeing a satellite: the full crossed-dipole
+            form (Eq 30, default) or the effective-dipole form (Eq 31). The two
+            are identical for tracking antennas and natural sources.
+        min_elevation : `~astropy.units.Quantity`, optional
+            Return NaN (without warning) where the target is lower than this
+            above the antenna's horizon. By default angles are computed for
+            every epoch, below the horizon too.
 
         Returns
         -------
@@ -176,7 +254,8 @@ class Antenna:
         TypeError
             If ``target`` is not a coordinate or ``obstime`` not a time.
         ValueError
-            For an unknown ``polarization``, a frame without data, or shapes of
+            For an unknown ``polarization`` or ``form``, a receiver hand that
+            differs from a satellite's, a frame without data, or shapes of
             ``target`` and ``obstime`` that do not broadcast.
 
         Warns
@@ -191,7 +270,10 @@ class Antenna:
         receiver term alone: Eq 13 for a fixed-axis mount (the parallactic
         angle Eq 15 for alt-az, 0 for equatorial), Eq 33 for a stationary
         crossed dipole, Eqs 38-39 for Nasmyth and beam-waveguide foci, and
-        Eqs 42-45 for a `MirrorTrain`.
+        Eqs 42-45 for a `MirrorTrain`. For a satellite the transmitter's
+        effective dipole (Eq 8) comes from its attitude; a telescope gives
+        Eqs 35, 40 and 41, and a `MirrorTrain` traces that dipole through its
+        mirrors.
 
         Examples
         --------
@@ -209,10 +291,66 @@ class Antenna:
         >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
-        sign = polarization_sign(polarization)
-        s = self._direction(target, obstime)
-        t = kernel.project(kernel.NORTH_POLE, s)  # Eq 11
-        return self._finish(sign * self._receiver_phase(s, t), s)
+        sign = self._sign(target, polarization)
+        los = self._line_of_sight(target, obstime)
+        below = self._below(los.s, min_elevation)
+        return self._finish(sign * self._phase(los, form), los.s, below=below)
+
+    def feed_rotation_terms(self, target, obstime, polarization=None, min_elevation=None):
+        """The feed rotation split into a transmitter and a receiver term (Eqs 20-22).
+
+        Parameters
+        ----------
+        target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+            Natural source(s) or a satellite.
+        obstime : `~astropy.time.Time`
+            Epoch(s) of observation.
+        polarization : {'RCP', 'LCP'}, optional
+            As for `feed_rotation`; LCP flips the signs of both terms.
+        min_elevation : `~astropy.units.Quantity`, optional
+            As for `feed_rotation`.
+
+        Returns
+        -------
+        FeedRotationTerms
+            Named tuple ``(transmitter, receiver, total)`` of
+            `~astropy.coordinates.Angle` in degrees; ``transmitter + receiver``
+            equals ``total`` modulo 360 deg.
+
+        Notes
+        -----
+        The split is exact for the effective-dipole form (Eq 7). For a
+        `StationaryMount` seeing a satellite, `feed_rotation` uses the
+        crossed-dipole form (Eq 30) by default, which differs from ``total``
+        by the receiver's cross-hand response (a few mrad for GNSS satellites).
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import EarthLocation
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Antenna, AltAzMount, Satellite, TLEOrbit
+        >>> gps = Satellite(TLEOrbit(
+        ...     "1 41328U 16007A   23024.39332179  .00000015  00000-0  00000+0 0  9995",
+        ...     "2 41328  54.9577 138.7050 0066950 231.2234 128.1638  2.00560135 51012"))
+        >>> fd = EarthLocation.from_geocentric(-1324009.454, -5332181.955, 3231962.369, u.m)
+        >>> terms = Antenna(fd, AltAzMount()).feed_rotation_terms(gps, Time("2023-01-25T11:00"))
+        >>> terms.total  # doctest: +FLOAT_CMP
+        <Angle 41.41117014 deg>
+        >>> sum_of_terms = terms.transmitter + terms.receiver
+        >>> (sum_of_terms - terms.total).wrap_at(180 * u.deg)  # doctest: +FLOAT_CMP
+        <Angle 0. deg>
+        """
+        sign = self._sign(target, polarization)
+        los = self._line_of_sight(target, obstime)
+        below = self._below(los.s, min_elevation)
+        transmitter = self._finish(sign * kernel.transmitter_term(los.s, los.t), los.s,
+                                   "transmitter term", below)
+        natural = kernel.project(kernel.NORTH_POLE, los.s)
+        receiver = self._finish(sign * self._receiver_phase(los.s, natural), los.s,
+                                "receiver term", below)
+        total = kernel.wrap_phase(transmitter.rad + receiver.rad)
+        return FeedRotationTerms(transmitter, receiver, _to_angle(total))
 
     def parallactic_angle(self, target, obstime):
         """Parallactic angle of a target at the antenna's site (Eq 15).

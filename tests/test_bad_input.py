@@ -97,7 +97,7 @@ def test_unknown_polarization_lists_choices():
     with pytest.raises(ValueError, match=r"polarization must be one of \['L', 'LCP', 'LHCP'"):
         antenna.feed_rotation(SOURCE, DAY, polarization="X")
     with pytest.raises(ValueError, match="polarization must be one of"):
-        antenna.feed_rotation(SOURCE, DAY, polarization=None)
+        antenna.feed_rotation(SOURCE, DAY, polarization=5)
 
 
 @pytest.mark.parametrize("cls", [NasmythFocus, BeamWaveguideFocus])

@@ -1,0 +1,157 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""A transmitting satellite: an orbit, an attitude and a circular polarization."""
+
+import numpy as np
+
+from . import kernel
+from .attitude import Attitude, NominalAttitude
+from .frames import as_location, as_time
+from .orbits import as_orbit
+from .polarization import polarization_sign
+
+__all__ = ["Satellite", "LineOfSight"]
+
+
+class LineOfSight:
+    """The geometry of one receiver seeing one transmitter, as Earth-fixed vectors.
+
+    Attributes
+    ----------
+    s : ndarray, shape (..., 3)
+        Source unit vector, receiver to transmitter (Eq 2).
+    aligned, transverse : ndarray, shape (..., 3)
+        The transmitter's dipoles, or None for a natural source.
+    t : ndarray, shape (..., 3)
+        The transmitter's effective dipole (Eq 8; Eq 11 for a natural source).
+    """
+
+    def __init__(self, s, aligned=None, transverse=None):
+        self.s = s
+        self.aligned = aligned
+        self.transverse = transverse
+        if aligned is None:
+            self.t = kernel.project(kernel.NORTH_POLE, s)  # Eq 11
+        else:
+            self.t = kernel.transmitter_effective_dipole(s, aligned, transverse)  # Eq 8
+
+
+class Satellite:
+    """A satellite transmitting a circularly polarized signal.
+
+    Usable as the ``target`` of `~astropy_feedrot.Antenna.feed_rotation`.
+
+    Parameters
+    ----------
+    orbit : `~astropy_feedrot.orbits.Orbit` or `~astropy.coordinates.SkyCoord`
+        Where the satellite is: a `TLEOrbit`, an `SP3Orbit`, or positions
+        with a distance.
+    attitude : `~astropy_feedrot.attitude.Attitude`, optional
+        How its antenna is oriented: `NominalAttitude` (default) or
+        `QuaternionAttitude`.
+    polarization : {'RCP', 'LCP'}, optional
+        The hand it transmits (GNSS: RCP; GENESIS may be LCP).
+    name : str, optional
+
+    Raises
+    ------
+    TypeError
+        If ``orbit`` or ``attitude`` is of the wrong kind.
+    ValueError
+        For an unknown ``polarization``.
+
+    Notes
+    -----
+    The line of sight is the plain difference of Earth-fixed positions
+    (Eq 2), at the reception time; the light time (~0.07 s for a GNSS
+    satellite) moves the direction by less than an arcsecond and is neglected,
+    as in the paper.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import Satellite, TLEOrbit
+    >>> gps = Satellite(TLEOrbit(
+    ...     "1 41328U 16007A   23024.39332179  .00000015  00000-0  00000+0 0  9995",
+    ...     "2 41328  54.9577 138.7050 0066950 231.2234 128.1638  2.00560135 51012"),
+    ...     name="GPS SVN 76")
+    >>> gps
+    <Satellite 'GPS SVN 76' TLEOrbit, NominalAttitude(), RCP>
+    """
+
+    def __init__(self, orbit, attitude=None, polarization="RCP", name=None):
+        self.orbit = as_orbit(orbit)
+        if attitude is None:
+            attitude = NominalAttitude()
+        if isinstance(attitude, type):
+            raise TypeError(f"attitude must be an instance; did you mean {attitude.__name__}()?")
+        if not isinstance(attitude, Attitude):
+            raise TypeError(
+                "attitude must be a NominalAttitude or QuaternionAttitude instance, got "
+                f"{type(attitude).__name__}"
+            )
+        self.attitude = attitude
+        self.sign = polarization_sign(polarization)
+        self.polarization = "RCP" if self.sign > 0 else "LCP"
+        self.name = name
+
+    def __repr__(self):
+        label = f"{self.name!r} " if self.name else ""
+        return (f"<Satellite {label}{type(self.orbit).__name__}, {self.attitude!r}, "
+                f"{self.polarization}>")
+
+    def position(self, obstime):
+        """Geocentric ITRS position in metres (see `Orbit.position`).
+
+        Parameters
+        ----------
+        obstime : `~astropy.time.Time`
+
+        Returns
+        -------
+        ndarray, shape obstime.shape + (3,)
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import ITRS, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Satellite
+        >>> sat = Satellite(SkyCoord(ITRS(x=2.6e7 * u.m, y=0 * u.m, z=0 * u.m,
+        ...                               representation_type="cartesian")))
+        >>> sat.position(Time("2023-01-25"))  # doctest: +FLOAT_CMP
+        array([26000000.,        0.,        0.])
+        """
+        return self.orbit.position(as_time(obstime))
+
+    def line_of_sight(self, location, obstime):
+        """Source vector and transmitter dipoles seen from a site.
+
+        Parameters
+        ----------
+        location : `~astropy.coordinates.EarthLocation`
+            The receiver's site.
+        obstime : `~astropy.time.Time`
+            Epoch(s).
+
+        Returns
+        -------
+        LineOfSight
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import EarthLocation, ITRS, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import Satellite
+        >>> sat = Satellite(SkyCoord(ITRS(x=2.6e7 * u.m, y=0 * u.m, z=0 * u.m,
+        ...                               representation_type="cartesian")))
+        >>> site = EarthLocation.from_geocentric(6.378e6, 0, 0, unit=u.m)
+        >>> sat.line_of_sight(site, Time("2023-01-25")).s
+        array([1., 0., 0.])
+        """
+        location = as_location(location)
+        obstime = as_time(obstime)
+        position = self.orbit.position(obstime)
+        site = np.stack([c.to_value("m") for c in location.to_geocentric()], axis=-1)
+        s = kernel.unit(position - site)
+        aligned, transverse = self.attitude.dipoles(obstime, position)
+        return LineOfSight(s, aligned, transverse)
