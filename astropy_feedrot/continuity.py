@@ -185,7 +185,7 @@ def rotation_delay(antenna1, antenna2, target, obstime, frequency, polarization=
     ...                         Time("2023-01-25T06:00") + [0, 1, 2] * u.hour,
     ...                         1575.42 * u.MHz)
     >>> result.ambiguity  # doctest: +FLOAT_CMP
-    <Quantity 634.75136281 ps>
+    <Quantity 634.75136789 ps>
     """
     from .antenna import Antenna
 
