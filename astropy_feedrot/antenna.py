@@ -167,7 +167,7 @@ class Antenna:
             sign = polarization_sign(polarization)
             if sign != target.sign:
                 raise ValueError(
-                    f"a {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
+                    f"an {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
                     f"{target.polarization} signal of {target!r}; use "
                     f"polarization={target.polarization!r} (or leave it unset)"
                 )

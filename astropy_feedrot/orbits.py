@@ -272,8 +272,8 @@ class TLEOrbit(Orbit):
     def position(self, obstime):
         obstime = as_time(obstime)
         utc = obstime.utc
-        jd1 = np.ravel(utc.jd1)
-        jd2 = np.ravel(utc.jd2)
+        jd1 = np.ascontiguousarray(utc.jd1, dtype=float).ravel()  # sgp4 needs C order
+        jd2 = np.ascontiguousarray(utc.jd2, dtype=float).ravel()
         error, r, _ = self._satrec.sgp4_array(jd1, jd2)
         r = np.asarray(r, dtype=float) * 1e3
         r[np.asarray(error) != 0] = np.nan

@@ -1,0 +1,524 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Satellites: orbits, attitude, the two terms, continuity and the rotation delay.
+
+References: identities of the paper (Eq 20; Eq 30 = Eq 31 when the transmitter
+faces the receiver, Appendix A), hand-built geometries worked out in the
+comments, ERFA's GMST (``gmst82``) for the TEME rotation, Rodrigues' rotation
+formula for quaternions, and the published numbers of Sec. 4.
+"""
+
+import warnings
+
+import erfa
+import numpy as np
+import pytest
+from astropy import units as u
+from astropy.coordinates import GCRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
+from astropy.tests.helper import assert_quantity_allclose
+from astropy.time import Time
+from helpers import SITES, angle_spread, max_angle_difference
+from numpy.testing import assert_allclose
+
+from astropy_feedrot import (
+    AltAzMount,
+    Antenna,
+    BeamWaveguideFocus,
+    ContinuityWarning,
+    CoordinateOrbit,
+    DegenerateGeometryWarning,
+    EquatorialMount,
+    MirrorTrain,
+    NasmythFocus,
+    NominalAttitude,
+    QuaternionAttitude,
+    Satellite,
+    StationaryMount,
+    TLEOrbit,
+    XYMount,
+    rotation_delay,
+    unwrap,
+)
+from astropy_feedrot import kernel as k
+from astropy_feedrot.attitude import Attitude, slerp, sun_position
+from astropy_feedrot.orbits import lagrange_interpolate
+from astropy_feedrot.simulations import (
+    GPS_SVN76_TLE,
+    genesis,
+    genesis_long_baseline,
+    gps_short_baseline,
+    gps_svn76,
+    paper_antenna,
+)
+
+PASS = Time("2023-01-25T08:00") + np.arange(0, 7.5 * 3600, 120) * u.s
+
+
+# --- orbits --------------------------------------------------------------------
+
+
+def test_tle_errors_name_line_and_expectation():
+    l1, l2 = GPS_SVN76_TLE
+    with pytest.raises(ValueError, match="TLE line 1 must have 69 characters, got 68"):
+        TLEOrbit(l1[:-1], l2)
+    with pytest.raises(ValueError, match="TLE line 2 must start with '2 '"):
+        TLEOrbit(l1, "3" + l2[1:])
+    with pytest.raises(ValueError, match="TLE line 2 checksum: expected 2 in column 69, got '3'"):
+        TLEOrbit(l1, l2[:-1] + "3")
+    with pytest.raises(ValueError, match="different satellites: '41328' and '41329'"):
+        TLEOrbit(l1, l2[:6] + "9" + l2[7:68] + str((int(l2[68]) + 1) % 10))
+    with pytest.raises(TypeError, match="TLE line 1 must be a str, got bytes"):
+        TLEOrbit(l1.encode(), l2)
+
+
+def test_tle_epoch_and_repr():
+    orbit = TLEOrbit(*GPS_SVN76_TLE, name="GPS SVN 76")
+    # Epoch 23024.39332179: day 24.39332179 of 2023 (Table 2).
+    assert abs((orbit.epoch - Time("2023-01-24T09:26:23.0", scale="utc")).to_value(u.s)) < 1
+    assert "GPS SVN 76" in repr(orbit)
+
+
+def test_teme_to_itrs_against_gmst_rotation():
+    # Independent route: rotate TEME by GMST (IAU 1982, ERFA gmst82) about z.
+    # Polar motion (< 0.5") is the only difference: < 100 m at 26,600 km.
+    orbit = TLEOrbit(*GPS_SVN76_TLE)
+    t = PASS[::20]
+    itrs = orbit.position(t)
+    error, r, _ = orbit._satrec.sgp4_array(np.ascontiguousarray(t.utc.jd1),
+                                           np.ascontiguousarray(t.utc.jd2))
+    assert np.all(error == 0)
+    theta = erfa.gmst82(t.ut1.jd1, t.ut1.jd2)
+    c, s = np.cos(theta), np.sin(theta)
+    r = np.asarray(r) * 1e3
+    pef = np.stack([c * r[:, 0] + s * r[:, 1], -s * r[:, 0] + c * r[:, 1], r[:, 2]], axis=-1)
+    assert np.max(np.linalg.norm(itrs - pef, axis=-1)) < 100
+    # GPS orbit radius ~ 26,560 km (a for 2.0056 rev/day).
+    radius = np.linalg.norm(itrs, axis=-1)
+    assert np.all((26.3e6 < radius) & (radius < 26.8e6))
+
+
+def test_from_elements_genesis_orbit():
+    orbit = genesis().orbit
+    t = Time("2023-01-25") + np.arange(0, 3 * 3600, 60) * u.s
+    # Back to an inertial frame to check the plane: inclination 97 deg.
+    itrs = orbit.position(t)
+    gcrs = SkyCoord(ITRS(CartesianRepresentation(itrs.T * u.m), obstime=t)).transform_to(
+        GCRS(obstime=t))
+    xyz = gcrs.cartesian.xyz.to_value(u.m).T
+    normal = np.cross(xyz[:-1], xyz[1:]).mean(axis=0)
+    inclination = np.degrees(np.arccos(normal[2] / np.linalg.norm(normal)))
+    assert abs(inclination - 97) < 0.3
+    radius = np.linalg.norm(itrs, axis=-1) / 1e3
+    assert np.all(np.abs(radius - (6378.135 + 6000)) < 30)  # circular, ~6000 km altitude
+
+
+def test_from_elements_mean_motion_and_errors():
+    t = Time("2023-01-25")
+    orbit = TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg,
+                                   mean_motion=2.0056 * u.cycle / u.day)
+    assert orbit.line2[52:63] == " 2.00560000"
+    with pytest.raises(ValueError, match="exactly one of altitude and mean_motion"):
+        TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg)
+    with pytest.raises(ValueError, match="exactly one of altitude and mean_motion"):
+        TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg,
+                               altitude=1 * u.km, mean_motion=1 * u.cycle / u.day)
+    with pytest.raises(ValueError, match="altitude must be positive"):
+        TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg, altitude=-1 * u.km)
+    with pytest.raises(ValueError, match="mean_motion must be positive"):
+        TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg,
+                               mean_motion=0 * u.cycle / u.day)
+    with pytest.raises(ValueError, match=r"eccentricity must be in \[0, 1\)"):
+        TLEOrbit.from_elements(t, inclination=55 * u.deg, raan=0 * u.deg,
+                               altitude=1000 * u.km, eccentricity=1.5)
+    with pytest.raises(ValueError, match="inclination must be within 0-180 deg"):
+        TLEOrbit.from_elements(t, inclination=200 * u.deg, raan=0 * u.deg, altitude=1000 * u.km)
+    with pytest.raises(u.UnitsError):
+        TLEOrbit.from_elements(t, inclination=55 * u.m, raan=0 * u.deg, altitude=1000 * u.km)
+
+
+def test_lagrange_interpolation_is_exact_for_polynomials():
+    x = np.linspace(0, 900 * 20, 21)
+    coefficients = np.array([3.0, -2e-3, 5e-7, 1e-12])
+    y = np.polyval(coefficients, x)[:, np.newaxis] * [1.0, 2.0, -1.0]
+    x_new = np.array([0.0, 123.4, 9000.1, 17999.0, 18000.0])
+    expected = np.polyval(coefficients, x_new)[:, np.newaxis] * [1.0, 2.0, -1.0]
+    assert_allclose(lagrange_interpolate(x, y, x_new, 4), expected, rtol=1e-10)
+    assert_allclose(lagrange_interpolate(x, y, x_new, 10), expected, rtol=1e-9)
+    # A NaN in the window propagates.
+    y[10] = np.nan
+    out = lagrange_interpolate(x, y, np.array([9000.1, 100.0]), 4)
+    assert np.all(np.isnan(out[0])) and np.all(np.isfinite(out[1]))
+
+
+def test_coordinate_orbit():
+    t = Time("2023-01-25")
+    xyz = [2.0e7, 1.0e7, 1.5e7]
+    itrs = SkyCoord(ITRS(*(np.array(xyz) * u.m), obstime=t, representation_type="cartesian"))
+    assert_allclose(CoordinateOrbit(itrs).position(t), xyz)
+    # The same point in GCRS comes back (round trip through astropy, < 1 mm).
+    gcrs = itrs.transform_to(GCRS(obstime=t))
+    assert_allclose(CoordinateOrbit(gcrs).position(t), xyz, atol=1e-3)
+    # A topocentric ITRS position.
+    site = SITES["WETTZ13S"]
+    geo = np.array([c.to_value(u.m) for c in site.to_geocentric()])
+    topo = SkyCoord(ITRS(*((np.array(xyz) - geo) * u.m), obstime=t, location=site,
+                         representation_type="cartesian"))
+    assert_allclose(CoordinateOrbit(topo).position(t), xyz, atol=1e-6)
+    with pytest.raises(ValueError, match="needs a distance"):
+        CoordinateOrbit(SkyCoord(ra=1 * u.deg, dec=2 * u.deg))
+    with pytest.raises(TypeError, match="coord must be a SkyCoord, got list"):
+        CoordinateOrbit(xyz)
+
+
+# --- attitude --------------------------------------------------------------------
+
+
+def test_nominal_attitude_geometry():
+    t = PASS[::10]
+    position = TLEOrbit(*GPS_SVN76_TLE).position(t)
+    aligned, transverse = NominalAttitude().dipoles(t, position)
+    boresight = np.cross(aligned, transverse)
+    # Eq 26: boresight to the geocentre, orthonormal right-handed set,
+    # transverse dipole perpendicular to the Sun direction (Eq 27).
+    assert_allclose(boresight, -position / np.linalg.norm(position, axis=-1, keepdims=True),
+                    atol=1e-12)
+    assert_allclose(k.dot(aligned, transverse), 0, atol=1e-12)
+    to_sun = k.unit(sun_position(t) - position)
+    assert_allclose(k.dot(transverse, to_sun), 0, atol=1e-12)
+    # The aligned dipole leans towards the Sun (solar panels face it).
+    assert np.all(k.dot(aligned, to_sun) > 0)
+
+
+def test_nominal_attitude_sun_collinear_gives_nan_and_one_warning():
+    t = Time("2023-01-25T12:00")
+    sun = k.unit(sun_position(t))
+    positions = np.array([26.6e6 * sun, -26.6e6 * sun, [26.6e6, 0, 0]])
+    with pytest.warns(DegenerateGeometryWarning, match="undefined at 2 of 3 epochs") as record:
+        aligned, transverse = NominalAttitude().dipoles(t, positions)
+    assert len(record) == 1
+    assert np.all(np.isnan(transverse[:2])) and np.all(np.isfinite(transverse[2]))
+
+
+def rodrigues(axis, angle):
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    kx = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + np.sin(angle) * kx + (1 - np.cos(angle)) * kx @ kx
+
+
+@pytest.mark.parametrize("axis,angle", [([0, 0, 1], 0.7), ([1, 2, 3], -2.1), ([0, 1, 0], 3.0)])
+def test_quaternion_rows_are_the_body_axes(axis, angle):
+    # A rotation R mapping body to Earth-fixed components has the body axes as
+    # columns; its inverse (Earth to body) has them as rows (Eqs 24, 25).
+    body_to_earth = rodrigues(axis, angle)
+    unit_axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    q = np.r_[np.cos(angle / 2), np.sin(angle / 2) * unit_axis]  # body-to-Earth rotation
+    t = Time("2023-01-25") + [0, 1] * u.min
+    from_conjugate = QuaternionAttitude(t, [q, q], convention="body_to_earth")
+    aligned, transverse = from_conjugate.dipoles(t[0], [2.6e7, 0, 0])
+    assert_allclose(aligned, body_to_earth[:, 0], atol=1e-12)
+    assert_allclose(transverse, body_to_earth[:, 1], atol=1e-12)
+    conjugate = q * [1, -1, -1, -1]
+    direct = QuaternionAttitude(t, [conjugate, conjugate])
+    assert_allclose(direct.dipoles(t[0], [2.6e7, 0, 0])[0], body_to_earth[:, 0], atol=1e-12)
+
+
+def test_slerp_and_interpolation():
+    # Rotation about a fixed axis: interpolation is linear in the angle.
+    t = Time("2023-01-25") + [0, 60, 120] * u.s
+    angles = np.array([0.0, 0.9, 2.0])
+    q = np.stack([np.cos(angles / 2), 0 * angles, 0 * angles, np.sin(angles / 2)], axis=-1)
+    attitude = QuaternionAttitude(t, q)
+    at = t[0] + [30, 60, 90, 120] * u.s
+    got = attitude.quaternion(at)
+    expected_angle = np.array([0.45, 0.9, 1.45, 2.0])
+    assert_allclose(2 * np.arctan2(got[:, 3], got[:, 0]), expected_angle, atol=1e-12)
+    # The shorter arc: q and -q are the same rotation.
+    half = slerp(np.array([1.0, 0, 0, 0]), -np.array([1.0, 0, 0, 0]), 0.5)
+    assert_allclose(np.abs(half), [1, 0, 0, 0], atol=1e-12)
+
+
+def test_quaternion_validation():
+    t = Time("2023-01-25") + [0, 60] * u.s
+    slightly_off = np.array([[1.0005, 0, 0, 0], [1, 0, 0, 0]])
+    assert_allclose(QuaternionAttitude(t, slightly_off).quaternions[0], [1, 0, 0, 0])
+    with pytest.raises(ValueError, match="quaternion 0 at 2023-01-25T00:00:00.000 has norm 1.01"):
+        QuaternionAttitude(t, [[1.01, 0, 0, 0], [1, 0, 0, 0]])
+    with pytest.raises(ValueError, match=r"obstime has shape \(2,\), quaternions \(3, 4\)"):
+        QuaternionAttitude(t, np.tile([1.0, 0, 0, 0], (3, 1)))
+    with pytest.raises(ValueError, match="must increase strictly"):
+        QuaternionAttitude(t[::-1], [[1, 0, 0, 0], [1, 0, 0, 0]])
+    with pytest.raises(ValueError, match="convention must be one of"):
+        QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]], convention="passive")
+    with pytest.raises(ValueError, match="frame must be one of"):
+        QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]], frame="eme2000")
+    attitude = QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]])
+    with pytest.raises(ValueError, match="outside the coverage .* 2023-01-25T00:00:00.000 to "
+                                         "2023-01-25T00:01:00.000"):
+        attitude.quaternion(t[0] - 1 * u.s)
+
+
+def test_quaternions_in_gcrs_are_rotated_to_itrs():
+    t = Time("2023-01-25") + [0, 60] * u.s
+    attitude = QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]], frame="gcrs")
+    aligned, _ = attitude.dipoles(t[0], [2.6e7, 0, 0])
+    expected = SkyCoord(GCRS(CartesianRepresentation([1, 0, 0] * u.one), obstime=t[0])
+                        ).transform_to(ITRS(obstime=t[0])).cartesian.xyz.value
+    assert_allclose(aligned, expected, atol=1e-12)
+    # Earth rotation: ITRS x is far from GCRS x at a random epoch.
+    assert abs(aligned[0]) < 0.999
+
+
+# --- satellites as targets --------------------------------------------------------
+
+
+class FacingAttitude(Attitude):
+    """A transmitter whose boresight points at a given site (t^b = -s)."""
+
+    def __init__(self, site, gamma=0.3):
+        self.site = np.array([c.to_value(u.m) for c in site.to_geocentric()])
+        self.gamma = gamma
+
+    def dipoles(self, obstime, position):
+        s = k.unit(position - self.site)
+        helper = np.broadcast_to([0.0, 0.0, 1.0], s.shape)
+        e1 = k.unit(np.cross(helper, s))
+        e2 = np.cross(s, e1)
+        aligned = np.cos(self.gamma) * e1 + np.sin(self.gamma) * e2
+        return aligned, np.cross(aligned, s)  # a x (a x s) = -s: boresight on -s
+
+
+def test_facing_attitude_is_right_handed():
+    site = SITES["DBR205"]
+    attitude = FacingAttitude(site)
+    position = TLEOrbit(*GPS_SVN76_TLE).position(PASS[:3])
+    a, t = attitude.dipoles(PASS[:3], position)
+    s = k.unit(position - attitude.site)
+    assert_allclose(np.cross(a, t), -s, atol=1e-12)
+
+
+def test_beyerle_equals_wu_when_transmitter_faces_receiver():
+    # Eq 30 = Eq 31 when the transmitter boresight is antiparallel to s (Sec. 3.1).
+    site = SITES["DBR205"]
+    satellite = Satellite(TLEOrbit(*GPS_SVN76_TLE), FacingAttitude(site))
+    antenna = Antenna(site, StationaryMount())
+    beyerle = antenna.feed_rotation(satellite, PASS)
+    wu = antenna.feed_rotation(satellite, PASS, form="wu")
+    assert max_angle_difference(beyerle.rad, wu.rad) < 1e-10
+
+
+def test_beyerle_differs_from_wu_for_nadir_pointing_gnss():
+    # Sec. 2.1: for GNSS satellites the forms differ by at most a few mrad.
+    antenna = paper_antenna("DBR205")
+    satellite = gps_svn76()
+    _, el = antenna.altaz(satellite, PASS)
+    up = el > 10 * u.deg
+    d = max_angle_difference(antenna.feed_rotation(satellite, PASS).rad[up],
+                             antenna.feed_rotation(satellite, PASS, form="wu").rad[up])
+    assert 1e-6 < d < 5e-3
+
+
+def test_hand_built_overhead_geometry():
+    # A GNSS antenna at latitude 0, longitude 0 (east = y, north = z, up = x) and
+    # a satellite straight overhead with body axes along ITRS (aligned x,
+    # transverse y, boresight z). s = x; t = P x + x * y = z; the receiver's
+    # effective dipole is 2y; Phi = atan2(x.(2y * z), 2y.z) = +90 deg (Eq 7).
+    # Receiver term: 2y against the projected pole z: +90 deg; transmitter term:
+    # z against z: 0.
+    site = EarthLocation.from_geocentric(6378137.0, 0, 0, unit=u.m)
+    t = Time("2023-01-25") + [0, 60] * u.s
+    where = SkyCoord(ITRS(x=2.66e7 * u.m, y=0 * u.m, z=0 * u.m, obstime=t[0],
+                          representation_type="cartesian"))
+    satellite = Satellite(where, QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]]))
+    gnss = Antenna(site, StationaryMount())
+    assert_quantity_allclose(gnss.feed_rotation(satellite, t[0]), 90 * u.deg, atol=1e-9 * u.deg)
+    terms = gnss.feed_rotation_terms(satellite, t[0])
+    assert_quantity_allclose(terms.transmitter, 0 * u.deg, atol=1e-9 * u.deg)
+    assert_quantity_allclose(terms.receiver, 90 * u.deg, atol=1e-9 * u.deg)
+    # An equatorial telescope there: its feed is the projected pole z, which is t.
+    polar = Antenna(site, EquatorialMount())
+    assert_quantity_allclose(polar.feed_rotation(satellite, t[0]), 0 * u.deg, atol=1e-9 * u.deg)
+    # An alt-az telescope looks at its zenith: undefined.
+    with pytest.warns(DegenerateGeometryWarning):
+        assert np.isnan(Antenna(site, AltAzMount()).feed_rotation(satellite, t[0]))
+
+
+ANTENNAS = [
+    (StationaryMount(), None),
+    (AltAzMount(), None),
+    (EquatorialMount(), None),
+    (XYMount("north"), None),
+    (AltAzMount(), NasmythFocus("left")),
+    (AltAzMount(), BeamWaveguideFocus("right")),
+    (AltAzMount(), MirrorTrain.yebes40m("S")),
+    (AltAzMount(), MirrorTrain.wark30m()),
+]
+
+
+@pytest.mark.parametrize("mount,focus", ANTENNAS)
+def test_split_terms_add_up_for_every_antenna(mount, focus):
+    # Eq 20: Phi = Phi_tx + Phi_rx (modulo 2 pi), in the effective-dipole form.
+    antenna = Antenna(SITES["FD-VLBA"], mount, focus)
+    satellite = gps_svn76()
+    terms = antenna.feed_rotation_terms(satellite, PASS)
+    total = antenna.feed_rotation(satellite, PASS, form="wu")
+    assert max_angle_difference(terms.total.rad, total.rad) < 1e-9
+    assert max_angle_difference((terms.transmitter + terms.receiver).rad, total.rad) < 1e-9
+    # The receiver term is the feed rotation of a natural source in the same
+    # direction: for a telescope it does not depend on the transmitter.
+    other = Satellite(gps_svn76().orbit, FacingAttitude(SITES["FD-VLBA"]))
+    other_terms = antenna.feed_rotation_terms(other, PASS)
+    assert max_angle_difference(other_terms.receiver.rad, terms.receiver.rad) < 1e-12
+
+
+def test_mirror_train_traces_satellite_dipole():
+    # Eqs 40, 41: with a satellite the traced train still equals the closed
+    # form (receiver term) plus the transmitter term, up to the same constant.
+    site = SITES["FD-VLBA"]
+    satellite = gps_svn76()
+    traced = Antenna(site, AltAzMount(), MirrorTrain.wark30m()).feed_rotation(satellite, PASS)
+    closed = Antenna(site, AltAzMount(), BeamWaveguideFocus("right")).feed_rotation(
+        satellite, PASS)
+    spread, constant = angle_spread(traced.rad, closed.rad)
+    assert spread < 1e-9
+    assert_allclose(constant, 2 * np.arctan(2500 / 9500) - np.pi, atol=1e-9)
+
+
+def test_lcp_on_both_ends_flips_signs():
+    antenna = paper_antenna("FD-VLBA")
+    rcp = Satellite(gps_svn76().orbit)
+    lcp = Satellite(gps_svn76().orbit, polarization="LCP")
+    assert_quantity_allclose(antenna.feed_rotation(lcp, PASS), -antenna.feed_rotation(rcp, PASS))
+    terms_r = antenna.feed_rotation_terms(rcp, PASS)
+    terms_l = antenna.feed_rotation_terms(lcp, PASS, polarization="LCP")
+    assert_quantity_allclose(terms_l.transmitter, -terms_r.transmitter)
+    assert_quantity_allclose(terms_l.receiver, -terms_r.receiver)
+
+
+def test_satellite_errors():
+    orbit = TLEOrbit(*GPS_SVN76_TLE)
+    with pytest.raises(TypeError, match=r"did you mean NominalAttitude\(\)\?"):
+        Satellite(orbit, NominalAttitude)
+    with pytest.raises(TypeError, match="attitude must be a NominalAttitude or "
+                                        "QuaternionAttitude instance, got str"):
+        Satellite(orbit, "nominal")
+    with pytest.raises(TypeError, match="orbit must be a TLEOrbit, SP3Orbit, CoordinateOrbit "
+                                        "or a SkyCoord with a distance, got tuple"):
+        Satellite(GPS_SVN76_TLE)
+    with pytest.raises(ValueError, match="polarization must be one of"):
+        Satellite(orbit, polarization="H")
+    antenna = paper_antenna("FD-VLBA")
+    with pytest.raises(ValueError, match="an RCP receiver does not receive the LCP signal"):
+        antenna.feed_rotation(Satellite(orbit, polarization="LCP"), PASS, polarization="RCP")
+    with pytest.raises(ValueError, match=r"form must be one of \('beyerle', 'wu'\)"):
+        antenna.feed_rotation(Satellite(orbit), PASS, form="exact")
+
+
+def test_below_horizon_is_computed_and_can_be_masked():
+    antenna = paper_antenna("FD-VLBA")
+    satellite = gps_svn76()
+    t = Time("2023-01-25T02:00") + np.arange(0, 8 * 3600, 600) * u.s
+    _, el = antenna.altaz(satellite, t)
+    assert np.any(el < 0 * u.deg)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        phi = antenna.feed_rotation(satellite, t)
+        masked = antenna.feed_rotation(satellite, t, min_elevation=10 * u.deg)
+    assert np.all(np.isfinite(phi))
+    assert np.array_equal(np.isnan(masked), el < 10 * u.deg)
+    assert_quantity_allclose(masked[el >= 10 * u.deg], phi[el >= 10 * u.deg])
+
+
+# --- continuity and the rotation delay --------------------------------------------
+
+
+def test_unwrap_restarts_after_mask_and_gap():
+    values = np.array([170.0, -170.0, -150.0, 170.0, -170.0]) * u.deg
+    assert_quantity_allclose(unwrap(values), [170, 190, 210, 170, 190] * u.deg)
+    masked = unwrap(values, mask=[False, False, True, False, False])
+    assert_quantity_allclose(masked[[0, 1, 3, 4]], [170, 190, 170, 190] * u.deg)
+    t = Time("2023-01-25") + [0, 60, 120, 3600, 3660] * u.s
+    # Without the gap limit, the sample after the gap joins the old cycle.
+    values = np.array([170.0, -170.0, -150.0, -170.0, 170.0]) * u.deg
+    assert_quantity_allclose(unwrap(values), [170, 190, 210, 190, 170] * u.deg)
+    assert_quantity_allclose(unwrap(values, obstime=t, max_gap=10 * u.min),
+                             [170, 190, 210, -170, -190] * u.deg)
+
+
+def test_unwrap_axis_units_and_warning():
+    series = np.array([[3.0, -3.0], [0.1, 0.2]])
+    out = unwrap(series, axis=-1)
+    assert out.unit == u.rad
+    assert_allclose(out.value, [[3.0, 2 * np.pi - 3.0], [0.1, 0.2]])
+    assert_allclose(unwrap(series.T, axis=0).value, out.value.T)
+    # 0 -> 170 and 170 -> 350 (= -10) are both steps of more than 162 deg.
+    with pytest.warns(ContinuityWarning, match="2 consecutive steps exceed 162 deg"):
+        unwrap([0, 170, -10] * u.deg)
+    with pytest.raises(ValueError, match="max_gap needs obstime"):
+        unwrap([0, 1] * u.deg, max_gap=1 * u.s)
+    with pytest.raises(ValueError, match=r"angle has shape \(2,\), obstime has shape \(3,\)"):
+        unwrap([0, 1] * u.deg, obstime=Time("2023-01-25") + [0, 1, 2] * u.s, max_gap=1 * u.s)
+
+
+def test_rotation_delay_definition_and_errors():
+    a1, a2 = paper_antenna("DBR205"), paper_antenna("FD-VLBA")
+    satellite = gps_svn76()
+    f = 1575.42 * u.MHz
+    result = rotation_delay(a1, a2, satellite, PASS, f)
+    phi = unwrap(a2.feed_rotation(satellite, PASS) - a1.feed_rotation(satellite, PASS))
+    assert_quantity_allclose(result.delay * 2 * np.pi * f, phi.to(u.rad).value * u.one,
+                             atol=1e-9 * u.one)
+    # Sec. 4.1: "The phase ambiguity interval ... is 634.8 ps".
+    assert_quantity_allclose(result.ambiguity, 634.8 * u.ps, atol=0.05 * u.ps)
+    with pytest.raises(ValueError, match="frequency must be positive"):
+        rotation_delay(a1, a2, satellite, PASS, 0 * u.Hz)
+    with pytest.raises(u.UnitsError):
+        rotation_delay(a1, a2, satellite, PASS, 1 * u.m / u.s)
+    with pytest.raises(TypeError, match="antenna2 must be an Antenna, got str"):
+        rotation_delay(a1, "FD-VLBA", satellite, PASS, f)
+    # Two identical antennas: no delay.
+    same = rotation_delay(a2, a2, satellite, PASS, f)
+    assert_quantity_allclose(same.delay, 0 * u.ps, atol=1e-12 * u.ps)
+
+
+# --- Section 4 of the paper -----------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def gps_table():
+    return gps_short_baseline(step=60 * u.s)
+
+
+def test_gps_pass_times(gps_table):
+    # Sec. 4.1 (and its figures): above 10 deg near 08:06 to 15:07 UTC.
+    visible = gps_table["both_visible"]
+    rise, set_ = gps_table["time"][visible][[0, -1]]
+    assert abs((rise - Time("2023-01-25T08:06")).to_value(u.min)) <= 2
+    assert abs((set_ - Time("2023-01-25T15:07")).to_value(u.min)) <= 2
+
+
+def test_gps_satellite_term_is_common_on_short_baseline(gps_table):
+    visible = gps_table["both_visible"]
+    d = k.wrap_phase(np.radians(gps_table["FD-VLBA_transmitter"] - gps_table["DBR205_transmitter"]))
+    # 73 m at 20,000 km: directions differ by ~0.8", so the terms nearly cancel.
+    assert np.max(np.abs(np.degrees(d[visible]))) < 0.01
+    # ... while the receiver terms differ widely (Fig. 10).
+    drx = k.wrap_phase(np.radians(gps_table["FD-VLBA_receiver"] - gps_table["DBR205_receiver"]))
+    assert np.max(np.abs(np.degrees(drx[visible]))) > 90
+
+
+def test_gps_rotation_delay_spans_hundreds_of_ps(gps_table):
+    delay = gps_table["rotation_delay"].quantity[gps_table["both_visible"]]
+    span = np.nanmax(delay) - np.nanmin(delay)
+    # Sec. 4.1: "at the level of hundreds of picoseconds - a significant fraction
+    # of this ambiguity interval" (634.8 ps).
+    assert 100 * u.ps < span < 634.8 * u.ps
+    assert np.all(np.isfinite(delay))
+
+
+def test_genesis_satellite_term_differs_on_long_baseline():
+    table = genesis_long_baseline(step=120 * u.s)
+    visible = table["both_visible"]
+    assert visible.sum() > 10
+    d = k.wrap_phase(np.radians(table["WETTZ13S_transmitter"] - table["GGAO12M_transmitter"]))
+    # Sec. 4.2: "noticeably different between the two observing telescopes".
+    assert np.max(np.abs(np.degrees(d[visible]))) > 30
+    assert table.meta["satellite"] == "GENESIS"
