@@ -291,9 +291,21 @@ class QuaternionAttitude(Attitude):
         ValueError
             If ``satellite`` has no attitude in the file (listing those that do).
 
+        Notes
+        -----
+        ORBEX quaternions rotate the file's reference frame into the satellite
+        body frame, :math:`(0, r_B) = q\\,(0, r_T)\\,q^*` (the
+        ``'earth_to_body'`` convention); a file whose ``FRAME_TYPE`` is ``ECI``
+        refers to a celestial frame, rotated here to ITRS.
+
         Examples
         --------
-        See the ORBEX tutorial in the documentation.
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import QuaternionAttitude
+        >>> from astropy_feedrot.data import sample_file
+        >>> attitude = QuaternionAttitude.from_orbex(sample_file("sample.obx"), "G01")
+        >>> attitude.frame
+        'itrs'
         """
         from .io import read_orbex
 
@@ -338,7 +350,7 @@ class QuaternionAttitude(Attitude):
         if np.any((x < -tol) | (x > self._seconds[-1] + tol)):
             raise ValueError(
                 f"times outside the coverage of the attitude quaternions: "
-                f"{self.epochs[0].isot} to {self.epochs[-1].isot}"
+                f"{self.epochs[0].isot} to {self.epochs[-1].isot} {self.epochs.scale.upper()}"
             )
         if len(self._seconds) == 1:
             q = np.broadcast_to(self.quaternions[0], x.shape + (4,))

@@ -311,9 +311,16 @@ class SP3Orbit(Orbit):
 
     Examples
     --------
-    >>> import io
+    The sample file has four 15-minute epochs, enough for a cubic:
+
+    >>> import numpy as np
+    >>> from astropy.time import Time
     >>> from astropy_feedrot import SP3Orbit
-    >>> # see the SP3 tutorial in the documentation for a full file
+    >>> from astropy_feedrot.data import sample_file
+    >>> orbit = SP3Orbit(sample_file("sample.sp3"), "G01", points=4)
+    >>> xyz = orbit.position(Time("2023-01-25T00:20:00", scale="tai"))
+    >>> round(float(np.linalg.norm(xyz)) / 1e3)  # km from the geocentre
+    26560
     """
 
     def __init__(self, source, satellite, points=10):
@@ -354,7 +361,7 @@ class SP3Orbit(Orbit):
         if np.any(outside):
             raise ValueError(
                 f"times outside the coverage of the SP3 orbit of {self.satellite}: "
-                f"{self.epochs[0].isot} to {self.epochs[-1].isot}"
+                f"{self.epochs[0].isot} to {self.epochs[-1].isot} {self.epochs.scale.upper()}"
             )
         return lagrange_interpolate(self._seconds, self._xyz, x, self.points).reshape(
             obstime.shape + (3,))

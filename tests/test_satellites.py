@@ -32,6 +32,7 @@ from astropy_feedrot import (
     NominalAttitude,
     QuaternionAttitude,
     Satellite,
+    SP3Orbit,
     StationaryMount,
     TLEOrbit,
     XYMount,
@@ -252,7 +253,7 @@ def test_quaternion_validation():
         QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]], frame="eme2000")
     attitude = QuaternionAttitude(t, [[1, 0, 0, 0], [1, 0, 0, 0]])
     with pytest.raises(ValueError, match="outside the coverage .* 2023-01-25T00:00:00.000 to "
-                                         "2023-01-25T00:01:00.000"):
+                                         "2023-01-25T00:01:00.000 UTC"):
         attitude.quaternion(t[0] - 1 * u.s)
 
 
@@ -522,3 +523,92 @@ def test_genesis_satellite_term_differs_on_long_baseline():
     # Sec. 4.2: "noticeably different between the two observing telescopes".
     assert np.max(np.abs(np.degrees(d[visible]))) > 30
     assert table.meta["satellite"] == "GENESIS"
+
+
+# --- SP3 orbits and ORBEX attitude ---------------------------------------------------
+
+
+def write_sp3(path, satellite, times, positions_m):
+    """Write positions as a minimal SP3-c file (GPS time tags, km)."""
+    header = [
+        f"#cP{times[0].datetime.strftime('%Y %m %d %H %M')}  0.00000000 {len(times):6d} "
+        "ORBIT IGS20 HLM  IGS",
+        "## 2246 259200.00000000   900.00000000 59969 0.0000000000000",
+        f"+    1   {satellite}" + "  0" * 16,
+    ] + ["+          " + "  0" * 17] * 4 + ["++         " + "  0" * 17] * 5 + [
+        "%c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
+        "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
+        "%f  1.2500000  1.025000000  0.00000000000  0.000000000000000",
+        "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000",
+        "%i    0    0    0    0      0      0      0      0         0",
+        "%i    0    0    0    0      0      0      0      0         0",
+        "/* WRITTEN BY THE TESTS FROM SGP4 POSITIONS",
+    ]
+    lines = list(header)
+    gps = (times.tai - 19 * u.s)  # GPS time tags
+    for t, xyz in zip(gps, positions_m / 1e3):
+        y, mo, d, h, mi, s = t.ymdhms
+        lines.append(f"*  {y:4d} {mo:2d} {d:2d} {h:2d} {mi:2d} {s:11.8f}")
+        lines.append(f"P{satellite}{xyz[0]:14.6f}{xyz[1]:14.6f}{xyz[2]:14.6f}     0.000000")
+    lines.append("EOF")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_sp3_orbit_interpolates_to_millimetres(tmp_path):
+    # Independent reference: SGP4 positions of GPS SVN 76 tabulated every
+    # 15 min (to 1 mm, the SP3 resolution) and interpolated back at 1-min
+    # epochs with the default 10-point window.
+    tle = TLEOrbit(*GPS_SVN76_TLE)
+    grid = Time("2023-01-25T06:00", scale="utc") + np.arange(0, 12 * 3600 + 1, 900) * u.s
+    path = tmp_path / "svn76.sp3"
+    write_sp3(path, "G05", grid, tle.position(grid))
+    orbit = SP3Orbit(path, "G05")
+    fine = Time("2023-01-25T08:00", scale="utc") + np.arange(0, 6 * 3600, 60) * u.s
+    error = np.linalg.norm(orbit.position(fine) - tle.position(fine), axis=-1)
+    assert error.max() < 0.005  # 5 mm (0.5 mm rounding of the file + interpolation)
+    # A satellite of the file as a target.
+    satellite = Satellite(orbit, name="G05")
+    phi = paper_antenna("FD-VLBA").feed_rotation(satellite, fine)
+    reference = paper_antenna("FD-VLBA").feed_rotation(Satellite(tle), fine)
+    assert max_angle_difference(phi.rad, reference.rad) < 1e-8
+
+
+def test_sp3_orbit_errors():
+    from astropy_feedrot.data import sample_file
+
+    with pytest.raises(ValueError, match="satellite 'G02' is not in the SP3 file; it has "
+                                         "G01, G05, E11"):
+        SP3Orbit(sample_file("sample.sp3"), "G02")
+    with pytest.raises(ValueError, match="has 4 epochs, fewer than the 10 points"):
+        SP3Orbit(sample_file("sample.sp3"), "G01")
+    with pytest.raises(ValueError, match="points must be at least 2"):
+        SP3Orbit(sample_file("sample.sp3"), "G01", points=1)
+    orbit = SP3Orbit(sample_file("sample.sp3"), "G01", points=4)
+    with pytest.raises(ValueError, match="outside the coverage of the SP3 orbit of G01: "
+                                         r"2023-01-25T00:00:19.000 to 2023-01-25T00:45:19.000 TAI"):
+        orbit.position(Time("2023-01-25T01:00", scale="tai"))
+    assert "G01" in repr(orbit)
+
+
+def test_orbex_attitude_as_transmitter():
+    from astropy_feedrot.data import sample_file
+    from astropy_feedrot.io import read_orbex
+
+    attitude = QuaternionAttitude.from_orbex(sample_file("sample.obx"), "G01")
+    data = read_orbex(sample_file("sample.obx"))
+    times, quaternions = data.attitude["G01"]
+    # At a tabulated epoch the dipoles are the rows of the file's quaternion (Eqs 24-25).
+    aligned, transverse = attitude.dipoles(times[1], [0, 0, 0])
+    q = quaternions[1] / np.linalg.norm(quaternions[1])
+    w, x, y, z = q
+    assert_allclose(aligned, [w * w + x * x - y * y - z * z, 2 * (x * y - w * z),
+                              2 * (x * z + w * y)], atol=1e-12)
+    assert_allclose(transverse, [2 * (x * y + w * z), w * w - x * x + y * y - z * z,
+                                 2 * (y * z - w * x)], atol=1e-12)
+    orbit = SP3Orbit(sample_file("sample.sp3"), "G01", points=4)
+    satellite = Satellite(orbit, attitude, name="G01")
+    phi = paper_antenna("WETTZ13S").feed_rotation(satellite, times)
+    assert phi.shape == (3,) and np.all(np.isfinite(phi))
+    with pytest.raises(ValueError, match="satellite 'G02' has no attitude in the ORBEX file; "
+                                         "it has G01, G05, E11"):
+        QuaternionAttitude.from_orbex(sample_file("sample.obx"), "G02")

@@ -1,0 +1,44 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Small sample files shipped with the package.
+
+``sample.sp3``
+    An SP3-c orbit file: three satellites (G01, G05, E11) on circular orbits,
+    four epochs at 15-minute spacing on 2023-01-25, GPS time. Synthetic.
+``sample.obx``
+    An ORBEX file with yaw-steering attitude quaternions (Earth-fixed to body)
+    for the same satellites over the first minute. Synthetic.
+"""
+
+from pathlib import Path
+
+__all__ = ["sample_file", "SAMPLES"]
+
+#: Names of the shipped sample files.
+SAMPLES = ("sample.sp3", "sample.obx")
+
+
+def sample_file(name):
+    """Path of a sample file shipped with the package.
+
+    Parameters
+    ----------
+    name : {'sample.sp3', 'sample.obx'}
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ValueError
+        For an unknown name (listing the samples).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> sample_file("sample.sp3").name
+    'sample.sp3'
+    """
+    if name not in SAMPLES:
+        raise ValueError(f"name must be one of {SAMPLES}, got {name!r}")
+    return Path(__file__).parent / name

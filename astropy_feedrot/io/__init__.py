@@ -1,0 +1,38 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Readers of GNSS orbit and attitude product files.
+
+* `read_sp3` reads SP3 precise orbit files (SP3-c and SP3-d, also SP3-a/b):
+  Earth-fixed satellite positions and clock corrections.
+* `read_orbex` reads the attitude quaternions (``ATT`` records) of ORBEX
+  files.
+
+Epochs come back as astropy `~astropy.time.Time`, converted from the file's
+GNSS time system; files that break their format raise `FileFormatError`,
+whose message names the file and the line.
+
+Examples
+--------
+>>> import io
+>>> from astropy_feedrot.io import read_orbex
+>>> text = '''%=ORBEX  0.09
+... %%
+... +FILE/DESCRIPTION
+...  TIME_SYSTEM         GPS
+...  COORD_SYSTEM        IGS20
+...  FRAME_TYPE          ECEF
+... -FILE/DESCRIPTION
+... +EPHEMERIS/DATA
+... ## 2023 01 25 00 00  0.000000000000   1
+...  ATT G01              4  1.0000000000000000  0.0000000000000000  0.0000000000000000  0.0
+... -EPHEMERIS/DATA
+... %END_ORBEX
+... '''
+>>> read_orbex(io.StringIO(text)).satellites
+('G01',)
+"""
+
+from ._common import FileFormatError
+from .orbex import ORBEXData, read_orbex
+from .sp3 import SP3Data, read_sp3
+
+__all__ = ["read_sp3", "read_orbex", "SP3Data", "ORBEXData", "FileFormatError"]

@@ -1,0 +1,383 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Reader of SP3 precise orbit files (SP3-c and SP3-d, and the older SP3-a/b).
+
+The format is described in S. Hilla, "The Extended Standard Product 3 Orbit
+Format (SP3-c)" (NGS, 2010) and "(SP3-d)" (NGS, 2016). The reader relies on:
+
+* line 1: ``#`` and the version letter in column 2, the coordinate system in
+  columns 47-51;
+* the ``+`` lines: the number of satellites in columns 4-6 of the first one
+  and 17 three-character satellite IDs per line from column 10 (unused slots
+  ``  0``). SP3-c has exactly five such lines (at most 85 satellites); SP3-d
+  has as many as needed (up to 999 satellites);
+* the first ``%c`` line: the time system in columns 10-12;
+* comment lines ``/*`` (four in SP3-c, any number in SP3-d), skipped wherever
+  they are in the header;
+* epoch lines ``*  yyyy mm dd hh mm ss.ssssssss``;
+* position records ``P<sat>`` with x, y, z in km in columns 5-46 and the
+  clock in microseconds in columns 47-60. A bad or absent position is written
+  as 0.000000 for all three coordinates, a bad or absent clock as
+  999999.999999; both become NaN here. Velocity (``V``) and correlation
+  (``EP``, ``EV``) records are skipped;
+* the last line ``EOF``.
+
+SP3-a files (satellite IDs as I3 numbers) and SP3-b files are read too; their
+satellite IDs ``'  5'`` or ``'G 5'`` become ``'G05'`` and, when the ``%c`` line
+leaves the time system open, it is GPS time.
+"""
+
+import dataclasses
+
+import numpy as np
+from astropy.time import Time
+
+from ._common import (
+    TIME_SYSTEMS,
+    FileFormatError,
+    check_epoch,
+    epochs_to_time,
+    first_duplicate,
+    known_time_systems,
+    open_lines,
+    readonly,
+)
+
+__all__ = ["SP3Data", "read_sp3"]
+
+#: Clock values at or above this (the format writes 999999.999999) are bad or absent.
+BAD_CLOCK = 999999.0
+
+_VERSIONS = "abcd"
+_POSITION_RECORD = "a position record 'P<sat> x y z clock' (numbers in columns 5-60)"
+
+
+@dataclasses.dataclass(frozen=True, eq=False, repr=False)
+class SP3Data:
+    """Contents of an SP3 orbit file.
+
+    Returned by `read_sp3`. Arrays are read-only.
+
+    Attributes
+    ----------
+    version : str
+        Format version letter from line 1: ``'a'``, ``'b'``, ``'c'`` or ``'d'``.
+    time_system : str
+        Time system code of the file (``'GPS'``, ``'GAL'``, ``'UTC'``, ...).
+    coordinate_system : str
+        Coordinate system from line 1, e.g. ``'IGS20'``.
+    satellites : tuple of str
+        Satellite IDs in the order of the header, e.g. ``('G01', 'E11')``.
+    epochs : `~astropy.time.Time`, shape (N,)
+        The epoch lines of the file, converted from the file's time system to
+        TAI (atomic system times) or UTC (UTC and GLO).
+    positions : dict of str to ndarray, shape (N, 3)
+        Earth-fixed position of each satellite in metres; NaN where the file
+        has no record or marks the position bad.
+    clock : dict of str to ndarray, shape (N,)
+        Clock correction of each satellite in seconds; NaN where the file has
+        no record or marks the clock bad.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.io import SP3Data
+    >>> data = SP3Data(
+    ...     version="d", time_system="GPS", coordinate_system="IGS20",
+    ...     satellites=("G01",), epochs=Time(["2023-01-25T00:00:19"], scale="tai"),
+    ...     positions={"G01": np.array([[5364995.752, -25736687.425, 3778007.538]])},
+    ...     clock={"G01": np.array([-89.426574e-6])})
+    >>> data
+    <SP3Data version='d' time_system='GPS' coordinate_system='IGS20' 1 satellite, 1 epoch>
+    >>> float(np.linalg.norm(data.positions["G01"][0]))  # doctest: +FLOAT_CMP
+    26560000.0
+    """
+
+    version: str
+    time_system: str
+    coordinate_system: str
+    satellites: tuple
+    epochs: Time
+    positions: dict
+    clock: dict
+
+    def __repr__(self):
+        nsat = len(self.satellites)
+        nep = len(self.epochs)
+        return (
+            f"<SP3Data version={self.version!r} time_system={self.time_system!r} "
+            f"coordinate_system={self.coordinate_system!r} "
+            f"{nsat} satellite{'' if nsat == 1 else 's'}, {nep} epoch{'' if nep == 1 else 's'}>"
+        )
+
+
+def _satellite_id(field):
+    """Normalise a three-character SP3 satellite field; None if it is not one.
+
+    ``'G01'`` stays; ``'G 1'``, ``' 01'`` and ``'  1'`` (SP3-a/b) become
+    ``'G01'``; ``'  0'`` (an unused header slot) gives ``''``.
+    """
+    field = field.ljust(3)
+    letter, number = field[0], field[1:]
+    if letter.isdigit():
+        letter, number = " ", field
+    if letter == " ":
+        letter = "G"
+    elif not letter.isalpha():
+        return None
+    number = number.strip()
+    if not number.isdigit():
+        return None
+    prn = int(number)
+    if prn == 0:
+        return ""
+    return f"{letter}{prn:02d}"
+
+
+class _Reader:
+    """One pass over the lines of an SP3 file."""
+
+    def __init__(self, name, lines):
+        self.name = name
+        self.lines = lines
+        self.lineno = 0
+
+    def error(self, expected, found, lineno=None):
+        if lineno is None:
+            # At the end of the file, the missing line would have been the next one.
+            lineno = self.lineno + 1 if found is None else self.lineno
+        return FileFormatError(self.name, lineno, expected, found)
+
+    def next_line(self):
+        for line in self.lines:
+            self.lineno += 1
+            return line
+        return None
+
+    def read(self):
+        version, coordinate_system = self.read_first_lines()
+        satellites, time_system, line = self.read_header(version)
+        epochs, records = self.read_data(satellites, time_system, line)
+        return self.build(version, time_system, coordinate_system, satellites, epochs, records)
+
+    # --- header ---------------------------------------------------------------
+
+    def read_first_lines(self):
+        first = self.next_line()
+        expected = "an SP3 version line '#c' or '#d' (or '#a', '#b') with the first epoch"
+        if first is None:
+            raise self.error(expected + " (the file is empty)", None, lineno=1)
+        if len(first) < 3 or first[0] != "#" or first[1] not in _VERSIONS:
+            raise self.error(expected, first)
+        if first[2] not in "PV":
+            raise self.error(expected + ", with 'P' or 'V' in column 3", first)
+        coordinate_system = first[46:51].strip()
+        second = self.next_line()
+        if second is None or not second.startswith("##"):
+            raise self.error("the second header line '## <GPS week> <seconds of week> ...'",
+                             second)
+        return first[1], coordinate_system
+
+    def read_header(self, version):
+        ids = []
+        nsat = None
+        time_system = None
+        while True:
+            line = self.next_line()
+            if line is None:
+                raise self.error("more header lines or the first epoch line '*  yyyy mm dd ...'",
+                                 None)
+            if line.startswith("++"):
+                continue
+            if line.startswith("+"):
+                if nsat is None:
+                    try:
+                        nsat = int(line[1:6])
+                    except ValueError:
+                        raise self.error("the number of satellites in columns 4-6 of the "
+                                         "first '+' line", line) from None
+                for k in range(9, 60, 3):
+                    sat = _satellite_id(line[k:k + 3]) if line[k:k + 3].strip() else ""
+                    if sat is None:
+                        raise self.error("satellite IDs such as 'G01' in columns 10-60 of "
+                                         "the '+' lines", line)
+                    if sat:
+                        ids.append(sat)
+            elif line.startswith("%c"):
+                if time_system is None:
+                    time_system = self.parse_time_system(line, version)
+            elif line.startswith(("%f", "%i", "/*", "%/*")):
+                continue
+            elif line.startswith("*"):
+                break
+            else:
+                raise self.error("a header line ('+', '++', '%c', '%f', '%i', '/*') or the "
+                                 "first epoch line '*  yyyy mm dd hh mm ss'", line)
+        if nsat is None:
+            raise self.error("the '+' lines listing the satellites before the first epoch", line)
+        if len(ids) != nsat:
+            raise self.error(f"{nsat} satellite IDs in the '+' lines, as their count says "
+                             f"(found {len(ids)}), before the first epoch", line)
+        if len(set(ids)) != len(ids):
+            raise self.error("each satellite listed once in the '+' lines", line)
+        if time_system is None:
+            if version in "ab":
+                time_system = "GPS"
+            else:
+                raise self.error("a '%c' line with the time system before the first epoch",
+                                 line)
+        return tuple(ids), time_system, line
+
+    def parse_time_system(self, line, version):
+        code = line[9:12].strip()
+        if version in "ab" and code in ("", "ccc"):
+            return "GPS"
+        if code not in TIME_SYSTEMS:
+            raise self.error("a time system in columns 10-12 of the first '%c' line, one of "
+                             + known_time_systems(), line)
+        return code
+
+    # --- data -----------------------------------------------------------------
+
+    def read_data(self, satellites, time_system, line):
+        index = {sat: k for k, sat in enumerate(satellites)}
+        epochs = []
+        ep_idx, sat_idx, linenos, values = [], [], [], []
+        epoch_expected = "an epoch line '*  yyyy mm dd hh mm ss.ssssssss'"
+        while line is not None:
+            head = line[:1]
+            if head == "P":
+                if not epochs:
+                    raise self.error(epoch_expected + " before the first record", line)
+                sat = _satellite_id(line[1:4])
+                if not sat:
+                    raise self.error(_POSITION_RECORD, line)
+                k = index.get(sat)
+                if k is None:
+                    raise self.error(
+                        f"a record for one of the {len(satellites)} satellites of the header "
+                        f"({', '.join(satellites[:5])}{', ...' if len(satellites) > 5 else ''})",
+                        line)
+                try:
+                    x, y, z = float(line[4:18]), float(line[18:32]), float(line[32:46])
+                    clk = line[46:60]
+                    clk = float(clk) if clk.strip() else np.nan
+                except ValueError:
+                    raise self.error(_POSITION_RECORD, line) from None
+                ep_idx.append(len(epochs) - 1)
+                sat_idx.append(k)
+                linenos.append(self.lineno)
+                values.append((x, y, z, clk))
+            elif head == "*":
+                fields = line[1:].split()
+                epoch = check_epoch(fields, time_system) if len(fields) == 6 else None
+                if epoch is None:
+                    raise self.error(epoch_expected + " with a valid date and time", line)
+                epochs.append(epoch)
+            elif head == "V" or line.startswith(("EP", "EV", "/*")) or not line.strip():
+                pass
+            elif line.startswith("EOF"):
+                return epochs, (ep_idx, sat_idx, linenos, values)
+            else:
+                raise self.error(f"{epoch_expected}, {_POSITION_RECORD}, a 'V', 'EP' or 'EV' "
+                                 "record, or 'EOF'", line)
+            line = self.next_line()
+        raise self.error("the last line 'EOF' (the file seems truncated)", None)
+
+    def build(self, version, time_system, coordinate_system, satellites, epochs, records):
+        ep_idx, sat_idx, linenos, values = records
+        nsat, nep = len(satellites), len(epochs)
+        dup = first_duplicate(ep_idx, sat_idx, nsat)
+        if dup is not None:
+            raise self.error(f"one record per satellite and epoch, not a second one for "
+                             f"{satellites[sat_idx[dup]]}", "P" + satellites[sat_idx[dup]],
+                             lineno=linenos[dup])
+        pos = np.full((nsat, nep, 3), np.nan)
+        clk = np.full((nsat, nep), np.nan)
+        if values:
+            vals = np.array(values, dtype=float)
+            xyz = vals[:, :3] * 1e3
+            xyz[np.all(vals[:, :3] == 0.0, axis=1)] = np.nan
+            c = vals[:, 3]
+            c = np.where(c >= BAD_CLOCK, np.nan, c * 1e-6)
+            pos[sat_idx, ep_idx] = xyz
+            clk[sat_idx, ep_idx] = c
+        return SP3Data(
+            version=version,
+            time_system=time_system,
+            coordinate_system=coordinate_system,
+            satellites=satellites,
+            epochs=epochs_to_time(epochs, time_system),
+            positions={sat: readonly(pos[k]) for k, sat in enumerate(satellites)},
+            clock={sat: readonly(clk[k]) for k, sat in enumerate(satellites)},
+        )
+
+
+def read_sp3(source):
+    """Read an SP3 precise orbit file (SP3-c or SP3-d; SP3-a/b too).
+
+    Parameters
+    ----------
+    source : str, `os.PathLike` or file object
+        Path of the file (``.gz`` files are decompressed), or an open file
+        object with a ``readline`` method (text or binary).
+
+    Returns
+    -------
+    `SP3Data`
+        Satellites, epochs (as astropy `~astropy.time.Time` in TAI or UTC),
+        Earth-fixed positions in metres and clock corrections in seconds, with
+        NaN for missing or bad values.
+
+    Raises
+    ------
+    FileFormatError
+        If the file does not follow the SP3 format; the message gives the
+        file, the line, what was found and what was expected.
+    TypeError
+        If ``source`` is neither a path nor a file object.
+
+    Examples
+    --------
+    A one-epoch SP3-d file with two satellites, Galileo E11's clock marked bad:
+
+    >>> import io
+    >>> from astropy_feedrot.io import read_sp3
+    >>> text = '''#dP2023  1 25  0  0  0.00000000       1 ORBIT IGS20 FIT  XYZ
+    ... ## 2246 259200.00000000   300.00000000 59969 0.0000000000000
+    ... +    2   G01E11  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... +          0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... +          0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... +          0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... +          0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... ++         6  7  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... ++         0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... ++         0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... ++         0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... ++         0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0  0
+    ... %c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc
+    ... %c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc
+    ... %f  1.2500000  1.025000000  0.00000000000  0.000000000000000
+    ... %f  0.0000000  0.000000000  0.00000000000  0.000000000000000
+    ... %i    0    0    0    0      0      0      0      0         0
+    ... %i    0    0    0    0      0      0      0      0         0
+    ... /* EXAMPLE
+    ... *  2023  1 25  0  0  0.00000000
+    ... PG01   5364.995752 -25736.687425   3778.007538    -89.426574
+    ... PE11  -4349.957317 -16112.867737  24446.131895 999999.999999
+    ... EOF
+    ... '''
+    >>> data = read_sp3(io.StringIO(text))
+    >>> data
+    <SP3Data version='d' time_system='GPS' coordinate_system='IGS20' 2 satellites, 1 epoch>
+    >>> data.satellites
+    ('G01', 'E11')
+    >>> data.epochs.utc.isot  # GPS time was 18 s ahead of UTC in 2023
+    array(['2023-01-24T23:59:42.000'], dtype='<U23')
+    >>> data.positions["G01"]
+    array([[  5364995.752, -25736687.425,   3778007.538]])
+    >>> data.clock["G01"], data.clock["E11"]
+    (array([-8.9426574e-05]), array([nan]))
+    """
+    with open_lines(source) as (name, lines):
+        return _Reader(name, lines).read()
