@@ -361,8 +361,8 @@ class Antenna:
 
         Parameters
         ----------
-        target : `~astropy.coordinates.SkyCoord`
-            Natural source(s).
+        target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+            Natural source(s) or a satellite.
         obstime : `~astropy.time.Time`
             Epoch(s) of observation.
 
@@ -395,8 +395,8 @@ class Antenna:
 
         Parameters
         ----------
-        target : `~astropy.coordinates.SkyCoord`
-            Natural source(s).
+        target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+            Natural source(s) or a satellite.
         obstime : `~astropy.time.Time`
             Epoch(s) of observation.
 
