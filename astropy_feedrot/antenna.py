@@ -11,7 +11,7 @@ from astropy.coordinates import Angle
 from . import kernel
 from .exceptions import DegenerateGeometryWarning
 from .focus import CassegrainFocus, Focus
-from .frames import VERTICALS, as_location, local_frame, source_direction
+from .frames import VERTICALS, as_location, local_frame, location_xyz, source_direction
 from .mounts import Mount, StationaryMount
 from .polarization import polarization_sign
 from .satellite import LineOfSight, Satellite
@@ -136,7 +136,7 @@ class Antenna:
 
     def __repr__(self):
         label = f"{self.name!r}, " if self.name else ""
-        x, y, z = (c.to_value(u.m) for c in self.location.to_geocentric())
+        x, y, z = location_xyz(self.location)
         return (
             f"<Antenna {label}({x:.3f}, {y:.3f}, {z:.3f}) m, {self.mount!r}, {self.focus!r}>"
         )

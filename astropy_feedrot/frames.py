@@ -30,6 +30,7 @@ __all__ = [
     "as_skycoord",
     "broadcast_shape",
     "local_frame",
+    "location_xyz",
     "source_direction",
 ]
 
@@ -314,10 +315,28 @@ def _earth_fixed_offset(target, location):
         return _itrs_xyz(target)
     xyz = np.moveaxis(target.cartesian.xyz.to_value(u.m), 0, -1)
     if target.frame.location is not None:  # topocentric ITRS: back to geocentric
-        xyz = xyz + _location_xyz(target.frame.location)
-    return xyz - _location_xyz(location)
+        xyz = xyz + location_xyz(target.frame.location)
+    return xyz - location_xyz(location)
 
 
-def _location_xyz(location):
-    """Geocentric ITRS position of a site in metres, shape (..., 3)."""
+def location_xyz(location):
+    """Geocentric ITRS position of a site in metres.
+
+    Parameters
+    ----------
+    location : `~astropy.coordinates.EarthLocation`
+        The site (scalar or array).
+
+    Returns
+    -------
+    ndarray, shape location.shape + (3,)
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from astropy_feedrot.frames import location_xyz
+    >>> location_xyz(EarthLocation.from_geocentric(1.0, 2.0, 3.0, unit=u.km))
+    array([1000., 2000., 3000.])
+    """
     return np.stack([c.to_value(u.m) for c in location.to_geocentric()], axis=-1)

@@ -13,7 +13,7 @@ from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
 from .config import iers_context
-from .frames import as_time
+from .frames import as_time, location_xyz
 
 __all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit"]
 
@@ -467,8 +467,7 @@ class CoordinateOrbit(Orbit):
                 coord = coord.transform_to(ITRS(obstime=obstime))
         xyz = np.moveaxis(coord.cartesian.xyz.to_value(u.m), 0, -1)
         if coord.frame.location is not None:
-            xyz = xyz + np.stack(
-                [c.to_value(u.m) for c in coord.frame.location.to_geocentric()], axis=-1)
+            xyz = xyz + location_xyz(coord.frame.location)
         shape = np.broadcast_shapes(xyz.shape[:-1], obstime.shape)
         return np.broadcast_to(xyz, shape + (3,))
 

@@ -1,11 +1,10 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """A transmitting satellite: an orbit, an attitude and a circular polarization."""
 
-import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .frames import as_location, as_time
+from .frames import as_location, as_time, location_xyz
 from .orbits import as_orbit
 from .polarization import polarization_sign
 
@@ -151,7 +150,6 @@ class Satellite:
         location = as_location(location)
         obstime = as_time(obstime)
         position = self.orbit.position(obstime)
-        site = np.stack([c.to_value("m") for c in location.to_geocentric()], axis=-1)
-        s = kernel.unit(position - site)
+        s = kernel.unit(position - location_xyz(location))
         aligned, transverse = self.attitude.dipoles(obstime, position)
         return LineOfSight(s, aligned, transverse)

@@ -41,6 +41,7 @@ from astropy_feedrot import (
 )
 from astropy_feedrot import kernel as k
 from astropy_feedrot.attitude import Attitude, slerp, sun_position
+from astropy_feedrot.frames import location_xyz
 from astropy_feedrot.orbits import lagrange_interpolate
 from astropy_feedrot.simulations import (
     GPS_SVN76_TLE,
@@ -160,7 +161,7 @@ def test_coordinate_orbit():
     assert_allclose(CoordinateOrbit(gcrs).position(t), xyz, atol=1e-3)
     # A topocentric ITRS position.
     site = SITES["WETTZ13S"]
-    geo = np.array([c.to_value(u.m) for c in site.to_geocentric()])
+    geo = location_xyz(site)
     topo = SkyCoord(ITRS(*((np.array(xyz) - geo) * u.m), obstime=t, location=site,
                          representation_type="cartesian"))
     assert_allclose(CoordinateOrbit(topo).position(t), xyz, atol=1e-6)
@@ -275,7 +276,7 @@ class FacingAttitude(Attitude):
     """A transmitter whose boresight points at a given site (t^b = -s)."""
 
     def __init__(self, site, gamma=0.3):
-        self.site = np.array([c.to_value(u.m) for c in site.to_geocentric()])
+        self.site = location_xyz(site)
         self.gamma = gamma
 
     def dipoles(self, obstime, position):
