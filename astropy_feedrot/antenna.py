@@ -11,7 +11,14 @@ from astropy.coordinates import Angle
 from . import kernel
 from .exceptions import DegenerateGeometryWarning
 from .focus import CassegrainFocus, Focus
-from .frames import VERTICALS, as_location, local_frame, location_xyz, source_direction
+from .frames import (
+    VERTICALS,
+    as_location,
+    horizontal,
+    local_frame,
+    location_xyz,
+    source_direction,
+)
 from .mounts import Mount, StationaryMount
 from .polarization import polarization_sign
 from .satellite import LineOfSight, Satellite
@@ -179,7 +186,7 @@ class Antenna:
         if min_elevation is None:
             return np.zeros(s.shape[:-1], dtype=bool)
         limit = u.Quantity(min_elevation).to_value(u.rad)
-        return np.arcsin(np.clip(kernel.dot(s, self._local.up), -1.0, 1.0)) < limit
+        return horizontal(s, self._local)[1] < limit
 
     def _receiver_phase(self, s, t):
         """Feed rotation (radians, RCP) of an arriving effective dipole ``t`` (Eq 7)."""
@@ -421,7 +428,5 @@ class Antenna:
         return self._altaz(s)
 
     def _altaz(self, s):
-        east, north, up = self._local
-        az = np.mod(np.arctan2(kernel.dot(s, east), kernel.dot(s, north)), 2 * np.pi)
-        el = np.arcsin(np.clip(kernel.dot(s, up), -1.0, 1.0))
+        az, el = horizontal(s, self._local)
         return _to_angle(az), _to_angle(el)

@@ -11,6 +11,7 @@ sequence of mirrors (Eqs 42-45) and reproduces those closed forms.
 import numpy as np
 
 from . import kernel
+from .frames import horizontal
 from .mounts import AltAzMount, FixedAxisMount
 
 __all__ = [
@@ -27,15 +28,6 @@ HANDEDNESS = ("right", "left")
 
 # Tolerance on the orthonormality of user-given feed dipoles.
 _ORTHONORMAL_TOL = 1e-6
-
-
-def _elevation(s, up):
-    return np.arcsin(np.clip(kernel.dot(s, up), -1.0, 1.0))
-
-
-def _azimuth(s, local):
-    """Azimuth from north through east (Eq 39)."""
-    return np.arctan2(kernel.dot(s, local.east), kernel.dot(s, local.north))
 
 
 class Focus:
@@ -214,7 +206,8 @@ class NasmythFocus(_HandedFocus):
     """
 
     def receiver_phase(self, s, t, axis, local):
-        return kernel.wu_phase(s, axis, t) + self.sign * _elevation(s, axis)
+        _, elevation = horizontal(s, local)
+        return kernel.wu_phase(s, axis, t) + self.sign * elevation
 
 
 class BeamWaveguideFocus(_HandedFocus):
@@ -243,8 +236,8 @@ class BeamWaveguideFocus(_HandedFocus):
     """
 
     def receiver_phase(self, s, t, axis, local):
-        extra = _elevation(s, axis) - _azimuth(s, local)
-        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * extra)
+        azimuth, elevation = horizontal(s, local)
+        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * (elevation - azimuth))
 
 
 def _as_vectors(values, name):

@@ -20,7 +20,7 @@ from astropy.coordinates import ITRS, BaseCoordinateFrame, EarthLocation, SkyCoo
 from astropy.time import Time
 
 from .config import iers_context
-from .kernel import unit
+from .kernel import dot, unit
 
 __all__ = [
     "LocalFrame",
@@ -29,6 +29,7 @@ __all__ = [
     "as_time",
     "as_skycoord",
     "broadcast_shape",
+    "horizontal",
     "local_frame",
     "location_xyz",
     "source_direction",
@@ -245,6 +246,35 @@ def local_frame(location, vertical="geodetic"):
     north = np.stack([-slat * clon, -slat * slon, clat], axis=-1)
     up = np.stack([clat * clon, clat * slon, slat], axis=-1)
     return LocalFrame(east, north, up)
+
+
+def horizontal(s, local):
+    """Azimuth and elevation of directions above a site's horizon.
+
+    Parameters
+    ----------
+    s : ndarray, shape (..., 3)
+        Unit direction vectors in ITRS.
+    local : LocalFrame
+        East, north and up vectors of the site.
+
+    Returns
+    -------
+    azimuth, elevation : ndarray, shape (...)
+        In radians: azimuth from north through east in [0, 2 pi), elevation
+        above the plane normal to ``local.up``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.frames import LocalFrame, horizontal
+    >>> az, el = horizontal(np.array([1.0, 0.0, 1.0]) / np.sqrt(2), LocalFrame(*np.eye(3)))
+    >>> np.degrees([az, el])  # doctest: +FLOAT_CMP
+    array([90., 45.])
+    """
+    azimuth = np.mod(np.arctan2(dot(s, local.east), dot(s, local.north)), 2 * np.pi)
+    elevation = np.arcsin(np.clip(dot(s, local.up), -1.0, 1.0))
+    return azimuth, elevation
 
 
 def _itrs_xyz(coord):
