@@ -1,5 +1,8 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Shared fixtures data for the tests: the paper's sites and sky grids."""
+"""Shared data and helpers for the tests: the paper's sites, sky grids, file sources."""
+
+import gzip
+import io
 
 import numpy as np
 from astropy import units as u
@@ -54,3 +57,24 @@ def max_angle_difference(a, b):
     d = wrap_phase(np.asarray(a) - np.asarray(b))
     assert np.array_equal(np.isnan(a), np.isnan(b)), "NaN in different places"
     return float(np.nanmax(np.abs(d)))
+
+
+#: The kinds of source the file readers accept.
+SOURCE_KINDS = ["str", "path", "text file", "binary file", "stringio", "gzip"]
+
+
+def read_as(kind, reader, path, tmp_path):
+    """Call ``reader`` on the file at ``path`` given as a source of ``kind``."""
+    if kind == "str":
+        return reader(str(path))
+    if kind == "path":
+        return reader(path)
+    if kind in ("text file", "binary file"):
+        with open(path, "r" if kind == "text file" else "rb") as fh:
+            return reader(fh)
+    if kind == "stringio":
+        return reader(io.StringIO(path.read_text()))
+    compressed = tmp_path / (path.name + ".gz")
+    with gzip.open(compressed, "wt") as fh:
+        fh.write(path.read_text())
+    return reader(compressed)

@@ -1,7 +1,6 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Reading attitude quaternions from ORBEX files: values, convention, errors, size."""
 
-import gzip
 import io
 import pathlib
 import re
@@ -10,6 +9,7 @@ import numpy as np
 import pytest
 
 import astropy_feedrot.data
+from helpers import SOURCE_KINDS, read_as
 from astropy import units as u
 from astropy.time import Time
 
@@ -218,25 +218,9 @@ def test_time_systems(code, utc):
 # --- sources ----------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("kind", ["str", "path", "text file", "binary file", "stringio", "gzip"])
+@pytest.mark.parametrize("kind", SOURCE_KINDS)
 def test_sources(kind, tmp_path):
-    if kind == "str":
-        data = read_orbex(str(SAMPLE))
-    elif kind == "path":
-        data = read_orbex(SAMPLE)
-    elif kind == "text file":
-        with open(SAMPLE) as fh:
-            data = read_orbex(fh)
-    elif kind == "binary file":
-        with open(SAMPLE, "rb") as fh:
-            data = read_orbex(fh)
-    elif kind == "stringio":
-        data = read_orbex(io.StringIO(SAMPLE.read_text()))
-    else:
-        path = tmp_path / "sample.obx.gz"
-        with gzip.open(path, "wt") as fh:
-            fh.write(SAMPLE.read_text())
-        data = read_orbex(path)
+    data = read_as(kind, read_orbex, SAMPLE, tmp_path)
     assert data.satellites == ("G01", "G05", "E11")
     np.testing.assert_array_equal(data.attitude["G01"][1], G01_Q)
 

@@ -1,7 +1,6 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Reading SP3-c and SP3-d orbit files: values, missing data, time systems, errors."""
 
-import gzip
 import io
 import pathlib
 import re
@@ -10,6 +9,7 @@ import numpy as np
 import pytest
 
 import astropy_feedrot.data
+from helpers import SOURCE_KINDS, read_as
 from astropy import units as u
 from astropy.time import Time
 
@@ -248,25 +248,9 @@ def test_sp3a_style_satellite_ids():
 # --- sources ---------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("kind", ["str", "path", "text file", "binary file", "stringio", "gzip"])
+@pytest.mark.parametrize("kind", SOURCE_KINDS)
 def test_sources(kind, tmp_path):
-    if kind == "str":
-        data = read_sp3(str(SAMPLE))
-    elif kind == "path":
-        data = read_sp3(SAMPLE)
-    elif kind == "text file":
-        with open(SAMPLE) as fh:
-            data = read_sp3(fh)
-    elif kind == "binary file":
-        with open(SAMPLE, "rb") as fh:
-            data = read_sp3(fh)
-    elif kind == "stringio":
-        data = read_sp3(io.StringIO(SAMPLE.read_text()))
-    else:
-        path = tmp_path / "sample.sp3.gz"
-        with gzip.open(path, "wt") as fh:
-            fh.write(SAMPLE.read_text())
-        data = read_sp3(path)
+    data = read_as(kind, read_sp3, SAMPLE, tmp_path)
     assert data.satellites == ("G01", "G05", "E11")
     assert data.clock["G01"][0] == pytest.approx(-89.426574e-6, rel=1e-12)
 
