@@ -1,0 +1,579 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Applying the feed-rotation correction to phases and visibilities (Appendix D, Eq 46).
+
+Conventions (see ``docs/correction.rst`` for the derivation):
+
+* The feed rotation :math:`\\Phi` taken by every function here is the RCP
+  feed rotation of the paper, as `~astropy_feedrot.Antenna.feed_rotation`
+  returns it for a natural source: the position angle of the receiver's
+  effective dipole, measured from north through east (the parallactic angle
+  for an alt-az Cassegrain antenna, positive west of the meridian).
+* A feed rotated by :math:`\\Phi` multiplies its RCP voltage by
+  :math:`e^{-i\\Phi}` and its LCP voltage by :math:`e^{+i\\Phi}`; a measured
+  phase (which grows with delay, :math:`\\phi = -\\arg v`) gains
+  :math:`+\\Phi` in RCP and :math:`-\\Phi` in LCP. Hence Appendix D: subtract
+  :math:`\\Phi` from RCP phases, add it to LCP phases.
+* A visibility is :math:`V_{pq} = \\langle v_{1p} v_{2q}^* \\rangle` (antenna 2
+  conjugated), so the RR phase gains :math:`\\Phi_2 - \\Phi_1` and LL
+  :math:`\\Phi_1 - \\Phi_2`, as in Eq 46. This is the measurement equation of
+  Hamaker, Bregman and Sault (1996) with CASA's parallactic-angle Jones matrix
+  (``PJones``): :math:`\\mathrm{diag}(e^{-i\\Phi}, e^{i\\Phi})` for circular
+  feeds and :math:`[[\\cos\\Phi, \\sin\\Phi], [-\\sin\\Phi, \\cos\\Phi]]` for
+  linear ones.
+"""
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import Angle
+
+from . import kernel
+from .antenna import Antenna
+from .continuity import unwrap
+from .polarization import polarization_sign
+from .satellite import Satellite
+
+__all__ = [
+    "correct_phase",
+    "correct_visibilities",
+    "rotation_matrix",
+    "correct_linear_visibilities",
+    "rr_minus_ll",
+    "baseline_rr_ll",
+]
+
+#: Names of the correlation products of circular feeds (any order, any subset).
+CIRCULAR_PRODUCTS = ("RR", "RL", "LR", "LL")
+
+#: Names of the correlation products of linear feeds (all four, any order).
+LINEAR_PRODUCTS = ("XX", "XY", "YX", "YY")
+
+
+# --- input checks ------------------------------------------------------------
+
+
+def _radians(value, name):
+    """An angle Quantity as a float ndarray in radians; anything else is refused."""
+    if not isinstance(value, u.Quantity):
+        raise TypeError(
+            f"{name} must be an angle Quantity or Angle (e.g. 30 * u.deg), got "
+            f"{type(value).__name__}; plain numbers are refused because degrees and "
+            "radians cannot be told apart"
+        )
+    if value.unit.physical_type != "angle":
+        raise u.UnitsError(
+            f"{name} must be an angle (e.g. in deg or rad), got a quantity in "
+            f"{value.unit.to_string() or 'dimensionless units'}; attach an angle unit, "
+            "e.g. value * u.rad"
+        )
+    return np.asarray(value.to_value(u.rad), dtype=float)
+
+
+def _to_angle(radians, unit=u.deg):
+    """Radians to an `~astropy.coordinates.Angle` in ``unit``; 0-d becomes scalar."""
+    radians = np.asarray(radians)
+    return Angle(radians[()] if radians.ndim == 0 else radians, u.rad).to(unit)
+
+
+def _fit(target, **shapes):
+    """Check that each named shape broadcasts to ``target`` without enlarging it."""
+    for name, shape in shapes.items():
+        try:
+            fits = np.broadcast_shapes(shape, target) == tuple(target)
+        except ValueError:
+            fits = False
+        if not fits:
+            raise ValueError(
+                f"{name} has shape {shape}, which does not broadcast to the shape "
+                f"{tuple(target)} of visibilities[..., 0] (one angle per visibility "
+                "sample; the last axis of visibilities holds the products)"
+            )
+
+
+def _products(products, valid, all_required):
+    """Upper-case product names, checked against ``valid``."""
+    if isinstance(products, str):
+        raise TypeError(
+            f"products must be a sequence of names such as {valid}, not the single "
+            f"string {products!r}"
+        )
+    try:
+        names = tuple(name.upper() for name in products)
+    except (TypeError, AttributeError):
+        raise TypeError(
+            f"products must be a sequence of names such as {valid}, got {products!r}"
+        ) from None
+    unknown = [name for name in names if name not in valid]
+    if unknown or not names:
+        raise ValueError(
+            f"unknown product names {unknown}; valid names are {valid}"
+            if unknown else f"products is empty; valid names are {valid}"
+        )
+    duplicates = sorted({name for name in names if names.count(name) > 1})
+    if duplicates:
+        raise ValueError(f"products names {duplicates} more than once; each of {valid} "
+                         "may appear at most once")
+    missing = [name for name in valid if name not in names]
+    if all_required and missing:
+        raise ValueError(
+            f"products lacks {missing}: the feed rotation of linear feeds mixes all "
+            f"four products, so visibilities must hold {valid} (in any order)"
+        )
+    return names
+
+
+def _visibilities(visibilities, names):
+    """The complex values (ndarray) and unit (or None) of a visibility array."""
+    unit = None
+    if isinstance(visibilities, u.Quantity):
+        unit = visibilities.unit
+        visibilities = visibilities.value
+    values = np.asarray(visibilities)
+    if not np.issubdtype(values.dtype, np.complexfloating):
+        raise TypeError(
+            f"visibilities must be complex, got dtype {values.dtype}; a real array has "
+            "no phase to correct (build it with a complex dtype, e.g. "
+            "amplitude * np.exp(1j * phase))"
+        )
+    if values.ndim == 0 or values.shape[-1] != len(names):
+        raise ValueError(
+            f"the last axis of visibilities must hold the {len(names)} products "
+            f"{names}, got shape {values.shape}"
+        )
+    return values, unit
+
+
+def _finish(values, dtype, unit):
+    values = values.astype(dtype, copy=False)
+    return values if unit is None else u.Quantity(values, unit, copy=False)
+
+
+# --- single antenna ------------------------------------------------------------
+
+
+def correct_phase(phase, feed_rotation, polarization="RCP", wrap=False):
+    """Remove the feed rotation from phases measured by one antenna (Appendix D).
+
+    Parameters
+    ----------
+    phase : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        Measured carrier phases, in any angle unit. A phase here grows with
+        delay (Eq 1): it is the negative of the argument of the voltage.
+    feed_rotation : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        The RCP feed rotation :math:`\\Phi`, as
+        `~astropy_feedrot.Antenna.feed_rotation` returns it with
+        ``polarization='RCP'`` (the default for natural sources).
+    polarization : str, optional
+        Hand of the measured phase: ``'RCP'`` (default) or ``'LCP'``;
+        ``'RHCP'``/``'LHCP'`` and ``'R'``/``'L'`` are accepted, in any case.
+    wrap : bool, optional
+        If True, wrap the result to (-180, 180] deg. By default it is not
+        wrapped, so that a continuous series stays continuous.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        :math:`\\phi - \\Phi` for RCP, :math:`\\phi + \\Phi` for LCP, in the
+        unit of ``phase``, with the broadcast shape of ``phase`` and
+        ``feed_rotation`` (a scalar for scalar inputs); NaN where either is NaN.
+
+    Raises
+    ------
+    TypeError
+        If an angle is a plain number or array instead of a Quantity.
+    astropy.units.UnitsError
+        If an angle has a unit that is not an angle.
+    ValueError
+        For an unknown ``polarization`` (listing the valid names), or shapes
+        that do not broadcast.
+
+    Notes
+    -----
+    The feed rotation of an LCP receiver is :math:`-\\Phi`: this is what
+    `~astropy_feedrot.Antenna.feed_rotation` returns with
+    ``polarization='LCP'``, or by default for an LCP satellite. Do not pass
+    that value together with ``polarization='LCP'``, which would negate it
+    twice: pass its negative, or equivalently subtract it directly.
+
+    Examples
+    --------
+    An antenna whose feed has turned by 30 deg measures an RCP phase 30 deg
+    larger, and an LCP phase 30 deg smaller, than an unrotated one:
+
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import correct_phase
+    >>> correct_phase(130 * u.deg, 30 * u.deg)  # doctest: +FLOAT_CMP
+    <Angle 100. deg>
+    >>> correct_phase(70 * u.deg, 30 * u.deg, polarization="LCP")  # doctest: +FLOAT_CMP
+    <Angle 100. deg>
+    >>> correct_phase([170, 190] * u.deg, -30 * u.deg, wrap=True)  # doctest: +FLOAT_CMP
+    <Angle [-160., -140.] deg>
+    """
+    sign = polarization_sign(polarization)
+    measured = _radians(phase, "phase")
+    rotation = _radians(feed_rotation, "feed_rotation")
+    try:
+        np.broadcast_shapes(measured.shape, rotation.shape)
+    except ValueError:
+        raise ValueError(
+            f"shapes do not broadcast: phase has shape {measured.shape}, feed_rotation "
+            f"has shape {rotation.shape}"
+        ) from None
+    corrected = measured - sign * rotation
+    if wrap:
+        corrected = kernel.wrap_phase(corrected)
+    return _to_angle(corrected, phase.unit)
+
+
+# --- circular feeds ------------------------------------------------------------
+
+
+def correct_visibilities(visibilities, feed_rotation1, feed_rotation2, products):
+    """Remove the feed rotation from visibilities of circular feeds.
+
+    Parameters
+    ----------
+    visibilities : array-like or `~astropy.units.Quantity`, complex
+        Visibilities :math:`V_{pq} = \\langle v_{1p} v_{2q}^* \\rangle` of one
+        baseline (antenna 2 conjugated), with the correlation products along
+        the last axis.
+    feed_rotation1, feed_rotation2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        RCP feed rotations :math:`\\Phi_1`, :math:`\\Phi_2` of the two antennas
+        (as `~astropy_feedrot.Antenna.feed_rotation` returns them for a natural
+        source); each must broadcast to ``visibilities[..., 0]``.
+    products : sequence of str
+        The products along the last axis of ``visibilities``, any subset of
+        ``('RR', 'RL', 'LR', 'LL')`` in any order and case.
+
+    Returns
+    -------
+    `~numpy.ndarray` or `~astropy.units.Quantity`
+        New corrected visibilities, of the same shape, dtype (complex64 stays
+        complex64) and unit as ``visibilities``; NaN where an angle is NaN.
+        The input is not modified.
+
+    Raises
+    ------
+    TypeError
+        If ``visibilities`` is not complex, if an angle is not a Quantity, or
+        if ``products`` is not a sequence of names.
+    astropy.units.UnitsError
+        If an angle has a unit that is not an angle.
+    ValueError
+        For unknown or repeated product names (listing the valid ones), a last
+        axis whose length is not that of ``products``, or angles that do not
+        broadcast to ``visibilities[..., 0]``.
+
+    Notes
+    -----
+    The feeds multiply the visibilities by
+    :math:`e^{-i(s_p\\Phi_1 - s_q\\Phi_2)}`, with :math:`s_R = +1` and
+    :math:`s_L = -1`: RR by :math:`e^{i(\\Phi_2-\\Phi_1)}`, LL by
+    :math:`e^{-i(\\Phi_2-\\Phi_1)}`, RL by :math:`e^{-i(\\Phi_1+\\Phi_2)}`, LR by
+    :math:`e^{i(\\Phi_1+\\Phi_2)}` (Eq 46 for RR and LL; CASA's ``PJones`` for
+    circular feeds). The correction multiplies by the inverse.
+
+    Examples
+    --------
+    A source of phase 10 deg seen with feed rotations of 50 deg and 20 deg:
+    the RR phase is 10 + (20 - 50) deg, the LL phase 10 - (20 - 50) deg.
+
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import correct_visibilities
+    >>> observed = np.exp(1j * np.radians([10 - 30, 10 + 30]))
+    >>> corrected = correct_visibilities(observed, 50 * u.deg, 20 * u.deg, ("RR", "LL"))
+    >>> np.degrees(np.angle(corrected))  # doctest: +FLOAT_CMP
+    array([10., 10.])
+    """
+    names = _products(products, CIRCULAR_PRODUCTS, all_required=False)
+    values, unit = _visibilities(visibilities, names)
+    phi1 = _radians(feed_rotation1, "feed_rotation1")
+    phi2 = _radians(feed_rotation2, "feed_rotation2")
+    _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
+    hand1 = np.array([polarization_sign(name[0]) for name in names], dtype=float)
+    hand2 = np.array([polarization_sign(name[1]) for name in names], dtype=float)
+    angle = phi1[..., np.newaxis] * hand1 - phi2[..., np.newaxis] * hand2
+    return _finish(values * np.exp(1j * angle), values.dtype, unit)
+
+
+# --- linear feeds --------------------------------------------------------------
+
+
+def _rotation(radians):
+    c, s = np.cos(radians), np.sin(radians)
+    return np.stack([np.stack([c, -s], axis=-1), np.stack([s, c], axis=-1)], axis=-2)
+
+
+def rotation_matrix(feed_rotation):
+    """The 2x2 matrix that turns a plane vector by an angle.
+
+    Parameters
+    ----------
+    feed_rotation : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        The angle :math:`\\Phi`.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        :math:`R(\\Phi) = [[\\cos\\Phi, -\\sin\\Phi], [\\sin\\Phi, \\cos\\Phi]]`,
+        of shape ``feed_rotation.shape + (2, 2)``. Acting on (north, east)
+        components it turns a vector from north toward east by :math:`\\Phi`.
+
+    Raises
+    ------
+    TypeError
+        If the angle is not a Quantity.
+    astropy.units.UnitsError
+        If it is not an angle.
+
+    Notes
+    -----
+    A linear feed whose X dipole lies at position angle :math:`\\Phi` (and Y
+    at :math:`\\Phi + 90^\\circ`) measures :math:`(v_X, v_Y) = R(-\\Phi)\\,
+    (E_\\mathrm{north}, E_\\mathrm{east})`: its Jones matrix is
+    :math:`R(-\\Phi) = R(\\Phi)^T`, the linear ``PJones`` of CASA, and
+    `correct_linear_visibilities` applies :math:`R(\\Phi_1)\\,V\\,R(\\Phi_2)^T`.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import rotation_matrix
+    >>> rotation_matrix(30 * u.deg)  # doctest: +FLOAT_CMP
+    array([[ 0.8660254, -0.5      ],
+           [ 0.5      ,  0.8660254]])
+    >>> rotation_matrix([0, 90, 180] * u.deg).shape
+    (3, 2, 2)
+    """
+    return _rotation(_radians(feed_rotation, "feed_rotation"))
+
+
+def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
+                                products=LINEAR_PRODUCTS):
+    """Remove the feed rotation from visibilities of linear feeds.
+
+    Parameters
+    ----------
+    visibilities : array-like or `~astropy.units.Quantity`, complex
+        Visibilities :math:`V_{pq} = \\langle v_{1p} v_{2q}^* \\rangle` of one
+        baseline with the four products along the last axis.
+    feed_rotation1, feed_rotation2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        Feed rotations :math:`\\Phi_1`, :math:`\\Phi_2`: the position angle of
+        each antenna's X dipole (north through east; Y lies 90 deg further
+        toward east), i.e. `~astropy_feedrot.Antenna.feed_rotation` plus the
+        constant angle of the dipole. Each must broadcast to
+        ``visibilities[..., 0]``.
+    products : sequence of str, optional
+        The order of the last axis: the four names ``'XX'``, ``'XY'``,
+        ``'YX'``, ``'YY'`` in any order and case (default in that order).
+
+    Returns
+    -------
+    `~numpy.ndarray` or `~astropy.units.Quantity`
+        New visibilities :math:`R(\\Phi_1)\\,V\\,R(\\Phi_2)^T` in the frame of
+        (north, east) dipoles, same shape, dtype and unit as the input; the
+        input is not modified.
+
+    Raises
+    ------
+    TypeError
+        If ``visibilities`` is not complex, if an angle is not a Quantity, or
+        if ``products`` is not a sequence of names.
+    astropy.units.UnitsError
+        If an angle has a unit that is not an angle.
+    ValueError
+        For unknown, repeated or missing product names, a last axis whose
+        length is not 4, or angles that do not broadcast to
+        ``visibilities[..., 0]``.
+
+    Notes
+    -----
+    With the feed Jones matrices :math:`R(-\\Phi_i)` (see `rotation_matrix`)
+    the observed coherency is :math:`R(-\\Phi_1)\\,V\\,R(-\\Phi_2)^T`, whose
+    inverse is applied here. For a source with Stokes :math:`(I, Q, U)` seen
+    with :math:`\\Phi_1 = \\Phi_2 = \\chi`, the feeds see :math:`Q` and
+    :math:`U` turned by :math:`-2\\chi`. Converted to circular products with
+    :math:`R = (X + iY)/\\sqrt{2}`, :math:`L = (X - iY)/\\sqrt{2}` (IEEE
+    right-handed, IAU :math:`RR = I + V`, :math:`RL = Q + iU`), this correction
+    is exactly `correct_visibilities`.
+
+    Examples
+    --------
+    A source with Stokes I = 1, Q = 0.1, seen by two feeds turned by 30 deg,
+    has the linear polarization turned by -60 deg: XX = I + Q cos 60 deg,
+    XY = YX = -Q sin 60 deg, YY = I - Q cos 60 deg. The correction recovers
+    XX = I + Q, YY = I - Q and no cross-hand signal:
+
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import correct_linear_visibilities
+    >>> q, c, s = 0.1, np.cos(np.radians(60)), np.sin(np.radians(60))
+    >>> observed = np.array([1 + q * c, -q * s, -q * s, 1 - q * c], dtype=complex)
+    >>> corrected = correct_linear_visibilities(observed, 30 * u.deg, 30 * u.deg)
+    >>> np.allclose(corrected, [1.1, 0, 0, 0.9], rtol=0, atol=1e-15)
+    True
+    """
+    names = _products(products, LINEAR_PRODUCTS, all_required=True)
+    values, unit = _visibilities(visibilities, names)
+    phi1 = _radians(feed_rotation1, "feed_rotation1")
+    phi2 = _radians(feed_rotation2, "feed_rotation2")
+    _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
+    order = [names.index(name) for name in LINEAR_PRODUCTS]
+    matrix = values[..., order].reshape(values.shape[:-1] + (2, 2))
+    corrected = _rotation(phi1) @ matrix @ np.swapaxes(_rotation(phi2), -1, -2)
+    out = np.empty(values.shape, dtype=np.result_type(values.dtype, corrected.dtype))
+    out[..., order] = corrected.reshape(values.shape)
+    return _finish(out, values.dtype, unit)
+
+
+# --- the dual-polarization check (Eq 46) ----------------------------------------
+
+
+def rr_minus_ll(feed_rotation1, feed_rotation2, wrap=True):
+    """The RR - LL phase difference that feed rotation causes on a baseline (Eq 46).
+
+    Parameters
+    ----------
+    feed_rotation1, feed_rotation2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        RCP feed rotations :math:`\\Phi_1`, :math:`\\Phi_2` of the two antennas
+        (antenna 2 is the conjugated one, :math:`V = \\langle v_1 v_2^*
+        \\rangle`).
+    wrap : bool, optional
+        Wrap the result to (-180, 180] deg (default). If False, return
+        :math:`2(\\Phi_2 - \\Phi_1)` as it comes, continuous when the inputs
+        are.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        :math:`\\phi^R - \\phi^L = 2(\\Phi_2 - \\Phi_1)` in degrees, broadcast
+        shape of the inputs (a scalar for scalars); NaN where either is NaN.
+
+    Raises
+    ------
+    TypeError
+        If an angle is not a Quantity.
+    astropy.units.UnitsError
+        If an angle has a unit that is not an angle.
+    ValueError
+        If the shapes do not broadcast.
+
+    Notes
+    -----
+    Eq 46 without the instrumental offset :math:`\\Phi_\\mathrm{instr}`,
+    which is constant (fit and remove it when comparing with fringe phases, as
+    for Fig. 7 of the paper). The prediction holds for a weakly polarized
+    natural source, whose RR and LL visibilities are equal before the feeds
+    rotate them.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import rr_minus_ll
+    >>> rr_minus_ll(10 * u.deg, 40 * u.deg)  # doctest: +FLOAT_CMP
+    <Angle 60. deg>
+    >>> rr_minus_ll(-60 * u.deg, [40, 60] * u.deg)  # doctest: +FLOAT_CMP
+    <Angle [-160., -120.] deg>
+    >>> rr_minus_ll(-60 * u.deg, [40, 60] * u.deg, wrap=False)  # doctest: +FLOAT_CMP
+    <Angle [200., 240.] deg>
+    """
+    phi1 = _radians(feed_rotation1, "feed_rotation1")
+    phi2 = _radians(feed_rotation2, "feed_rotation2")
+    try:
+        np.broadcast_shapes(phi1.shape, phi2.shape)
+    except ValueError:
+        raise ValueError(
+            f"shapes do not broadcast: feed_rotation1 has shape {phi1.shape}, "
+            f"feed_rotation2 has shape {phi2.shape}"
+        ) from None
+    difference = 2 * (phi2 - phi1)
+    return _to_angle(kernel.wrap_phase(difference) if wrap else difference)
+
+
+def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation=None,
+                   max_gap=None):
+    """The predicted RR - LL phase of a baseline observing a natural source (Eq 46).
+
+    Parameters
+    ----------
+    antenna1, antenna2 : `~astropy_feedrot.Antenna`
+        The baseline (antenna 2 is the conjugated one, :math:`V = \\langle v_1
+        v_2^* \\rangle`).
+    target : `~astropy.coordinates.SkyCoord`
+        Natural source(s), weakly polarized.
+    obstime : `~astropy.time.Time`
+        Epoch(s); with ``wrap=False`` time must be the last axis of the
+        broadcast shape.
+    wrap : bool, optional
+        Wrap to (-180, 180] deg (default). If False, :math:`\\Phi_2 - \\Phi_1`
+        is made continuous along the last axis (Eq 9, see
+        `~astropy_feedrot.unwrap`), starting each segment in (-180, 180] deg,
+        and then doubled.
+    min_elevation : `~astropy.units.Quantity`, optional
+        NaN where the source is lower than this at either antenna.
+    max_gap : `~astropy.units.Quantity`, optional
+        With ``wrap=False``, restart the continuous series after longer gaps
+        (for example between scans).
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        :math:`2(\\Phi_2 - \\Phi_1)` in degrees with the RCP feed rotations of
+        `~astropy_feedrot.Antenna.feed_rotation`, broadcast shape of ``target``
+        and ``obstime``.
+
+    Raises
+    ------
+    TypeError
+        If an antenna is not an `~astropy_feedrot.Antenna`, or ``target`` is a
+        `~astropy_feedrot.Satellite` (it transmits one hand only).
+    ValueError
+        If ``max_gap`` is given with ``wrap=True``, and as for
+        `~astropy_feedrot.Antenna.feed_rotation`.
+
+    Warns
+    -----
+    DegenerateGeometryWarning, ContinuityWarning
+        As `~astropy_feedrot.Antenna.feed_rotation` and `~astropy_feedrot.unwrap`.
+
+    Examples
+    --------
+    The Yebes 40 m telescope (Nasmyth, right) against a Cassegrain antenna at
+    the same site: the difference of the feed rotations is the elevation, so
+    RR - LL is twice the elevation (Eqs 38 and 46):
+
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation, SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import Antenna, AltAzMount, NasmythFocus
+    >>> from astropy_feedrot.correction import baseline_rr_ll
+    >>> yebes = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
+    >>> cassegrain = Antenna(yebes, AltAzMount())
+    >>> nasmyth = Antenna(yebes, AltAzMount(), NasmythFocus("right"))
+    >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+    >>> times = Time("2023-01-25T20:00") + [0, 2] * u.hour
+    >>> baseline_rr_ll(cassegrain, nasmyth, source, times)  # doctest: +FLOAT_CMP
+    <Angle [162.61771062, 117.94659972] deg>
+    >>> 2 * cassegrain.altaz(source, times)[1]  # doctest: +FLOAT_CMP
+    <Angle [162.61771062, 117.94659972] deg>
+    """
+    for name, antenna in (("antenna1", antenna1), ("antenna2", antenna2)):
+        if not isinstance(antenna, Antenna):
+            raise TypeError(f"{name} must be an Antenna, got {type(antenna).__name__}")
+    if isinstance(target, Satellite):
+        raise TypeError(
+            f"Eq 46 compares the RR and LL phases of a weakly polarized natural source; "
+            f"{target!r} transmits {target.polarization} only. Give a SkyCoord, or compare "
+            "feed rotations with Antenna.feed_rotation"
+        )
+    if wrap and max_gap is not None:
+        raise ValueError("max_gap applies to the continuous series only; pass wrap=False")
+    phi1 = antenna1.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
+    phi2 = antenna2.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
+    if wrap:
+        return rr_minus_ll(phi1, phi2)
+    # Eq 9 on the difference of the feed rotations, then doubled: each segment
+    # starts from Phi_2 - Phi_1 in (-180, 180] deg.
+    difference = kernel.wrap_phase(phi2.to_value(u.rad) - phi1.to_value(u.rad)) * u.rad
+    difference = unwrap(difference, axis=-1, obstime=obstime if max_gap is not None else None,
+                        max_gap=max_gap)
+    return _to_angle(2 * difference.to_value(u.rad))
