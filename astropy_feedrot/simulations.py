@@ -10,15 +10,12 @@ telescopes GGAO12M and WETTZ13S (Table 3).
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import EarthLocation
-from astropy.table import Table
 from astropy.time import Time
 
-from .antenna import Antenna
-from .continuity import rotation_delay, unwrap
-from .mounts import AltAzMount, StationaryMount
 from .orbits import TLEOrbit
 from .satellite import Satellite
+from .stations import get_antenna
+from .tables import baseline_table
 
 __all__ = [
     "GPS_SVN76_TLE",
@@ -36,13 +33,8 @@ GPS_SVN76_TLE = (
     "2 41328  54.9577 138.7050 0066950 231.2234 128.1638  2.00560135 51012",
 )
 
-#: Tables 1 and 3 of the paper: ITRF positions (m) and mounts.
-PAPER_ANTENNAS = {
-    "DBR205": ((-1324070.478, -5332176.001, 3231921.799), StationaryMount()),
-    "FD-VLBA": ((-1324009.454, -5332181.955, 3231962.369), AltAzMount()),
-    "GGAO12M": ((1130730.179, -4831245.954, 3994228.241), AltAzMount()),
-    "WETTZ13S": ((4075659.180, 931824.551, 4801516.102), AltAzMount()),
-}
+#: The antennas of Tables 1 and 3 of the paper (entries of the station catalogue).
+PAPER_ANTENNAS = ("DBR205", "FD-VLBA", "GGAO12M", "WETTZ13S")
 
 #: The date of both simulations.
 DATE = Time("2023-01-25T00:00:00", scale="utc")
@@ -71,9 +63,8 @@ def paper_antenna(name):
     StationaryMount()
     """
     if name not in PAPER_ANTENNAS:
-        raise ValueError(f"name must be one of {sorted(PAPER_ANTENNAS)}, got {name!r}")
-    xyz, mount = PAPER_ANTENNAS[name]
-    return Antenna(EarthLocation.from_geocentric(*xyz, unit=u.m), mount, name=name)
+        raise ValueError(f"name must be one of {', '.join(PAPER_ANTENNAS)}, got {name!r}")
+    return get_antenna(name)
 
 
 def gps_svn76():
@@ -111,38 +102,10 @@ def genesis():
 
 
 def _baseline_table(antenna1, antenna2, satellite, times, frequency, min_elevation):
-    table = Table({"time": times})
-    table.meta.update(
-        satellite=satellite.name,
-        antennas=[antenna1.name, antenna2.name],
-        frequency=str(frequency),
-        min_elevation=str(min_elevation),
-    )
-    visible = np.ones(times.shape, dtype=bool)
-    for antenna in (antenna1, antenna2):
-        az, el = antenna.altaz(satellite, times)
-        terms = antenna.feed_rotation_terms(satellite, times)
-        total = antenna.feed_rotation(satellite, times)
-        above = el >= min_elevation
-        visible &= above
-        prefix = antenna.name
-        table[f"{prefix}_azimuth"] = az.deg * u.deg
-        table[f"{prefix}_elevation"] = el.deg * u.deg
-        table[f"{prefix}_transmitter"] = terms.transmitter.deg * u.deg
-        table[f"{prefix}_receiver"] = terms.receiver.deg * u.deg
-        table[f"{prefix}_total"] = total.deg * u.deg
-        table[f"{prefix}_continuous"] = unwrap(total, mask=~above, obstime=times,
-                                               max_gap=2 * _step(times)).deg * u.deg
-    result = rotation_delay(antenna1, antenna2, satellite, times, frequency,
-                            min_elevation=min_elevation, max_gap=2 * _step(times))
-    table["rotation_delay"] = result.delay
-    table.meta["ambiguity"] = str(result.ambiguity)
-    table["both_visible"] = visible
+    table = baseline_table(antenna1, antenna2, satellite, times, frequency,
+                           min_elevation=min_elevation)
+    table.meta["satellite"] = satellite.name
     return table
-
-
-def _step(times):
-    return (times[1] - times[0]).to(u.s) if len(times) > 1 else 60 * u.s
 
 
 def gps_short_baseline(step=60 * u.s, min_elevation=10 * u.deg):

@@ -7,6 +7,9 @@
 ``sample.obx``
     An ORBEX file with yaw-steering attitude quaternions (Earth-fixed to body)
     for the same satellites over the first minute. Synthetic.
+``stations.ecsv``
+    The station catalogue of `astropy_feedrot.stations` (positions cited in
+    its header).
 """
 
 from pathlib import Path
@@ -14,7 +17,7 @@ from pathlib import Path
 __all__ = ["sample_file", "SAMPLES"]
 
 #: Names of the shipped sample files.
-SAMPLES = ("sample.sp3", "sample.obx")
+SAMPLES = ("sample.sp3", "sample.obx", "stations.ecsv")
 
 
 def sample_file(name):
@@ -22,7 +25,7 @@ def sample_file(name):
 
     Parameters
     ----------
-    name : {'sample.sp3', 'sample.obx'}
+    name : {'sample.sp3', 'sample.obx', 'stations.ecsv'}
 
     Returns
     -------

@@ -1,0 +1,256 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Feed rotation of one antenna or a baseline over time, as astropy Tables.
+
+These are the tables that the ``feedrot`` command writes and that
+`astropy_feedrot.plotting` draws. Angles are in degrees; the ``continuous``
+column is made continuous with `~astropy_feedrot.unwrap` (Eq 9), restarting
+after epochs below the elevation limit and after gaps of more than two
+sampling steps.
+"""
+
+import numpy as np
+from astropy import units as u
+from astropy.table import Table
+
+from .antenna import Antenna
+from .continuity import rotation_delay, unwrap
+from .frames import as_time
+
+__all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary"]
+
+#: Columns of `feed_rotation_table` (after ``time``), in order.
+COLUMNS = ("azimuth", "elevation", "parallactic_angle", "transmitter", "receiver", "total",
+           "continuous")
+
+
+def _max_gap(times):
+    if times.size < 2:
+        return None
+    return 2 * np.max(np.diff(times.jd)) * u.day
+
+
+def _check_times(obstime):
+    times = as_time(obstime)
+    if times.ndim != 1:
+        raise ValueError(f"obstime must be a one-dimensional series of epochs, got shape "
+                         f"{times.shape}")
+    if times.size > 1 and np.any(np.diff(times.jd) <= 0):
+        raise ValueError("obstime must increase strictly")
+    return times
+
+
+def _antenna_columns(antenna, target, times, polarization, min_elevation):
+    if not isinstance(antenna, Antenna):
+        raise TypeError(f"antenna must be an Antenna, got {type(antenna).__name__}")
+    azimuth, elevation = antenna.altaz(target, times)
+    terms = antenna.feed_rotation_terms(target, times, polarization=polarization,
+                                        min_elevation=min_elevation)
+    below = np.zeros(times.shape, bool) if min_elevation is None else elevation < min_elevation
+    columns = {
+        "azimuth": azimuth.to(u.deg),
+        "elevation": elevation.to(u.deg),
+        "parallactic_angle": antenna.parallactic_angle(target, times).to(u.deg),
+        "transmitter": terms.transmitter.to(u.deg),
+        "receiver": terms.receiver.to(u.deg),
+        "total": antenna.feed_rotation(target, times, polarization=polarization,
+                                       min_elevation=min_elevation).to(u.deg),
+    }
+    columns["continuous"] = unwrap(columns["total"], mask=below, obstime=times,
+                                   max_gap=_max_gap(times)).to(u.deg)
+    return {name: u.Quantity(value) for name, value in columns.items()}, ~below
+
+
+def _target_name(target):
+    name = getattr(target, "name", None)
+    if name:
+        return str(name)
+    try:
+        return target.to_string("hmsdms")
+    except Exception:
+        return repr(target)
+
+
+def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevation=None):
+    """Feed rotation of one antenna over a series of epochs.
+
+    Parameters
+    ----------
+    antenna : `~astropy_feedrot.Antenna`
+        The receiving antenna.
+    target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+        One natural source or one satellite.
+    obstime : `~astropy.time.Time`
+        Strictly increasing epochs (one-dimensional).
+    polarization, min_elevation : optional
+        As for `~astropy_feedrot.Antenna.feed_rotation`.
+
+    Returns
+    -------
+    `~astropy.table.Table`
+        Columns ``time`` and then `COLUMNS`: azimuth and elevation (deg),
+        parallactic angle (Eq 15), the transmitter and receiver terms
+        (Eqs 21, 22), the total feed rotation wrapped to (-180, 180] deg and
+        the continuous total. Angles are NaN below ``min_elevation``. The
+        ``meta`` records antenna, target, polarization and elevation limit.
+
+    Raises
+    ------
+    TypeError
+        If ``antenna`` is not an `~astropy_feedrot.Antenna`.
+    ValueError
+        If ``obstime`` is not a one-dimensional increasing series, or for the
+        errors of `~astropy_feedrot.Antenna.feed_rotation`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> from astropy_feedrot.tables import feed_rotation_table
+    >>> times = Time("2023-01-25T18:00") + np.arange(3) * u.hour
+    >>> table = feed_rotation_table(get_antenna("EFLSBERG"),
+    ...                             SkyCoord("03h19m48.16s +41d30m42.1s"), times)
+    >>> table["total"].quantity  # doctest: +FLOAT_CMP
+    <Quantity [-30.90395267,  24.10716885,  51.55021012] deg>
+    """
+    times = _check_times(obstime)
+    columns, _ = _antenna_columns(antenna, target, times, polarization, min_elevation)
+    table = Table({"time": times, **columns})
+    table.meta.update(antenna=antenna.name or repr(antenna), target=_target_name(target),
+                      polarization=str(polarization or getattr(target, "polarization", "RCP")),
+                      min_elevation=str(min_elevation))
+    return table
+
+
+def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=None,
+                   min_elevation=None):
+    """Feed rotation at both ends of a baseline and the rotation delay between them.
+
+    Parameters
+    ----------
+    antenna1, antenna2 : `~astropy_feedrot.Antenna`
+        The baseline; the delay is antenna 2 minus antenna 1.
+    target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+        What both observe.
+    obstime : `~astropy.time.Time`
+        Strictly increasing epochs (one-dimensional).
+    frequency : `~astropy.units.Quantity`
+        Observing frequency of the rotation delay.
+    polarization, min_elevation : optional
+        As for `~astropy_feedrot.Antenna.feed_rotation`.
+
+    Returns
+    -------
+    `~astropy.table.Table`
+        ``time``; for each antenna the columns of `feed_rotation_table`
+        prefixed with the antenna's name and ``_``; ``rotation_delay`` (ps,
+        continuous, NaN where the target is below the limit at either
+        antenna) and ``both_visible``. ``meta["ambiguity"]`` is the delay
+        ambiguity :math:`1/f`.
+
+    Raises
+    ------
+    ValueError
+        If the two antennas have the same name, or as `feed_rotation_table`
+        and `~astropy_feedrot.rotation_delay`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> from astropy_feedrot.tables import baseline_table
+    >>> times = Time("2023-01-25T18:00") + np.arange(3) * 10 * u.min
+    >>> table = baseline_table(get_antenna("EFLSBERG"), get_antenna("YEBES40M"),
+    ...                        SkyCoord("03h19m48.16s +41d30m42.1s"), times, 8.4 * u.GHz)
+    >>> table.meta["ambiguity"]
+    '119.04761904761905 ps'
+    """
+    times = _check_times(obstime)
+    names = [antenna.name if isinstance(antenna, Antenna) else None
+             for antenna in (antenna1, antenna2)]
+    prefixes = [name or f"antenna{i}" for i, name in enumerate(names, start=1)]
+    if prefixes[0] == prefixes[1]:
+        raise ValueError(f"the two antennas of a baseline must differ; both are {prefixes[0]!r}")
+    table = Table({"time": times})
+    visible = np.ones(times.shape, bool)
+    for prefix, antenna in zip(prefixes, (antenna1, antenna2)):
+        columns, above = _antenna_columns(antenna, target, times, polarization, min_elevation)
+        visible &= above
+        for name, value in columns.items():
+            table[f"{prefix}_{name}"] = value
+    result = rotation_delay(antenna1, antenna2, target, times, frequency,
+                            polarization=polarization, min_elevation=min_elevation,
+                            max_gap=_max_gap(times))
+    table["rotation_delay"] = result.delay
+    table["both_visible"] = visible
+    table.meta.update(antennas=prefixes, target=_target_name(target),
+                      frequency=str(u.Quantity(frequency)), min_elevation=str(min_elevation),
+                      ambiguity=str(result.ambiguity))
+    return table
+
+
+def _span(values):
+    values = u.Quantity(values)
+    return np.nanmin(values), np.nanmax(values)
+
+
+def baseline_summary(table):
+    """A few lines that summarize a `baseline_table`.
+
+    Parameters
+    ----------
+    table : `~astropy.table.Table`
+        A table from `baseline_table`.
+
+    Returns
+    -------
+    str
+        When the target is above the limit at both antennas; per antenna the
+        ranges of the receiver and transmitter terms and the span of the
+        continuous total; the largest difference of the transmitter terms; the
+        range of the rotation delay and its ambiguity.
+
+    Raises
+    ------
+    ValueError
+        If the target is never visible from both antennas.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.simulations import gps_short_baseline
+    >>> from astropy_feedrot.tables import baseline_summary
+    >>> print(baseline_summary(gps_short_baseline(step=10 * u.min)))  # doctest: +ELLIPSIS
+    GPS SVN 76 over DBR205 and FD-VLBA
+      both above 10.0 deg: 42 epochs, 2023-01-25T08:10:00.000 to 2023-01-25T15:00:00.000
+    ...
+    """
+    first, second = table.meta["antennas"]
+    visible = np.asarray(table["both_visible"])
+    if not visible.any():
+        raise ValueError("the target is never above the elevation limit at both antennas")
+    times = table["time"][visible]
+    lines = [f"{table.meta.get('satellite', table.meta.get('target', ''))} over {first} and "
+             f"{second}",
+             f"  both above {table.meta['min_elevation']}: {visible.sum()} epochs, "
+             f"{times[0].isot} to {times[-1].isot}"]
+    for name in (first, second):
+        rx = _span(table[f"{name}_receiver"][visible])
+        tx = _span(table[f"{name}_transmitter"][visible])
+        cont = _span(table[f"{name}_continuous"][visible])
+        lines.append(f"  {name}: receiver term {rx[0]:.1f} to {rx[1]:.1f}, transmitter term "
+                     f"{tx[0]:.1f} to {tx[1]:.1f}, continuous total spans "
+                     f"{cont[1] - cont[0]:.1f}")
+    dtx = u.Quantity(table[f"{second}_transmitter"] - table[f"{first}_transmitter"])
+    dtx = ((dtx + 180 * u.deg) % (360 * u.deg) - 180 * u.deg)[visible]
+    lines.append(f"  difference of the transmitter terms: up to {np.nanmax(np.abs(dtx)):.4f}")
+    delay = _span(table["rotation_delay"][visible])
+    lines.append(f"  rotation delay {second} - {first} at {table.meta['frequency']}: "
+                 f"{delay[0]:.1f} to {delay[1]:.1f} (span {delay[1] - delay[0]:.1f}); "
+                 f"ambiguity {u.Quantity(table.meta['ambiguity']):.1f}")
+    return "\n".join(lines)
