@@ -252,9 +252,13 @@ class Antenna:
         `~astropy.coordinates.Angle`
             The feed rotation :math:`\\Phi` in degrees, in (-180, 180], with the
             broadcast shape of ``target`` and ``obstime`` (a scalar for scalar
-            inputs); NaN where undefined. Subtract it from measured RCP phases,
-            add it to LCP ones; for a continuous series see
-            `~astropy_feedrot.kernel.unwrap_phase`.
+            inputs); NaN where undefined. The value for ``polarization='LCP'``
+            is the negative of the RCP one, so the returned angle is always
+            *subtracted* from phases measured in that hand (Appendix D: RCP
+            subtract :math:`\\Phi`, LCP add it).
+            `~astropy_feedrot.correction.correct_phase` takes the RCP value and
+            the hand instead. For a continuous series see
+            `~astropy_feedrot.unwrap`.
 
         Raises
         ------

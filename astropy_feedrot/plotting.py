@@ -21,6 +21,13 @@ def _pyplot():
     return plt
 
 
+def _degrees(column):
+    """Degrees of a column, with NaN at the jumps of a wrapped angle (no vertical lines)."""
+    values = np.array(u.Quantity(column).to_value(u.deg), dtype=float)
+    values[1:][np.abs(np.diff(values)) > 180] = np.nan
+    return values
+
+
 def _hours(table):
     times = table["time"]
     return (times - times[0]).to_value(u.hour), f"hours since {times[0].utc.isot[:19]} UTC"
@@ -79,10 +86,10 @@ def plot_feed_rotation(table, path=None):
     hours, label = _hours(table)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6), sharex=True,
                                       gridspec_kw={"height_ratios": (1, 2)})
-    top.plot(hours, u.Quantity(table["elevation"]).to_value(u.deg), color="k")
+    top.plot(hours, _degrees(table["elevation"]), color="k")
     top.set_ylabel("elevation [deg]")
     for column, name in _TERMS:
-        bottom.plot(hours, u.Quantity(table[column]).to_value(u.deg), label=name)
+        bottom.plot(hours, _degrees(table[column]), label=name)
     bottom.set_ylabel("feed rotation [deg]")
     bottom.set_xlabel(label)
     bottom.legend(loc="best")
@@ -131,7 +138,7 @@ def plot_baseline(table, path=None):
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     for ax, name in zip(axes[:2], antennas):
         for column, term in _TERMS:
-            ax.plot(hours, u.Quantity(table[f"{name}_{column}"]).to_value(u.deg), label=term)
+            ax.plot(hours, _degrees(table[f"{name}_{column}"]), label=term)
         ax.set_ylabel(f"{name} [deg]")
         ax.legend(loc="best")
     delay = u.Quantity(table["rotation_delay"]).to_value(u.ps)
