@@ -290,8 +290,8 @@ def source_direction(target, location, obstime):
     target : `~astropy.coordinates.SkyCoord`
         Natural source(s), in any celestial frame; a distance, if given, is
         used for the parallax. A target already in `~astropy.coordinates.ITRS`
-        is taken as it is (positions are differenced with the site, Notes
-        item 8).
+        is taken as it is (positions are differenced with the site, without
+        the aberration a route through celestial frames would add).
     location : `~astropy.coordinates.EarthLocation`
         The observing site (scalar).
     obstime : `~astropy.time.Time`

@@ -51,9 +51,10 @@ copied):
     ``vtd/src/vtd_delay.f`` (its feed angles), ``pima/Changelog.txt`` (``BWG``
     introduced for WARK30M).
 
-Where the sources differ from the table in PAPER-NOTES
-------------------------------------------------------
-The eight rows (codes 0-7) agree with the sources. The sources add:
+Beyond the common table
+-----------------------
+The eight rows of the usual table (codes 0-7) agree with the sources. The
+sources add:
 
 * casacore also writes and reads ``BIZARRE`` (8), ``SPACE_HALCA`` /
   ``SPACE-HALCA`` (9) and ``UNKNOWN``; pyuvdata also has ``other`` and
