@@ -12,7 +12,7 @@ from astropy import units as u
 from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
-from .config import iers_context
+from .config import conf, iers_context
 from .frames import as_time, location_xyz
 
 __all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit"]
@@ -76,7 +76,13 @@ def _sgp4():
 
 
 def teme_to_itrs(position, obstime):
-    """Rotate TEME positions (SGP4's frame) to geocentric ITRS through astropy.
+    """Rotate TEME positions (SGP4's frame) to geocentric ITRS.
+
+    With ``conf.fast_path`` (the default) and 16 or more epochs the rotation
+    is computed once per epoch from interpolated Earth orientation
+    (`~astropy_feedrot.earth.EarthOrientation`: GMST 1982 from UT1 and polar
+    motion, as astropy's ``TEME`` to ``ITRS`` transformation); otherwise
+    through astropy's frames.
 
     Parameters
     ----------
@@ -99,6 +105,13 @@ def teme_to_itrs(position, obstime):
     >>> bool(np.isclose(np.linalg.norm(xyz), 7.0e6))
     True
     """
+    position = np.asarray(position, dtype=float)
+    if conf.fast_path and obstime.size >= 16:
+        from .earth import EarthOrientation
+
+        flat = position.reshape(-1, 3)
+        orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+        return orientation.teme_to_itrs(flat).reshape(position.shape)
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
     with iers_context(), np.errstate(invalid="ignore"):
         itrs = TEME(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))
