@@ -95,7 +95,10 @@ class EarthOrientation:
                 raise ValueError("epochs must be finite")
             k = np.floor(x / step).astype(np.int64)
             self._fraction = x / step - k
-            needed = np.unique(k[:, None] + np.arange(-1, 3))
+            used = np.zeros(k.max() - k.min() + 4, dtype=bool)
+            for offset in range(4):
+                used[k - k.min() + offset] = True
+            needed = np.flatnonzero(used) + k.min() - 1
             self._index = np.searchsorted(needed, k - 1)
             self.nodes = first + needed * step * u.s
             self._tt = tt

@@ -383,6 +383,8 @@ def _interpolated_direction(target, location, obstime, shape):
 
     orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
     s = orientation.source_directions(target.icrs, location)
+    if target.size == 1:
+        return np.broadcast_to(s.reshape(obstime.shape + (3,)), shape + (3,))
     full = s.reshape(target.size, obstime.size, 3)
     t_index, o_index = np.broadcast_arrays(np.arange(target.size).reshape(target.shape),
                                            np.arange(obstime.size).reshape(obstime.shape))
