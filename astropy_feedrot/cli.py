@@ -258,9 +258,11 @@ def _write(table, args, kind):
     else:
         table.write(sys.stdout, format="ascii.ecsv")
     if args.plot:
+        import matplotlib.pyplot as plt
+
         from . import plotting
 
-        getattr(plotting, f"plot_{kind}")(table, args.plot)
+        plt.close(getattr(plotting, f"plot_{kind}")(table, args.plot))
 
 
 def _run_single(args):
@@ -327,7 +329,9 @@ def _run_demo(args):
     try:
         from .plotting import plot_baseline
 
-        plot_baseline(table, figure_path)
+        import matplotlib.pyplot as plt
+
+        plt.close(plot_baseline(table, figure_path))
         print(f"figure: {figure_path}")
     except ImportError:
         print('figure: skipped (pip install "astropy_feedrot[all]" for matplotlib)')

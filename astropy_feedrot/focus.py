@@ -311,7 +311,8 @@ class MirrorTrain(Focus):
     Examples
     --------
     The simplest Nasmyth focus: one tertiary mirror sends the beam along the
-    elevation axis to the telescope's left (:math:`-\\hat{\\eta}`), into a
+    elevation axis to the telescope's right (:math:`-\\hat{\\eta}`, as
+    :math:`\\hat{\\eta} = \\hat{u} \\times \\hat{\\xi}` points to its left), into a
     feed that faces it. One reflection is odd, so the angle is negated; the
     result is the right-handed Nasmyth form :math:`\\Psi + E` plus 180 deg.
 
@@ -361,7 +362,7 @@ class MirrorTrain(Focus):
         elif np.linalg.norm(boresight + k_out) > _ORTHONORMAL_TOL:
             raise ValueError(
                 "the feed must face the arriving wave: feed_aligned x feed_transverse "
-                f"= {boresight} must equal -k_out = {-k_out} (a right-handed triad with "
+                f"= {boresight} must equal -k_out = {-k_out + 0.0} (a right-handed triad with "
                 "the boresight against the last wave vector)"
             )
         for array in (k, fa, ft):

@@ -2,6 +2,8 @@
 """Figures of the tables of `astropy_feedrot.tables` (needs matplotlib).
 
 matplotlib is an optional dependency: ``pip install "astropy_feedrot[all]"``.
+The functions draw on a new pyplot figure and return it, so ``plt.show()``
+and notebooks display it; close it with ``plt.close(fig)`` when drawing many.
 """
 
 import numpy as np
@@ -94,7 +96,6 @@ def plot_feed_rotation(table, path=None):
     bottom.set_xlabel(label)
     bottom.legend(loc="best")
     fig.suptitle(f"{table.meta.get('antenna', '')}: {table.meta.get('target', '')}")
-    plt.close(fig)
     return _finish(fig, path)
 
 
@@ -149,5 +150,4 @@ def plot_baseline(table, path=None):
     if visible.any():
         axes[0].set_xlim(hours[visible].min() - 0.25, hours[visible].max() + 0.25)
     fig.suptitle(f"{table.meta.get('target', '')}, {table.meta.get('frequency', '')}")
-    plt.close(fig)
     return _finish(fig, path)

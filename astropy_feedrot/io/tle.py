@@ -56,7 +56,8 @@ def read_tle(source):
     Notes
     -----
     A title line (three-line form) is any line before a line 1 that is not an
-    element line itself; a leading ``0 `` (Space-Track's 3LE) is removed.
+    element line itself; the leading zero and blank of Space-Track's 3LE
+    title lines are removed.
     Blank lines are skipped. Checksums and field layout are checked when the
     element set is turned into a `~astropy_feedrot.TLEOrbit`.
 
