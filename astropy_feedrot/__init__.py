@@ -22,7 +22,7 @@ from .focus import (
     PrimeFocus,
 )
 from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
-from .satellite import Satellite
+from .satellite import LineOfSight, Satellite
 from .mounts import (
     AltAzMount,
     EquatorialMount,
@@ -41,6 +41,7 @@ __all__ = [
     "Antenna",
     "FeedRotationTerms",
     "Satellite",
+    "LineOfSight",
     "TLEOrbit",
     "SP3Orbit",
     "CoordinateOrbit",

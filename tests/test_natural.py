@@ -128,6 +128,19 @@ def test_stationary_mount_is_eq33(site):
     assert max_angle_difference(phi.rad, eq33) < 1e-9
 
 
+def test_stationary_mount_is_parallactic_angle_minus_azimuth(site):
+    # A levelled crossed dipole (aligned east, transverse north) is an alt-az
+    # feed whose dipoles do not follow the azimuth: Phi = Psi - A - 90 deg
+    # (Psi checked against erfa.hd2pa above; A from the same direction).
+    antenna = Antenna(site, StationaryMount())
+    psi = Antenna(site, AltAzMount()).parallactic_angle(GRID, DAY)
+    azimuth, elevation = antenna.altaz(GRID, DAY)
+    expected = (psi - azimuth - 90 * u.deg).wrap_at(180 * u.deg)
+    away = elevation < 89 * u.deg  # the azimuth is undefined at the zenith
+    difference = (antenna.feed_rotation(GRID, DAY) - expected).wrap_at(180 * u.deg)[away]
+    assert np.abs(difference).max() < 1 * u.mas
+
+
 def test_stationary_mount_at_zenith_is_pole_azimuth():
     # Hand-built geometry: a source at the zenith of a GNSS antenna at latitude
     # 0, longitude 0 (s = ITRS x; east = y, north = z). The projected pole is
