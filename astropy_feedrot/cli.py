@@ -321,7 +321,7 @@ def _run_demo(args):
     _check_output(table_path, "--output-dir")
     step = _quantity(args.step, u.s, "--step")
     table = gps_short_baseline(step=step)
-    print("Section 4.1 of the paper: GPS SVN 76 (PRN 10) over the GNSS antenna DBR205 and the")
+    print("Section 4.1 of the paper: GPS SVN 76 over the GNSS antenna DBR205 and the")
     print("alt-az telescope FD-VLBA, 73 m apart, on 2023-01-25 (embedded element set, Table 2).")
     print(baseline_summary(table))
     table.write(table_path, format="ascii.ecsv", overwrite=True)

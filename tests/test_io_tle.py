@@ -30,9 +30,9 @@ def test_two_and_three_line_forms_mixed():
 def test_space_track_3le_title_and_gzip(tmp_path):
     path = tmp_path / "gps.tle.gz"
     with gzip.open(path, "wt") as fh:
-        fh.write(f"0 NAVSTAR 75 (USA 266)\r\n{LINE1}\r\n{LINE2}\r\n")
+        fh.write(f"0 GPS SVN 76 (3LE)\r\n{LINE1}\r\n{LINE2}\r\n")
     (record,) = read_tle(path)
-    assert record.name == "NAVSTAR 75 (USA 266)"
+    assert record.name == "GPS SVN 76 (3LE)"
     assert (record.line1, record.line2) == GPS_SVN76_TLE
 
 

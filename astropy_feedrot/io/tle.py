@@ -66,9 +66,9 @@ def read_tle(source):
     >>> import io
     >>> from astropy_feedrot.io import read_tle
     >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
-    >>> text = "GPS BIIF-12 (PRN 10)\\n" + "\\n".join(GPS_SVN76_TLE) + "\\n"
+    >>> text = "GPS SVN 76\\n" + "\\n".join(GPS_SVN76_TLE) + "\\n"
     >>> [(tle.name, tle.catalog_number) for tle in read_tle(io.StringIO(text))]
-    [('GPS BIIF-12 (PRN 10)', '41328')]
+    [('GPS SVN 76', '41328')]
     """
     records = []
     with open_lines(source) as (filename, lines):
