@@ -207,13 +207,15 @@ class EarthOrientation:
             At the flattened epochs.
         """
         node_values = np.asarray(node_values, dtype=float)
+        p0, p1 = node_values[..., :-3, :], node_values[..., 1:-2, :]
+        p2, p3 = node_values[..., 2:-1, :], node_values[..., 3:, :]
+        # The cubic through nodes at -1, 0, 1, 2 in powers of the fraction,
+        # for every run of four nodes; each epoch picks its run and Horner.
+        coefficients = np.stack([p1, p2 - p0 / 3 - p1 / 2 - p3 / 6, (p0 + p2) / 2 - p1,
+                                 (p3 - p0) / 6 + (p1 - p2) / 2], axis=-2)
+        c = coefficients[..., self._index, :, :]
         f = self._fraction[:, None]
-        weights = (-f * (f - 1) * (f - 2) / 6, (f + 1) * (f - 1) * (f - 2) / 2,
-                   -(f + 1) * f * (f - 2) / 2, (f + 1) * f * (f - 1) / 6)
-        result = weights[0] * node_values[..., self._index, :]
-        for j in range(1, 4):
-            result += weights[j] * node_values[..., self._index + j, :]
-        return result
+        return c[..., 0, :] + f * (c[..., 1, :] + f * (c[..., 2, :] + f * c[..., 3, :]))
 
     def source_directions(self, target, location):
         """Apparent topocentric ITRS directions of fixed celestial sources.
