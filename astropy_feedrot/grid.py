@@ -1,0 +1,1034 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Feed rotation on a grid of epochs x antennas x targets, for networks and long series.
+
+`Antenna.feed_rotation <astropy_feedrot.Antenna.feed_rotation>` computes one
+antenna and one target at a time: every call propagates the orbit, rotates it
+to the Earth-fixed frame and finds the Sun again. For a network observing a
+constellation, those per-epoch quantities are shared: this module computes
+them once per epoch for all satellites (one SGP4 call for all element sets,
+one Earth orientation, one Sun), and evaluates the wind-up on the whole grid
+of epochs (T) x antennas (A) x targets (S) with broadcast array arithmetic.
+
+Three layers, as in the rest of the package:
+
+* `wind_up`: plain arrays in, radians out, shape (T, A, S); no astropy object.
+  `nominal_attitude` gives the transmitter dipoles of Eqs 26-27 from arrays.
+* `feed_rotation_grid`: `~astropy_feedrot.Antenna` and
+  `~astropy_feedrot.Satellite` objects (or a `~astropy.coordinates.SkyCoord`
+  of natural sources) and a `~astropy.time.Time` in, an
+  `~astropy.coordinates.Angle` of shape (T, A, S) out, equal to
+  ``antenna.feed_rotation(target, obstime)`` for every pair;
+  `rotation_delay_grid` turns it into continuous rotation delays.
+* `feed_rotation_grid_dask`: the same computation as a `dask.array` chunked
+  over time, for grids that do not fit in memory or that are spread over a
+  cluster.
+"""
+
+import warnings
+from typing import NamedTuple
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
+
+from . import kernel
+from .antenna import FORMS, Antenna
+from .attitude import (
+    NominalAttitude,
+    _warn_nominal_undefined,
+    interpolated_sun_position,
+    nominal_dipoles,
+    sun_position,
+)
+from .config import conf
+from .continuity import RotationDelay, unwrap
+from .exceptions import DegenerateGeometryWarning
+from .focus import BeamWaveguideFocus, Focus, NasmythFocus
+from .frames import (
+    LocalFrame,
+    _fast_path_applies,
+    as_skycoord,
+    as_time,
+    horizontal,
+    location_xyz,
+    source_direction,
+)
+from .mounts import FixedAxisMount, StationaryMount
+from .orbits import TLEOrbit, teme_to_itrs
+from .polarization import polarization_sign
+from .satellite import LineOfSight, Satellite
+
+__all__ = [
+    "ReceiverArrays",
+    "receiver_arrays",
+    "wind_up",
+    "nominal_attitude",
+    "feed_rotation_grid",
+    "feed_rotation_grid_dask",
+    "rotation_delay_grid",
+]
+
+#: Grid points (epochs x antennas x targets) evaluated at once: the working
+#: memory of a block is about 200 bytes per point, so about 50 MB.
+BLOCK_POINTS = 2**18
+
+#: Default number of grid points per chunk of `feed_rotation_grid_dask`.
+DASK_CHUNK_POINTS = 2**21
+
+_RAD_TO_DEG = u.rad.to(u.deg)
+
+# Doctests that need the optional dask (pytest-doctestplus).
+__doctest_requires__ = {("feed_rotation_grid_dask",): ["dask"]}
+
+
+class ReceiverArrays(NamedTuple):
+    """The receiving antennas of a grid as plain arrays (the inputs of `wind_up`).
+
+    Attributes
+    ----------
+    station_xyz : ndarray, shape (A, 3)
+        Geocentric ITRS positions in metres.
+    station_axes : ndarray, shape (A, 3, 3)
+        East, north and up unit vectors of each site in ITRS (rows). A
+        stationary crossed dipole has its aligned dipole east and its
+        transverse dipole north (Eq 28).
+    stationary : ndarray of bool, shape (A,)
+        True for a crossed dipole fixed to the ground, False for a tracking
+        antenna.
+    fixed_axis : ndarray, shape (A, 3)
+        The fixed axis of each tracking mount in ITRS (Eq 10; ignored for a
+        stationary one).
+    focus_terms : ndarray, shape (A, 2)
+        Multiples of the elevation and the azimuth a focus adds: (0, 0) for a
+        prime, Cassegrain or Gregorian focus, (+-1, 0) for a right/left
+        Nasmyth focus (Eq 38), (+-1, -+1) for a right/left beam waveguide
+        (Eq 39).
+    """
+
+    station_xyz: np.ndarray
+    station_axes: np.ndarray
+    stationary: np.ndarray
+    fixed_axis: np.ndarray
+    focus_terms: np.ndarray
+
+
+def _focus_terms(focus):
+    """Elevation and azimuth multiples of a closed-form focus; None if it needs tracing."""
+    phase = type(focus).receiver_phase
+    if phase is Focus.receiver_phase:
+        return (0.0, 0.0)
+    if phase is NasmythFocus.receiver_phase:
+        return (float(focus.sign), 0.0)
+    if phase is BeamWaveguideFocus.receiver_phase:
+        return (float(focus.sign), -float(focus.sign))
+    return None
+
+
+def _check_antennas(antennas):
+    if isinstance(antennas, Antenna):
+        raise TypeError("antennas must be a sequence of Antenna objects; wrap a single "
+                        "antenna in a list: [antenna]")
+    try:
+        antennas = list(antennas)
+    except TypeError:
+        raise TypeError(f"antennas must be a sequence of Antenna objects, got "
+                        f"{type(antennas).__name__}") from None
+    if not antennas:
+        raise ValueError("antennas is empty; give at least one Antenna")
+    for i, antenna in enumerate(antennas):
+        if not isinstance(antenna, Antenna):
+            raise TypeError(f"antennas[{i}] must be an Antenna, got {type(antenna).__name__}")
+    return antennas
+
+
+def _receivers(antennas):
+    """ReceiverArrays of all antennas and the (index, antenna) pairs that need tracing."""
+    n = len(antennas)
+    xyz = np.empty((n, 3))
+    axes = np.empty((n, 3, 3))
+    stationary = np.zeros(n, dtype=bool)
+    fixed_axis = np.empty((n, 3))
+    terms = np.zeros((n, 2))
+    traced = []
+    for i, antenna in enumerate(antennas):
+        local = antenna.local_frame
+        xyz[i] = location_xyz(antenna.location)
+        axes[i] = np.stack(local)
+        fixed_axis[i] = local.up
+        mount = antenna.mount
+        focus = _focus_terms(antenna.focus)
+        if (isinstance(mount, StationaryMount) and not mount.tracks
+                and type(mount).dipoles is StationaryMount.dipoles):
+            stationary[i] = True
+        elif isinstance(mount, FixedAxisMount) and mount.tracks and focus is not None:
+            fixed_axis[i] = mount.fixed_axis(local)
+            terms[i] = focus
+        else:
+            traced.append((i, antenna))
+    return ReceiverArrays(xyz, axes, stationary, fixed_axis, terms), traced
+
+
+def receiver_arrays(antennas):
+    """Plain-array description of antennas, for `wind_up`.
+
+    Parameters
+    ----------
+    antennas : sequence of `~astropy_feedrot.Antenna`
+        Stationary crossed dipoles, and fixed-axis mounts (alt-az, equatorial,
+        X-Y, any fixed axis) with a prime, Cassegrain, Gregorian, Nasmyth or
+        beam-waveguide focus.
+
+    Returns
+    -------
+    ReceiverArrays
+        Named tuple whose fields are the keyword arguments of `wind_up`.
+
+    Raises
+    ------
+    TypeError
+        If an element is not an `~astropy_feedrot.Antenna`.
+    ValueError
+        For an antenna without a closed form (a `~astropy_feedrot.MirrorTrain`
+        focus or a user-defined mount or focus); `feed_rotation_grid` handles
+        those antenna by antenna.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> rx = receiver_arrays([get_antenna("DBR205"), get_antenna("FD-VLBA")])
+    >>> rx.stationary
+    array([ True, False])
+    >>> rx.station_axes.shape
+    (2, 3, 3)
+    """
+    antennas = _check_antennas(antennas)
+    arrays, traced = _receivers(antennas)
+    if traced:
+        i, antenna = traced[0]
+        raise ValueError(
+            f"antennas[{i}] ({antenna!r}) has no closed form for wind_up (mount "
+            f"{antenna.mount!r}, focus {antenna.focus!r}); feed_rotation_grid traces such "
+            "antennas one by one"
+        )
+    return arrays
+
+
+def _shape_error(name, shape, expected, why):
+    return ValueError(f"{name} has shape {shape}, but {why} needs {expected}")
+
+
+def _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms):
+    xyz = np.asarray(station_xyz, dtype=float)
+    if xyz.ndim != 2 or xyz.shape[1] != 3:
+        raise ValueError(f"station_xyz must have shape (A, 3), got {xyz.shape}")
+    n = len(xyz)
+    axes = np.asarray(station_axes, dtype=float)
+    if axes.shape != (n, 3, 3):
+        raise _shape_error("station_axes", axes.shape, (n, 3, 3),
+                           f"station_xyz of shape {xyz.shape}")
+    station = np.asarray(stationary, dtype=bool)
+    if station.shape != (n,):
+        raise _shape_error("stationary", station.shape, (n,),
+                           f"station_xyz of shape {xyz.shape}")
+    if fixed_axis is None:
+        axis = axes[:, 2]
+    else:
+        axis = np.asarray(fixed_axis, dtype=float)
+        if axis.shape != (n, 3):
+            raise _shape_error("fixed_axis", axis.shape, (n, 3),
+                               f"station_xyz of shape {xyz.shape}")
+    if focus_terms is None:
+        terms = np.zeros((n, 2))
+    else:
+        terms = np.asarray(focus_terms, dtype=float)
+        if terms.shape != (n, 2):
+            raise _shape_error("focus_terms", terms.shape, (n, 2),
+                               f"station_xyz of shape {xyz.shape}")
+    return ReceiverArrays(xyz, axes, station, axis, terms)
+
+
+def _check_form(form):
+    if form is None:
+        return "beyerle"
+    if form not in FORMS:
+        raise ValueError(f"form must be one of {FORMS}, got {form!r}")
+    return form
+
+
+def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shape):
+    target = np.asarray(target, dtype=float)
+    if directions:
+        if target.ndim == 4:
+            if target.shape[1] != n_antennas or target.shape[-1] != 3:
+                raise _shape_error("target", target.shape,
+                                   f"(T, {n_antennas}, S, 3) or (T, S, 3)",
+                                   f"station_xyz of shape {xyz_shape}")
+        elif target.ndim != 3 or target.shape[-1] != 3:
+            raise ValueError(f"target directions must have shape (T, S, 3) or (T, A, S, 3), "
+                             f"got {target.shape}")
+    elif target.ndim != 3 or target.shape[-1] != 3:
+        raise ValueError(f"target positions must have shape (T, S, 3), got {target.shape}; "
+                         "for directions pass directions=True")
+    if (aligned is None) != (transverse is None):
+        raise ValueError("give both aligned and transverse (a transmitter) or neither "
+                         "(natural sources)")
+    expected = target.shape[:1] + target.shape[-2:]
+    if aligned is not None:
+        aligned = np.asarray(aligned, dtype=float)
+        transverse = np.asarray(transverse, dtype=float)
+        for name, value in (("aligned", aligned), ("transverse", transverse)):
+            if value.shape != expected:
+                raise _shape_error(name, value.shape, expected,
+                                   f"target of shape {target.shape}")
+    return target, aligned, transverse
+
+
+def _beyerle_by_contraction(xyz, axes, target, aligned, transverse, need_sine):
+    """Eq 30 for stationary crossed dipoles, from scalar products (t, a, S).
+
+    The same quantity as `kernel.beyerle_phase` with the line of sight
+    ``s = (target - xyz) / |target - xyz|``, written with the scalar products
+    of the per-epoch transmitter vectors (target, dipoles) and the per-site
+    receiver vectors (position, east, north, up), all from one contraction;
+    no (t, a, S, 3) array is formed.
+    """
+    t, n_s = target.shape[:2]
+    n_a = len(xyz)
+    east, north, up = axes[:, 0], axes[:, 1], axes[:, 2]
+    receivers = np.ascontiguousarray(np.concatenate([xyz, east, north, up]).T)  # (3, 4a)
+    # All scalar products [g, ta, tt] . [x, e, n, u] at once. einsum's own loops
+    # rather than a BLAS matrix product: the same arithmetic whatever the block
+    # size, and no BLAS threads competing with the workers of a parallel scheduler.
+    products = np.einsum("ktsi,ij->ktsj", np.stack([target, aligned, transverse]), receivers)
+    products = products.reshape(3, t, n_s, 4, n_a)
+    x_e, x_n, x_u, x_x = (kernel.dot(v, xyz)[np.newaxis, np.newaxis]
+                          for v in (east, north, up, xyz))
+    g_g, g_a, g_t = (kernel.dot(target, v)[..., np.newaxis]
+                     for v in (target, aligned, transverse))
+    inverse = g_g + x_x
+    inverse -= 2 * products[0, :, :, 0]
+    np.sqrt(inverse, out=inverse)
+    np.divide(1.0, inverse, out=inverse)  # 1 / |target - xyz|
+    s_a = (g_a - products[1, :, :, 0]) * inverse  # s . t_a
+    s_t = (g_t - products[2, :, :, 0]) * inverse  # s . t_t
+    e_s = (products[0, :, :, 1] - x_e) * inverse  # e . s
+    n_s_ = (products[0, :, :, 2] - x_n) * inverse  # n . s
+    # Eq 5 with r_a = e, r_t = n:  num = e . P t_t + n . P t_a,  den = e . P t_a - n . P t_t
+    num = products[2, :, :, 1] + products[1, :, :, 2]
+    num -= s_t * e_s
+    num -= s_a * n_s_
+    den = products[1, :, :, 1] - products[2, :, :, 2]
+    den -= s_a * e_s
+    den += s_t * n_s_
+    phase = np.arctan2(num, den)
+    num *= num
+    den *= den
+    num += den
+    phase[num < kernel.DEGENERATE_NORM**2] = np.nan
+    sine = None
+    if need_sine:
+        sine = (products[0, :, :, 3] - x_u) * inverse
+        sine = sine.transpose(0, 2, 1)
+    return phase.transpose(0, 2, 1), sine
+
+
+def _phase_block(rx, target, aligned, transverse, directions, form, need_sine):
+    """Feed rotation (RCP, radians) and sine of elevation on one block, shape (t, A, S)."""
+    t = target.shape[0]
+    n_s = target.shape[-2]
+    n_a = len(rx.station_xyz)
+    phase = np.empty((t, n_a, n_s))
+    sine = np.empty((t, n_a, n_s)) if need_sine else None
+    satellite = aligned is not None
+    fast = rx.stationary & (satellite and form == "beyerle" and not directions)
+    index = np.flatnonzero(fast)
+    if index.size:
+        p, e = _beyerle_by_contraction(rx.station_xyz[index], rx.station_axes[index],
+                                       target, aligned, transverse, need_sine)
+        phase[:, index] = p
+        if need_sine:
+            sine[:, index] = e
+    index = np.flatnonzero(~fast)
+    if not index.size:
+        return phase, sine
+    if directions:
+        s = target[:, index] if target.ndim == 4 else target[:, np.newaxis]
+    else:
+        s = kernel.unit(target[:, np.newaxis] - rx.station_xyz[index][:, np.newaxis])
+    if satellite:
+        ta, tt = aligned[:, np.newaxis], transverse[:, np.newaxis]
+        t_eff = kernel.transmitter_effective_dipole(s, ta, tt)
+    else:
+        t_eff = kernel.project(kernel.NORTH_POLE, s)
+    axes = rx.station_axes[index][:, :, np.newaxis]  # (a, 3, 1, 3)
+    east, north, up = axes[:, 0], axes[:, 1], axes[:, 2]  # (a, 1, 3)
+    if need_sine:
+        sine[:, index] = kernel.dot(s, up)
+    for stationary in (True, False):
+        j = np.flatnonzero(rx.stationary[index] == stationary)
+        if not j.size:
+            continue
+        s_j = s[:, j] if s.shape[1] > 1 else s
+        t_j = t_eff[:, j] if t_eff.shape[1] > 1 else t_eff
+        if stationary and satellite and form == "beyerle":  # Eq 30
+            p = kernel.beyerle_phase(s_j, east[j], north[j], ta, tt)
+        elif stationary:  # Eq 7 with the receiver's effective dipole (Eqs 31, 33)
+            p = kernel.wu_phase(s_j, kernel.receiver_effective_dipole(s_j, east[j], north[j]),
+                                t_j)
+        else:  # Eq 7 with the fixed axis (Eqs 13, 35), and the focus terms (Eqs 38-41)
+            p = kernel.wu_phase(s_j, rx.fixed_axis[index[j]][:, np.newaxis], t_j)
+            terms = rx.focus_terms[index[j]]
+            if np.any(terms):
+                azimuth, elevation = horizontal(s_j, LocalFrame(east[j], north[j], up[j]))
+                p = kernel.wrap_phase(p + terms[:, 0, np.newaxis] * elevation
+                                      + terms[:, 1, np.newaxis] * azimuth)
+        phase[:, index[j]] = p
+    return phase, sine
+
+
+def _blocks(n_epochs, points_per_epoch):
+    """Slices of epochs holding about `BLOCK_POINTS` grid points each."""
+    step = max(1, BLOCK_POINTS // max(1, points_per_epoch))
+    for start in range(0, n_epochs, step):
+        yield slice(start, min(start + step, n_epochs))
+
+
+def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transverse=None, *,
+            fixed_axis=None, focus_terms=None, directions=False, form="beyerle"):
+    """Feed rotation (carrier-phase wind-up) on a grid, from plain arrays.
+
+    Every antenna sees every target at every epoch: the result has shape
+    (T, A, S) for T epochs, A antennas and S targets.
+
+    Parameters
+    ----------
+    station_xyz : array-like, shape (A, 3)
+        Geocentric ITRS positions of the antennas, in metres.
+    station_axes : array-like, shape (A, 3, 3)
+        East, north and up unit vectors of each site in ITRS (the rows of
+        ``np.stack(local_frame(location))``).
+    stationary : array-like of bool, shape (A,)
+        True for a crossed dipole fixed to the ground (aligned dipole east,
+        transverse north, boresight up, Eq 28), False for a tracking antenna
+        turning about ``fixed_axis``.
+    target : array-like, shape (T, S, 3) or (T, A, S, 3)
+        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3);
+        or, with ``directions=True``, unit vectors from the antennas to the
+        targets, shape (T, S, 3) (the same for every antenna) or (T, A, S, 3).
+    aligned, transverse : array-like, shape (T, S, 3), optional
+        The transmitters' aligned and transverse dipoles in ITRS (from
+        `nominal_attitude`, or measured). Leave both out for natural sources,
+        whose transmitter dipole is the projected celestial pole (Eq 11).
+    fixed_axis : array-like, shape (A, 3), optional
+        Fixed axis of each tracking mount in ITRS (Eq 10): the up vector for
+        alt-az (the default), ``[0, 0, 1]`` for equatorial, north or east for
+        X-Y. Ignored for stationary antennas.
+    focus_terms : array-like, shape (A, 2), optional
+        Multiples of the elevation and the azimuth that the focus adds (see
+        `ReceiverArrays`); zero (a conventional focus) by default.
+    directions : bool, optional
+        Whether ``target`` holds directions instead of positions.
+    form : {'beyerle', 'wu'}, optional
+        For stationary antennas and transmitters with dipoles: the crossed-dipole
+        form (Eq 30, default) or the effective-dipole form (Eq 31).
+
+    Returns
+    -------
+    ndarray, shape (T, A, S)
+        The feed rotation of a right-hand (RCP) receiver in radians, in
+        [-pi, pi]; negate it for LCP. NaN where the geometry is degenerate
+        (see `~astropy_feedrot.kernel`), without a warning.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not fit (naming both), or for an unknown ``form``.
+
+    Notes
+    -----
+    Tracking antennas: Eq 7 with the fixed-axis vector as receiver dipole
+    (Eq 13; Eqs 35, 38-41 with the focus terms). Stationary crossed dipoles:
+    Eq 30 (Beyerle's form, Eq 5) for transmitters with dipoles, evaluated from
+    scalar products without forming a (T, A, S, 3) array; Eq 7 with the
+    effective dipole of Eq 8 otherwise (Eq 33 for natural sources). The grid
+    is evaluated in blocks of epochs to bound the working memory.
+    `receiver_arrays` builds the antenna arguments from
+    `~astropy_feedrot.Antenna` objects.
+
+    Examples
+    --------
+    A GNSS antenna on the equator and a transmitter straight above it, facing
+    it, with dipoles turned by 30 degrees from east towards north:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.grid import wind_up
+    >>> enu = np.array([[[0.0, 1, 0], [0, 0, 1], [1, 0, 0]]])  # east, north, up at lon 0
+    >>> c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    >>> phi = wind_up([[6.378e6, 0, 0]], enu, [True], [[[2.6e7, 0, 0]]],
+    ...               aligned=[[[0, c, s]]], transverse=[[[0, s, -c]]])
+    >>> phi.shape
+    (1, 1, 1)
+    >>> float(np.degrees(phi[0, 0, 0]))  # doctest: +FLOAT_CMP
+    30.0
+    """
+    rx = _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms)
+    form = _check_form(form)
+    target, aligned, transverse = _check_targets(target, aligned, transverse, directions,
+                                                 len(rx.station_xyz), rx.station_xyz.shape)
+    n_t, n_s = target.shape[0], target.shape[-2]
+    out = np.empty((n_t, len(rx.station_xyz), n_s))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for block in _blocks(n_t, out[0].size):
+            out[block] = _phase_block(
+                rx, target[block], None if aligned is None else aligned[block],
+                None if transverse is None else transverse[block], directions, form, False)[0]
+    return out
+
+
+def nominal_attitude(position, sun):
+    """Dipoles of nominally pointed satellites on a grid of epochs (Eqs 26, 27).
+
+    Parameters
+    ----------
+    position : array-like, shape (T, S, 3)
+        Geocentric ITRS positions of S satellites at T epochs.
+    sun : array-like, shape (T, 3)
+        Geocentric ITRS position of the Sun at the same epochs, in the same
+        unit (`~astropy_feedrot.attitude.sun_position`, or
+        `~astropy_feedrot.attitude.interpolated_sun_position` for many
+        epochs): one per epoch for all satellites.
+
+    Returns
+    -------
+    aligned, transverse : ndarray, shape (T, S, 3)
+        The transmitter dipoles of `~astropy_feedrot.NominalAttitude` (the
+        same arithmetic, `~astropy_feedrot.attitude.nominal_dipoles`); NaN
+        without a warning where the Sun, a satellite and the geocentre are
+        aligned.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not fit (naming both).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.grid import nominal_attitude
+    >>> position = np.array([[[2.6e7, 0, 0], [0, 2.6e7, 0]]])  # one epoch, two satellites
+    >>> aligned, transverse = nominal_attitude(position, [[0, 0, 1.5e11]])
+    >>> transverse  # doctest: +FLOAT_CMP
+    array([[[ 0.,  1.,  0.],
+            [-1.,  0.,  0.]]])
+    """
+    position = np.asarray(position, dtype=float)
+    sun = np.asarray(sun, dtype=float)
+    if position.ndim != 3 or position.shape[-1] != 3:
+        raise ValueError(f"position must have shape (T, S, 3), got {position.shape}")
+    if sun.shape != (position.shape[0], 3):
+        raise _shape_error("sun", sun.shape, (position.shape[0], 3),
+                           f"position of shape {position.shape}")
+    return nominal_dipoles(position, sun[:, np.newaxis])
+
+
+# -- From astropy objects to arrays --------------------------------------------------------
+
+
+class _Grid(NamedTuple):
+    """Everything a block of epochs needs, as arrays."""
+
+    receivers: ReceiverArrays
+    traced: list
+    target: np.ndarray
+    aligned: np.ndarray
+    transverse: np.ndarray
+    directions: bool
+    form: str
+    sign: np.ndarray
+    min_sine: float
+    shape: tuple
+
+
+def _check_targets_objects(targets):
+    """('satellites', list) or ('sources', 1-d SkyCoord)."""
+    if isinstance(targets, (SkyCoord, BaseCoordinateFrame)):
+        sources = as_skycoord(targets)
+        if sources.ndim > 1:
+            raise ValueError(f"natural sources must be a scalar or 1-d SkyCoord, got shape "
+                             f"{sources.shape}; flatten it with .ravel()")
+        return "sources", sources.reshape((sources.size,))
+    if isinstance(targets, Satellite):
+        raise TypeError("targets must be a sequence of Satellite objects or a SkyCoord of "
+                        "sources; wrap a single satellite in a list: [satellite]")
+    if isinstance(targets, str):
+        raise TypeError(f"targets must be Satellite objects or a SkyCoord, got a str "
+                        f"{targets!r}; e.g. SkyCoord({targets!r})")
+    try:
+        targets = list(targets)
+    except TypeError:
+        raise TypeError(f"targets must be a sequence of Satellite objects or a SkyCoord, got "
+                        f"{type(targets).__name__}") from None
+    if not targets:
+        raise ValueError("targets is empty; give at least one Satellite")
+    for i, target in enumerate(targets):
+        if not isinstance(target, Satellite):
+            hint = ("; put natural sources in one SkyCoord, e.g. SkyCoord([c1, c2])"
+                    if isinstance(target, (SkyCoord, BaseCoordinateFrame)) else "")
+            raise TypeError(f"targets[{i}] must be a Satellite, got "
+                            f"{type(target).__name__}{hint}")
+    return "satellites", targets
+
+
+def _earth_orientation(obstime):
+    """The one Earth orientation of the grid, or None where orbits use astropy's frames."""
+    if conf.fast_path and obstime.size >= 16:  # the rule of orbits.teme_to_itrs
+        from .earth import EarthOrientation
+
+        return EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    return None
+
+
+def _propagate_tle(orbits, obstime, orientation):
+    """ITRS positions (S, T, 3) in metres of TLE orbits, propagated together."""
+    from sgp4.api import SatrecArray
+
+    utc = obstime.utc
+    jd1 = np.ascontiguousarray(utc.jd1, dtype=float)  # sgp4 needs C order
+    jd2 = np.ascontiguousarray(utc.jd2, dtype=float)
+    error, r, _ = SatrecArray([orbit._satrec for orbit in orbits]).sgp4(jd1, jd2)
+    r = np.asarray(r, dtype=float)
+    r *= 1e3
+    r[np.asarray(error) != 0] = np.nan
+    if orientation is not None:
+        return orientation.teme_to_itrs(r)
+    return np.stack([teme_to_itrs(one, obstime) for one in r])
+
+
+def _satellite_arrays(satellites, obstime, polarization):
+    """Positions and dipoles (T, S, 3) of satellites, and their signs (S,)."""
+    n_t, n_s = obstime.size, len(satellites)
+    orientation = _earth_orientation(obstime)
+    position = np.empty((n_t, n_s, 3))
+    tle = {i for i, sat in enumerate(satellites)
+           if isinstance(sat.orbit, TLEOrbit) and type(sat.orbit).position is TLEOrbit.position}
+    if tle:
+        order = sorted(tle)
+        position[:, order] = np.swapaxes(
+            _propagate_tle([satellites[i].orbit for i in order], obstime, orientation), 0, 1)
+    for i, sat in enumerate(satellites):
+        if i in tle:
+            continue
+        xyz = np.asarray(sat.orbit.position(obstime), dtype=float)
+        if xyz.shape != (n_t, 3):
+            raise ValueError(f"the orbit of targets[{i}] gives positions of shape {xyz.shape} "
+                             f"for obstime of shape {obstime.shape}; a grid needs one position "
+                             "per epoch")
+        position[:, i] = xyz
+    aligned = np.empty_like(position)
+    transverse = np.empty_like(position)
+    nominal = [i for i, sat in enumerate(satellites)
+               if type(sat.attitude).dipoles is NominalAttitude.dipoles]
+    others = set(range(n_s)) - set(nominal)
+    if nominal:
+        sun = (interpolated_sun_position(orientation) if orientation is not None
+               else sun_position(obstime))
+        where = position[:, nominal]
+        a, t = nominal_dipoles(where, sun[:, np.newaxis])
+        _warn_nominal_undefined(t, where, stacklevel=4)
+        aligned[:, nominal], transverse[:, nominal] = a, t
+    for i in sorted(others):
+        a, t = satellites[i].attitude.dipoles(obstime, position[:, i])
+        aligned[:, i], transverse[:, i] = a, t
+    sign = np.array([_satellite_sign(sat, polarization) for sat in satellites], dtype=float)
+    return position, aligned, transverse, sign
+
+
+def _satellite_sign(satellite, polarization):
+    """+1/-1 for the receiver's hand, checked against the satellite's (as Antenna)."""
+    if polarization is None:
+        return satellite.sign
+    sign = polarization_sign(polarization)
+    if sign != satellite.sign:
+        raise ValueError(
+            f"an {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
+            f"{satellite.polarization} signal of {satellite!r}; use "
+            f"polarization={satellite.polarization!r} (or leave it unset)"
+        )
+    return sign
+
+
+def _source_directions(sources, antennas, obstime):
+    """Apparent topocentric directions (T, A, S, 3) of natural sources at each antenna."""
+    n_t, n_s = obstime.size, sources.size
+    out = np.empty((n_t, len(antennas), n_s, 3))
+    column = sources.reshape((n_s, 1))
+    orientation = None
+    if _fast_path_applies(column, obstime, (n_s, n_t)):
+        from .earth import EarthOrientation
+
+        orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+        icrs = sources.icrs
+    for i, antenna in enumerate(antennas):
+        if orientation is not None:
+            s = orientation.source_directions(icrs, antenna.location)
+        else:
+            s = source_direction(column, antenna.location, obstime)
+        out[:, i] = np.swapaxes(s.reshape(n_s, n_t, 3), 0, 1)
+    return out
+
+
+def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
+    antennas = _check_antennas(antennas)
+    kind, targets = _check_targets_objects(targets)
+    obstime = as_time(obstime)
+    if obstime.ndim > 1:
+        raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
+                         f"got shape {obstime.shape}; flatten it with .ravel()")
+    shape = obstime.shape
+    obstime = obstime.reshape((obstime.size,))
+    form = _check_form(form)
+    min_sine = None
+    if min_elevation is not None:
+        # Below where arcsin(s . up) < limit, as Antenna: s . up < sin(limit) within +-90 deg.
+        limit = float(u.Quantity(min_elevation).to_value(u.rad))
+        min_sine = (np.inf if limit > np.pi / 2 else -np.inf if limit <= -np.pi / 2
+                    else float(np.sin(limit)))
+    receivers, traced = _receivers(antennas)
+    if kind == "satellites":
+        target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization)
+        directions = False
+    else:
+        sign = np.full(targets.size, polarization_sign(
+            "RCP" if polarization is None else polarization), dtype=float)
+        target = _source_directions(targets, antennas, obstime)
+        aligned = transverse = None
+        directions = True
+    return _Grid(receivers, traced, target, aligned, transverse, directions, form, sign,
+                 min_sine, shape + (len(antennas), len(sign)))
+
+
+def _grid_block(target, aligned=None, transverse=None, *, receivers, traced, directions,
+                form, sign, min_sine, count=False):
+    """Feed rotation in degrees (t, A, S) of a block of epochs; with ``count`` also the
+    number of degenerate grid points (NaN where the target is finite and not masked)."""
+    n_t, n_s = target.shape[0], target.shape[-2]
+    n_a = len(receivers.station_xyz)
+    out = np.empty((n_t, n_a, n_s))
+    degenerate = 0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for block in _blocks(n_t, n_a * n_s):
+            tb = target[block]
+            ab = None if aligned is None else aligned[block]
+            rb = None if transverse is None else transverse[block]
+            phase, sine = _phase_block(receivers, tb, ab, rb, directions, form,
+                                       min_sine is not None)
+            for i, antenna in traced:
+                if directions:
+                    s = tb[:, i] if tb.ndim == 4 else tb
+                else:
+                    s = kernel.unit(tb - receivers.station_xyz[i])
+                phase[:, i] = antenna._phase(LineOfSight(s, ab, rb), form)
+            phase *= sign
+            below = None if min_sine is None else sine < min_sine
+            if count:
+                finite = np.all(np.isfinite(tb), axis=-1)
+                bad = np.isnan(phase) & (finite if directions and tb.ndim == 4
+                                         else finite[:, np.newaxis])
+                if below is not None:
+                    bad &= ~below
+                degenerate += int(np.count_nonzero(bad))
+            if below is not None:
+                phase[below] = np.nan
+            phase *= _RAD_TO_DEG
+            out[block] = phase
+    return (out, degenerate) if count else out
+
+
+def _dask_block(*arrays, **kwargs):
+    return _grid_block(*arrays, **kwargs)
+
+
+def _block_arguments(grid):
+    return dict(receivers=grid.receivers, traced=grid.traced, directions=grid.directions,
+                form=grid.form, sign=grid.sign, min_sine=grid.min_sine)
+
+
+def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=None,
+                       min_elevation=None):
+    """Feed rotation of every antenna observing every target at every epoch.
+
+    Parameters
+    ----------
+    antennas : sequence of `~astropy_feedrot.Antenna`
+        The receivers (A of them), of any mount and focus type.
+    targets : sequence of `~astropy_feedrot.Satellite`, or `~astropy.coordinates.SkyCoord`
+        S satellites (TLE, SP3 or coordinate orbits; nominal or quaternion
+        attitude), or natural sources as one scalar or 1-d coordinate.
+    obstime : `~astropy.time.Time`
+        The epochs, scalar or 1-d (T of them).
+    polarization : {'RCP', 'LCP'}, optional
+        Hand of the receivers: each satellite's own hand by default, RCP for
+        natural sources; see `~astropy_feedrot.Antenna.feed_rotation`.
+    form : {'beyerle', 'wu'}, optional
+        Form for stationary crossed dipoles seeing satellites (Eq 30 by
+        default, or Eq 31).
+    min_elevation : `~astropy.units.Quantity`, optional
+        NaN (without a warning) where a target is lower than this above an
+        antenna's horizon.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        Shape (T, A, S), or (A, S) for a scalar ``obstime``; degrees in
+        [-180, 180]. Element ``[k, i, j]`` equals
+        ``antennas[i].feed_rotation(targets[j], obstime[k], ...)`` modulo
+        360 deg (Nasmyth angles are wrapped here, not there).
+
+    Raises
+    ------
+    TypeError
+        If ``antennas`` or ``targets`` hold objects of the wrong kind (a single
+        antenna or satellite must be put in a list).
+    ValueError
+        For a multi-dimensional ``obstime``, an unknown ``polarization`` or
+        ``form``, a receiver hand that differs from a satellite's, or an orbit
+        that does not give one position per epoch.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if some grid points are degenerate (and once
+        more if the nominal attitude of some satellite is undefined).
+
+    Notes
+    -----
+    Satellites with TLE orbits are propagated together (SGP4's
+    ``SatrecArray``) and rotated from TEME to ITRS with one
+    `~astropy_feedrot.earth.EarthOrientation`; the Sun of the nominal
+    attitude is computed once per epoch for all satellites
+    (`~astropy_feedrot.attitude.interpolated_sun_position`). With fewer than
+    16 epochs, or ``conf.fast_path`` off, the rigorous astropy
+    transformations are used, as `~astropy_feedrot.Antenna.feed_rotation`
+    does. The per-epoch arrays take 72 bytes per epoch and satellite (natural
+    sources: 24 bytes per epoch, antenna and source), the result 8 bytes per
+    grid point; the wind-up itself is evaluated in blocks of
+    `BLOCK_POINTS` grid points. See `feed_rotation_grid_dask` for grids
+    larger than memory.
+
+    Examples
+    --------
+    GPS SVN 76 over the GNSS antenna DBR205 and the telescope FD-VLBA (Sec. 4.1):
+
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.grid import feed_rotation_grid
+    >>> from astropy_feedrot.simulations import gps_svn76
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> antennas = [get_antenna("DBR205"), get_antenna("FD-VLBA")]
+    >>> times = Time("2023-01-25T08:10") + np.arange(0, 7, 0.5) * u.hour
+    >>> phi = feed_rotation_grid(antennas, [gps_svn76()], times)
+    >>> phi.shape
+    (14, 2, 1)
+    >>> reference = antennas[1].feed_rotation(gps_svn76(), times)
+    >>> bool(np.all(np.abs((phi[:, 1, 0] - reference).wrap_at(180 * u.deg)) < 1e-9 * u.deg))
+    True
+    """
+    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
+    out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, count=True,
+                                  **_block_arguments(grid))
+    if degenerate:
+        warnings.warn(
+            f"feed rotation is undefined at {degenerate} of {out.size} grid points, where a "
+            "line of sight is within 0.2 mas of a singular direction of a mount (a fixed "
+            "axis such as the zenith of an alt-az mount) or of the celestial pole, or where "
+            "a transmitter is seen edge-on; NaN is returned there",
+            DegenerateGeometryWarning,
+            stacklevel=2,
+        )
+    return Angle(out.reshape(grid.shape), u.deg, copy=False)
+
+
+def _dask_array():
+    try:
+        import dask.array
+    except ImportError:  # pragma: no cover - exercised only without dask
+        raise ImportError(
+            "feed_rotation_grid_dask needs dask: python -m pip install 'dask[array]' "
+            "(or astropy_feedrot[dask], which adds dask.distributed for clusters)"
+        ) from None
+    return dask.array
+
+
+def feed_rotation_grid_dask(antennas, targets, obstime, *, polarization=None, form=None,
+                            min_elevation=None, chunks=None):
+    """`feed_rotation_grid` as a `dask.array`, chunked over time.
+
+    The per-epoch quantities (orbits, attitude, Earth orientation, source
+    directions) are computed here, at once; the wind-up of each chunk of epochs
+    is a task, computed when the result is (``.compute()``, a reduction, or
+    ``dask.array.to_npy_stack`` and friends that write chunk by chunk), by
+    whichever dask scheduler is active: threads by default, or a
+    ``dask.distributed`` cluster.
+
+    Parameters
+    ----------
+    antennas, targets, obstime, polarization, form, min_elevation
+        As for `feed_rotation_grid`.
+    chunks : int or tuple of int, optional
+        Epochs per chunk (or the sizes of all chunks along time). By default
+        chunks of about `DASK_CHUNK_POINTS` grid points (16 MB of float64).
+
+    Returns
+    -------
+    `dask.array.Array`
+        Shape (T, A, S) (or (A, S) for a scalar ``obstime``), float64, in
+        degrees; computed, it equals the value of `feed_rotation_grid`.
+        Degenerate grid points are NaN, without a warning (count them with
+        ``dask.array.isnan``).
+
+    Raises
+    ------
+    ImportError
+        If dask is not installed.
+    TypeError, ValueError
+        As for `feed_rotation_grid`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.grid import feed_rotation_grid, feed_rotation_grid_dask
+    >>> from astropy_feedrot.simulations import gps_svn76
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> antennas = [get_antenna("DBR205"), get_antenna("FD-VLBA")]
+    >>> times = Time("2023-01-25T08:00") + np.arange(120) * u.min
+    >>> lazy = feed_rotation_grid_dask(antennas, [gps_svn76()], times, chunks=50)
+    >>> lazy.chunks
+    ((50, 50, 20), (2,), (1,))
+    >>> eager = feed_rotation_grid(antennas, [gps_svn76()], times)
+    >>> bool(np.allclose(lazy.compute(), eager.deg, rtol=0, atol=1e-12))
+    True
+    """
+    da = _dask_array()
+    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
+    n_a, n_s = grid.shape[-2:]
+    if chunks is None:
+        chunks = max(1, DASK_CHUNK_POINTS // (n_a * n_s))
+    arrays = [grid.target] if grid.aligned is None else [
+        grid.target, grid.aligned, grid.transverse]
+    lazy = [da.from_array(a, chunks=(chunks,) + a.shape[1:]) for a in arrays]
+    result = da.map_blocks(
+        _dask_block, *lazy,
+        chunks=(lazy[0].chunks[0], (n_a,), (n_s,)),
+        drop_axis=[3] if grid.target.ndim == 4 else [],
+        dtype=float, meta=np.empty((0, 0, 0)),
+        **_block_arguments(grid),
+    )
+    if len(grid.shape) == 2:
+        result = result.reshape(grid.shape)
+    return result
+
+
+def _as_degrees(feed_rotation):
+    if isinstance(feed_rotation, u.Quantity):
+        return feed_rotation.to_value(u.deg), False
+    if hasattr(feed_rotation, "dask"):  # a dask array from feed_rotation_grid_dask
+        return feed_rotation, True
+    raise TypeError(
+        f"feed_rotation must be an Angle (from feed_rotation_grid) or a dask array in degrees "
+        f"(from feed_rotation_grid_dask), got {type(feed_rotation).__name__}; wrap radians "
+        "as Angle(values, u.rad)"
+    )
+
+
+def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=None,
+                        max_gap=None):
+    """Rotation delays of baselines for every target, continuous along time (Sec. 4.1).
+
+    Parameters
+    ----------
+    feed_rotation : `~astropy.coordinates.Angle` or `dask.array.Array`
+        Shape (T, A, S), from `feed_rotation_grid` (or, in degrees, from
+        `feed_rotation_grid_dask`; only the baselines' columns are computed).
+    frequency : `~astropy.units.Quantity`
+        Observing (sky) frequency, positive.
+    baseline : (int, int) or sequence of them, optional
+        Indices ``(i, j)`` of the two antennas: the delay is antenna ``j``
+        minus antenna ``i``, as ``rotation_delay(antennas[i], antennas[j],
+        ...)``. Several pairs give one delay series each.
+    obstime : `~astropy.time.Time`, optional
+        The T epochs, needed with ``max_gap``.
+    max_gap : `~astropy.units.Quantity`, optional
+        Restart the continuous series after longer time steps (see
+        `~astropy_feedrot.unwrap`).
+
+    Returns
+    -------
+    `~astropy_feedrot.RotationDelay`
+        ``(delay, ambiguity)``: the delay in ps, shape (T, S) for one pair or
+        (T, B, S) for B pairs, continuous along time (Eq 9) within each
+        segment between NaN samples (e.g. below ``min_elevation``); the
+        ambiguity :math:`1/f` in ps.
+
+    Raises
+    ------
+    TypeError
+        If ``feed_rotation`` is not an angle or dask array.
+    ValueError
+        If ``feed_rotation`` is not (T, A, S), a baseline is not a pair of
+        antenna indices, or ``frequency`` is not positive.
+    astropy.units.UnitsError
+        If ``frequency`` is not a frequency.
+
+    Warns
+    -----
+    ContinuityWarning
+        As `~astropy_feedrot.unwrap`, if the sampling is too coarse.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.grid import feed_rotation_grid, rotation_delay_grid
+    >>> from astropy_feedrot.simulations import gps_svn76
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> antennas = [get_antenna("DBR205"), get_antenna("FD-VLBA")]
+    >>> times = Time("2023-01-25T08:10") + np.arange(0, 7, 0.5) * u.hour
+    >>> phi = feed_rotation_grid(antennas, [gps_svn76()], times, min_elevation=10 * u.deg)
+    >>> delay, ambiguity = rotation_delay_grid(phi, 1575.42 * u.MHz)
+    >>> delay.shape
+    (14, 1)
+    >>> ambiguity  # doctest: +FLOAT_CMP
+    <Quantity 634.75136789 ps>
+    """
+    degrees, lazy = _as_degrees(feed_rotation)
+    if degrees.ndim != 3:
+        raise ValueError(f"feed_rotation must have shape (T, A, S), got {degrees.shape}")
+    pairs = np.asarray(baseline)
+    single = pairs.ndim == 1
+    pairs = np.atleast_2d(pairs)
+    n_a = degrees.shape[1]
+    if (pairs.ndim != 2 or pairs.shape[1] != 2 or not np.issubdtype(pairs.dtype, np.integer)
+            or np.any(pairs < -n_a) or np.any(pairs >= n_a)):
+        raise ValueError(f"baseline must be a pair of antenna indices (or pairs), each in "
+                         f"0..{n_a - 1}, got {baseline!r}")
+    frequency = u.Quantity(frequency)
+    f_hz = frequency.to_value(u.Hz, equivalencies=u.spectral())
+    if not np.all(f_hz > 0):
+        raise ValueError(f"frequency must be positive, got {frequency}")
+    difference = degrees[:, pairs[:, 1]] - degrees[:, pairs[:, 0]]
+    if lazy:
+        difference = difference.compute()
+    if single:
+        difference = difference[:, 0]
+    if obstime is not None:
+        obstime = as_time(obstime)
+        obstime = obstime.reshape((obstime.size,) + (1,) * (difference.ndim - 1))
+    continuous = unwrap(Angle(difference, u.deg).to(u.rad), axis=0, obstime=obstime,
+                        max_gap=max_gap)
+    delay = (continuous.to_value(u.rad) / (2 * np.pi * f_hz)) * u.s
+    return RotationDelay(delay.to(u.ps), (1 / (f_hz * u.Hz)).to(u.ps))
