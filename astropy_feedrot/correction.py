@@ -29,6 +29,7 @@ from astropy.coordinates import Angle
 from . import kernel
 from .antenna import Antenna
 from .continuity import unwrap
+from .frames import broadcast_shape
 from .polarization import polarization_sign
 from .satellite import Satellite
 
@@ -211,13 +212,7 @@ def correct_phase(phase, feed_rotation, polarization="RCP", wrap=False):
     sign = polarization_sign(polarization)
     measured = _radians(phase, "phase")
     rotation = _radians(feed_rotation, "feed_rotation")
-    try:
-        np.broadcast_shapes(measured.shape, rotation.shape)
-    except ValueError:
-        raise ValueError(
-            f"shapes do not broadcast: phase has shape {measured.shape}, feed_rotation "
-            f"has shape {rotation.shape}"
-        ) from None
+    broadcast_shape(phase=measured.shape, feed_rotation=rotation.shape)
     corrected = measured - sign * rotation
     if wrap:
         corrected = kernel.wrap_phase(corrected)
@@ -478,13 +473,7 @@ def rr_minus_ll(feed_rotation1, feed_rotation2, wrap=True):
     """
     phi1 = _radians(feed_rotation1, "feed_rotation1")
     phi2 = _radians(feed_rotation2, "feed_rotation2")
-    try:
-        np.broadcast_shapes(phi1.shape, phi2.shape)
-    except ValueError:
-        raise ValueError(
-            f"shapes do not broadcast: feed_rotation1 has shape {phi1.shape}, "
-            f"feed_rotation2 has shape {phi2.shape}"
-        ) from None
+    broadcast_shape(feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
     difference = 2 * (phi2 - phi1)
     return _to_angle(kernel.wrap_phase(difference) if wrap else difference)
 
