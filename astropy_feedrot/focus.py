@@ -207,7 +207,7 @@ class NasmythFocus(_HandedFocus):
 
     def receiver_phase(self, s, t, axis, local):
         _, elevation = horizontal(s, local)
-        return kernel.wu_phase(s, axis, t) + self.sign * elevation
+        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * elevation)
 
 
 class BeamWaveguideFocus(_HandedFocus):
