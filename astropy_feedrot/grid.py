@@ -782,8 +782,7 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     `~astropy.coordinates.Angle`
         Shape (T, A, S), or (A, S) for a scalar ``obstime``; degrees in
         [-180, 180]. Element ``[k, i, j]`` equals
-        ``antennas[i].feed_rotation(targets[j], obstime[k], ...)`` modulo
-        360 deg (Nasmyth angles are wrapped here, not there).
+        ``antennas[i].feed_rotation(targets[j], obstime[k], ...)``.
 
     Raises
     ------
