@@ -169,16 +169,7 @@ class Antenna:
     def _sign(self, target, polarization):
         """+1/-1 for the receiver's hand, checked against a satellite's."""
         if isinstance(target, Satellite):
-            if polarization is None:
-                return target.sign
-            sign = polarization_sign(polarization)
-            if sign != target.sign:
-                raise ValueError(
-                    f"an {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
-                    f"{target.polarization} signal of {target!r}; use "
-                    f"polarization={target.polarization!r} (or leave it unset)"
-                )
-            return sign
+            return target._receiver_sign(polarization)
         return polarization_sign("RCP" if polarization is None else polarization)
 
     def _below(self, s, min_elevation):

@@ -640,22 +640,8 @@ def _satellite_arrays(satellites, obstime, polarization):
     for i in sorted(others):
         a, t = satellites[i].attitude.dipoles(obstime, position[:, i])
         aligned[:, i], transverse[:, i] = a, t
-    sign = np.array([_satellite_sign(sat, polarization) for sat in satellites], dtype=float)
+    sign = np.array([sat._receiver_sign(polarization) for sat in satellites], dtype=float)
     return position, aligned, transverse, sign
-
-
-def _satellite_sign(satellite, polarization):
-    """+1/-1 for the receiver's hand, checked against the satellite's (as Antenna)."""
-    if polarization is None:
-        return satellite.sign
-    sign = polarization_sign(polarization)
-    if sign != satellite.sign:
-        raise ValueError(
-            f"an {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
-            f"{satellite.polarization} signal of {satellite!r}; use "
-            f"polarization={satellite.polarization!r} (or leave it unset)"
-        )
-    return sign
 
 
 def _source_directions(sources, antennas, obstime):

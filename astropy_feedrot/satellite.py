@@ -97,6 +97,22 @@ class Satellite:
         return (f"<Satellite {label}{type(self.orbit).__name__}, {self.attitude!r}, "
                 f"{self.polarization}>")
 
+    def _receiver_sign(self, polarization):
+        """+1/-1 for a receiver of hand ``polarization`` (None: the satellite's own).
+
+        A receiver of the other hand does not receive this signal: ValueError.
+        """
+        if polarization is None:
+            return self.sign
+        sign = polarization_sign(polarization)
+        if sign != self.sign:
+            raise ValueError(
+                f"an {'RCP' if sign > 0 else 'LCP'} receiver does not receive the "
+                f"{self.polarization} signal of {self!r}; use "
+                f"polarization={self.polarization!r} (or leave it unset)"
+            )
+        return sign
+
     def position(self, obstime):
         """Geocentric ITRS position in metres (see `Orbit.position`).
 
