@@ -211,7 +211,7 @@ class Antenna:
                 "mount) or of the celestial pole, or where a transmitter is seen edge-on; "
                 "NaN is returned there",
                 DegenerateGeometryWarning,
-                stacklevel=3,
+                stacklevel=4,
             )
         return _to_angle(phase)
 
@@ -293,8 +293,10 @@ class Antenna:
         >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
-        sign = self._sign(target, polarization)
-        los = self._line_of_sight(target, obstime)
+        return self._feed_rotation_of(self._line_of_sight(target, obstime),
+                                      self._sign(target, polarization), form, min_elevation)
+
+    def _feed_rotation_of(self, los, sign, form=None, min_elevation=None):
         below = self._below(los.s, min_elevation)
         return self._finish(sign * self._phase(los, form), los.s, below=below)
 
@@ -343,8 +345,10 @@ class Antenna:
         >>> (sum_of_terms - terms.total).wrap_at(180 * u.deg)  # doctest: +FLOAT_CMP
         <Angle 0. deg>
         """
-        sign = self._sign(target, polarization)
-        los = self._line_of_sight(target, obstime)
+        return self._terms_of(self._line_of_sight(target, obstime),
+                              self._sign(target, polarization), min_elevation)
+
+    def _terms_of(self, los, sign, min_elevation=None):
         below = self._below(los.s, min_elevation)
         transmitter = self._finish(sign * kernel.transmitter_term(los.s, los.t), los.s,
                                    "transmitter term", below)
@@ -386,7 +390,9 @@ class Antenna:
         >>> antenna.parallactic_angle(source, Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
         <Angle 77.88951063 deg>
         """
-        s = self._direction(target, obstime)
+        return self._parallactic_angle_of(self._direction(target, obstime))
+
+    def _parallactic_angle_of(self, s):
         return self._finish(kernel.receiver_term(s, self._local.up), s, "parallactic angle")
 
     def altaz(self, target, obstime):

@@ -192,14 +192,26 @@ def rotation_delay(antenna1, antenna2, target, obstime, frequency, polarization=
     for name, antenna in (("antenna1", antenna1), ("antenna2", antenna2)):
         if not isinstance(antenna, Antenna):
             raise TypeError(f"{name} must be an Antenna, got {type(antenna).__name__}")
-    frequency = u.Quantity(frequency)
-    f_hz = frequency.to_value(u.Hz, equivalencies=u.spectral())
-    if not np.all(f_hz > 0):
-        raise ValueError(f"frequency must be positive, got {frequency}")
+    f_hz = _frequency_hz(frequency)
     obstime = as_time(obstime)
     phi1 = antenna1.feed_rotation(target, obstime, polarization, min_elevation=min_elevation)
     phi2 = antenna2.feed_rotation(target, obstime, polarization, min_elevation=min_elevation)
     broadcast_shape(antenna1=phi1.shape, antenna2=phi2.shape)
-    difference = unwrap((phi2 - phi1).to(u.rad), axis=-1, obstime=obstime, max_gap=max_gap)
-    delay = (difference.to_value(u.rad) / (2 * np.pi * f_hz)) * u.s
+    return _delay_of_difference(phi2 - phi1, f_hz, axis=-1, obstime=obstime, max_gap=max_gap)
+
+
+def _frequency_hz(frequency):
+    """A positive frequency (or wavelength) in Hz; ValueError otherwise."""
+    frequency = u.Quantity(frequency)
+    f_hz = frequency.to_value(u.Hz, equivalencies=u.spectral())
+    if not np.all(f_hz > 0):
+        raise ValueError(f"frequency must be positive, got {frequency}")
+    return f_hz
+
+
+def _delay_of_difference(difference, f_hz, axis=-1, obstime=None, max_gap=None):
+    """`RotationDelay` of a feed-rotation difference, made continuous along ``axis``."""
+    continuous = unwrap(u.Quantity(difference).to(u.rad), axis=axis, obstime=obstime,
+                        max_gap=max_gap)
+    delay = (continuous.to_value(u.rad) / (2 * np.pi * f_hz)) * u.s
     return RotationDelay(delay.to(u.ps), (1 / (f_hz * u.Hz)).to(u.ps))

@@ -41,7 +41,7 @@ from .attitude import (
     sun_position,
 )
 from .config import conf
-from .continuity import RotationDelay, unwrap
+from .continuity import _delay_of_difference, _frequency_hz
 from .exceptions import DegenerateGeometryWarning
 from .focus import BeamWaveguideFocus, Focus, NasmythFocus
 from .frames import (
@@ -1001,10 +1001,7 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
             or np.any(pairs < -n_a) or np.any(pairs >= n_a)):
         raise ValueError(f"baseline must be a pair of antenna indices (or pairs), each in "
                          f"0..{n_a - 1}, got {baseline!r}")
-    frequency = u.Quantity(frequency)
-    f_hz = frequency.to_value(u.Hz, equivalencies=u.spectral())
-    if not np.all(f_hz > 0):
-        raise ValueError(f"frequency must be positive, got {frequency}")
+    f_hz = _frequency_hz(frequency)
     difference = degrees[:, pairs[:, 1]] - degrees[:, pairs[:, 0]]
     if lazy:
         difference = difference.compute()
@@ -1013,7 +1010,5 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
     if obstime is not None:
         obstime = as_time(obstime)
         obstime = obstime.reshape((obstime.size,) + (1,) * (difference.ndim - 1))
-    continuous = unwrap(Angle(difference, u.deg).to(u.rad), axis=0, obstime=obstime,
-                        max_gap=max_gap)
-    delay = (continuous.to_value(u.rad) / (2 * np.pi * f_hz)) * u.s
-    return RotationDelay(delay.to(u.ps), (1 / (f_hz * u.Hz)).to(u.ps))
+    return _delay_of_difference(Angle(difference, u.deg), f_hz, axis=0, obstime=obstime,
+                                max_gap=max_gap)

@@ -13,7 +13,7 @@ from astropy import units as u
 from astropy.table import Table
 
 from .antenna import Antenna
-from .continuity import rotation_delay, unwrap
+from .continuity import _delay_of_difference, _frequency_hz, unwrap
 from .frames import as_time
 
 __all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary"]
@@ -42,18 +42,19 @@ def _check_times(obstime):
 def _antenna_columns(antenna, target, times, polarization, min_elevation):
     if not isinstance(antenna, Antenna):
         raise TypeError(f"antenna must be an Antenna, got {type(antenna).__name__}")
-    azimuth, elevation = antenna.altaz(target, times)
-    terms = antenna.feed_rotation_terms(target, times, polarization=polarization,
-                                        min_elevation=min_elevation)
+    # One line of sight (orbit propagation, Earth rotation) serves every column.
+    sign = antenna._sign(target, polarization)
+    los = antenna._line_of_sight(target, times)
+    azimuth, elevation = antenna._altaz(los.s)
+    terms = antenna._terms_of(los, sign, min_elevation)
     below = np.zeros(times.shape, bool) if min_elevation is None else elevation < min_elevation
     columns = {
         "azimuth": azimuth.to(u.deg),
         "elevation": elevation.to(u.deg),
-        "parallactic_angle": antenna.parallactic_angle(target, times).to(u.deg),
+        "parallactic_angle": antenna._parallactic_angle_of(los.s).to(u.deg),
         "transmitter": terms.transmitter.to(u.deg),
         "receiver": terms.receiver.to(u.deg),
-        "total": antenna.feed_rotation(target, times, polarization=polarization,
-                                       min_elevation=min_elevation).to(u.deg),
+        "total": antenna._feed_rotation_of(los, sign, None, min_elevation).to(u.deg),
     }
     columns["continuous"] = unwrap(columns["total"], mask=below, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
@@ -176,16 +177,19 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     prefixes = [name or f"antenna{i}" for i, name in enumerate(names, start=1)]
     if prefixes[0] == prefixes[1]:
         raise ValueError(f"the two antennas of a baseline must differ; both are {prefixes[0]!r}")
+    f_hz = _frequency_hz(frequency)
     table = Table({"time": times})
     visible = np.ones(times.shape, bool)
+    totals = []
     for prefix, antenna in zip(prefixes, (antenna1, antenna2)):
         columns, above = _antenna_columns(antenna, target, times, polarization, min_elevation)
         visible &= above
+        totals.append(columns["total"])
         for name, value in columns.items():
             table[f"{prefix}_{name}"] = value
-    result = rotation_delay(antenna1, antenna2, target, times, frequency,
-                            polarization=polarization, min_elevation=min_elevation,
-                            max_gap=_max_gap(times))
+    # The delay of `~astropy_feedrot.rotation_delay`, from the totals above.
+    result = _delay_of_difference(totals[1] - totals[0], f_hz, obstime=times,
+                                  max_gap=_max_gap(times))
     table["rotation_delay"] = result.delay
     table["both_visible"] = visible
     table.meta.update(antennas=prefixes, target=_target_name(target),
