@@ -45,6 +45,17 @@ class FeedRotationTerms(NamedTuple):
     total : `~astropy.coordinates.Angle`
         Their sum, wrapped to (-180, 180] deg: the effective-dipole (Wu) form of
         the feed rotation (Eq 7).
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> terms = get_antenna("WETTZ13S").feed_rotation_terms(
+    ...     SkyCoord("03h19m48.16s +41d30m42.1s"), Time("2023-01-25T22:00"))
+    >>> float(abs(terms.transmitter.deg)) < 1e-9  # a natural source
+    True
     """
 
     transmitter: Angle

@@ -129,6 +129,13 @@ class RotationDelay(NamedTuple):
         in picoseconds.
     ambiguity : `~astropy.units.Quantity`
         :math:`1/f`, the delay of one cycle, in picoseconds.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot import RotationDelay
+    >>> RotationDelay([0.0, 12.5] * u.ps, 634.75 * u.ps).ambiguity
+    <Quantity 634.75 ps>
     """
 
     delay: u.Quantity

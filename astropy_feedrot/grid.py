@@ -103,6 +103,14 @@ class ReceiverArrays(NamedTuple):
         prime, Cassegrain or Gregorian focus, (+-1, 0) for a right/left
         Nasmyth focus (Eq 38), (+-1, -+1) for a right/left beam waveguide
         (Eq 39).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> arrays = receiver_arrays([get_antenna("DBR205"), get_antenna("FD-VLBA")])
+    >>> arrays.stationary.tolist()
+    [True, False]
     """
 
     station_xyz: np.ndarray

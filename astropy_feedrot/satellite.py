@@ -22,6 +22,16 @@ class LineOfSight:
         The transmitter's dipoles, or None for a natural source.
     t : ndarray, shape (..., 3)
         The transmitter's effective dipole (Eq 8; Eq 11 for a natural source).
+
+    Examples
+    --------
+    A natural source at the ITRS x axis: its effective dipole is the projected
+    celestial pole.
+
+    >>> import numpy as np
+    >>> from astropy_feedrot import LineOfSight
+    >>> LineOfSight(np.array([1.0, 0.0, 0.0])).t
+    array([0., 0., 1.])
     """
 
     def __init__(self, s, aligned=None, transverse=None):

@@ -18,6 +18,13 @@ class TLE(NamedTuple):
         two-line form.
     line1, line2 : str
         The two element lines (checked later by `~astropy_feedrot.TLEOrbit`).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.io import TLE
+    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> TLE("GPS SVN 76", *GPS_SVN76_TLE).catalog_number
+    '41328'
     """
 
     name: str
