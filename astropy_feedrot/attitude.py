@@ -19,7 +19,7 @@ from astropy.coordinates import (
 )
 
 from . import kernel
-from .config import iers_context
+from .eop import iers_context
 from .exceptions import DegenerateGeometryWarning
 from .frames import as_time
 
@@ -87,14 +87,14 @@ def sun_position(obstime):
     0.984
     """
     obstime = as_time(obstime)
-    with iers_context():
+    with iers_context(obstime):
         itrs = _sun_gcrs(obstime).transform_to(ITRS(obstime=obstime))
     return np.moveaxis(itrs.cartesian.xyz.to_value(u.m), 0, -1)
 
 
 def _sun_gcrs(obstime):
     """The Sun's geocentric position in GCRS (ERFA's ``epv00``)."""
-    with iers_context():
+    with iers_context(obstime):
         sun = get_body_barycentric("sun", obstime, ephemeris="builtin")
         earth = get_body_barycentric("earth", obstime, ephemeris="builtin")
     return GCRS(CartesianRepresentation((sun - earth).xyz), obstime=obstime)
@@ -135,7 +135,7 @@ def interpolated_sun_position(orientation):
     True
     """
     nodes = orientation.nodes
-    with iers_context():
+    with iers_context(nodes):
         cirs = _sun_gcrs(nodes).transform_to(CIRS(obstime=nodes))
     at_nodes = np.moveaxis(cirs.cartesian.xyz.to_value(u.m), 0, -1)
     return orientation.cirs_to_itrs(orientation.interpolate(at_nodes))
@@ -475,6 +475,6 @@ class QuaternionAttitude(Attitude):
 def _gcrs_to_itrs_direction(vector, obstime):
     """Rotate geocentric celestial (GCRS) directions to ITRS."""
     rep = CartesianRepresentation(np.moveaxis(vector, -1, 0) * u.one)
-    with iers_context():
+    with iers_context(obstime):
         itrs = GCRS(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))
     return np.moveaxis(itrs.cartesian.xyz.value, 0, -1)

@@ -22,6 +22,7 @@ from astropy.time import Time
 
 from .antenna import Antenna
 from .attitude import NominalAttitude, QuaternionAttitude
+from .eop import iers_context
 from .io import FileFormatError, read_tle
 from .labels import mount_from_label
 from .orbits import SP3Orbit, TLEOrbit
@@ -498,24 +499,25 @@ def main(argv=None):
     ...
     0
     """
-    from astropy.utils import iers
-
     parser = _parser()
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(_protect_sites(argv))
     if not hasattr(args, "run"):
         parser.print_help()
         return 2
-    with iers.conf.set_temp("auto_download", False), warnings.catch_warnings():
+    # One Earth-orientation context for the whole run: at most one warning
+    # (one line) about stale tables, however many computations it makes.
+    with warnings.catch_warnings():
         warnings.simplefilter("default")
         warnings.showwarning = _show_warning
-        try:
-            return args.run(args)
-        except (CommandError, FileFormatError, ValueError, TypeError, KeyError, OSError,
-                u.UnitsError) as error:
-            message = error.args[0] if isinstance(error, KeyError) and error.args else error
-            print(f"feedrot: error: {message}", file=sys.stderr)
-            return 1
+        with iers_context():
+            try:
+                return args.run(args)
+            except (CommandError, FileFormatError, ValueError, TypeError, KeyError, OSError,
+                    u.UnitsError) as error:
+                message = error.args[0] if isinstance(error, KeyError) and error.args else error
+                print(f"feedrot: error: {message}", file=sys.stderr)
+                return 1
 
 
 if __name__ == "__main__":  # pragma: no cover

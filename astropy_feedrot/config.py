@@ -1,12 +1,9 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Configuration of astropy_feedrot."""
 
-import contextlib
-
 from astropy import config as _config
-from astropy.utils import iers
 
-__all__ = ["conf", "iers_context"]
+__all__ = ["conf"]
 
 
 class Conf(_config.ConfigNamespace):
@@ -37,23 +34,3 @@ class Conf(_config.ConfigNamespace):
 
 conf = Conf()
 
-
-@contextlib.contextmanager
-def iers_context():
-    """Context in which astropy's IERS auto-download follows `conf`.
-
-    Every transformation of this package runs inside this context, so that a
-    computation never reaches for the network unless the user opted in with
-    ``astropy_feedrot.conf.iers_auto_download = True``. Astropy's own
-    setting is restored on exit.
-
-    Examples
-    --------
-    >>> from astropy.utils import iers
-    >>> from astropy_feedrot.config import iers_context
-    >>> with iers_context():
-    ...     iers.conf.auto_download
-    False
-    """
-    with iers.conf.set_temp("auto_download", bool(conf.iers_auto_download)):
-        yield

@@ -34,7 +34,7 @@ from astropy.coordinates import CIRS
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
 
-from .config import iers_context
+from .eop import iers_context
 from .frames import as_time
 
 __all__ = ["EarthOrientation", "DEFAULT_STEP"]
@@ -86,7 +86,7 @@ class EarthOrientation:
         self.obstime = obstime
         self.shape = obstime.shape
         self.step = step
-        with iers_context():
+        with iers_context(obstime):
             tt = obstime.tt.ravel()
             # Node grid on the UTC midnight before the first epoch.
             first = Time(np.floor(np.min(obstime.utc.mjd)), format="mjd", scale="utc").tt
@@ -245,7 +245,7 @@ class EarthOrientation:
         >>> s.shape
         (100, 3)
         """
-        with iers_context(), np.errstate(invalid="ignore"):
+        with iers_context(self.nodes), np.errstate(invalid="ignore"):
             frame = CIRS(obstime=self.nodes, location=location)
             cirs = target.reshape(target.shape + (1,)).transform_to(frame)
         nodes = np.moveaxis(cirs.cartesian.xyz.value, 0, -1)

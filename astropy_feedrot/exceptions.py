@@ -3,7 +3,7 @@
 
 from astropy.utils.exceptions import AstropyUserWarning
 
-__all__ = ["DegenerateGeometryWarning"]
+__all__ = ["DegenerateGeometryWarning", "StaleEarthOrientationWarning"]
 
 
 class DegenerateGeometryWarning(AstropyUserWarning):
@@ -22,4 +22,23 @@ class DegenerateGeometryWarning(AstropyUserWarning):
     ...     warnings.warn("2 of 10 epochs undefined", DegenerateGeometryWarning)
     >>> caught[0].category.__name__
     'DegenerateGeometryWarning'
+    """
+
+
+class StaleEarthOrientationWarning(AstropyUserWarning):
+    """The Earth-orientation tables do not cover the epochs well; computed anyway.
+
+    Emitted once per call when the epochs lie beyond the measured values of
+    tables that are more than 30 days old, past the end of their predictions,
+    or before their start. The message says how old the tables are, how far
+    the epochs lie beyond them, the likely UT1 error and its effect on hour
+    and parallactic angles, and how to refresh the tables (see
+    `astropy_feedrot.eop.earth_orientation_status`).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from astropy_feedrot import StaleEarthOrientationWarning
+    >>> issubclass(StaleEarthOrientationWarning, UserWarning)
+    True
     """

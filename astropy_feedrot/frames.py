@@ -9,7 +9,8 @@ Earth-fixed ITRS, in which the north celestial pole of the paper is
 
 The transformations go through astropy, i.e. ERFA with precession-nutation,
 UT1-UTC and polar motion from the IERS tables bundled with astropy; see
-`~astropy_feedrot.config.iers_context` for how downloads are kept off.
+`~astropy_feedrot.eop.iers_context` for how downloads are kept off and what
+happens beyond the tables.
 """
 
 from typing import NamedTuple
@@ -33,7 +34,8 @@ from astropy.coordinates import (
 )
 from astropy.time import Time
 
-from .config import conf, iers_context
+from .config import conf
+from .eop import iers_context
 from .kernel import dot, unit
 
 __all__ = [
@@ -340,10 +342,11 @@ def source_direction(target, location, obstime):
     if isinstance(target.frame, ITRS):
         xyz = _earth_fixed_offset(target, location)
     elif _fast_path_applies(target, obstime, shape):
-        return _interpolated_direction(target, location, obstime, shape)
+        with iers_context(obstime):  # one check of the tables for all the nodes
+            return _interpolated_direction(target, location, obstime, shape)
     else:
         # NaN coordinates propagate as NaN; ERFA's ufuncs need not warn about them.
-        with iers_context(), np.errstate(invalid="ignore"):
+        with iers_context(obstime), np.errstate(invalid="ignore"):
             itrs = ITRS(obstime=obstime, location=location)
             xyz = _itrs_xyz(target.transform_to(itrs))
     return np.broadcast_to(unit(xyz), shape + (3,))

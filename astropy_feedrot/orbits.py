@@ -12,7 +12,8 @@ from astropy import units as u
 from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
-from .config import conf, iers_context
+from .config import conf
+from .eop import iers_context
 from .frames import as_time, location_xyz
 
 __all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit"]
@@ -113,7 +114,7 @@ def teme_to_itrs(position, obstime):
         orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
         return orientation.teme_to_itrs(flat).reshape(position.shape)
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
-    with iers_context(), np.errstate(invalid="ignore"):
+    with iers_context(obstime), np.errstate(invalid="ignore"):
         itrs = TEME(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))
     return np.moveaxis(itrs.cartesian.xyz.to_value(u.m), 0, -1)
 
@@ -476,7 +477,7 @@ class CoordinateOrbit(Orbit):
         obstime = as_time(obstime)
         coord = self.coord
         if not isinstance(coord.frame, ITRS):
-            with iers_context():
+            with iers_context(obstime):
                 coord = coord.transform_to(ITRS(obstime=obstime))
         xyz = np.moveaxis(coord.cartesian.xyz.to_value(u.m), 0, -1)
         if coord.frame.location is not None:

@@ -21,7 +21,6 @@ html_theme_options = {
     "github_url": "https://github.com/astropy-feedrot/astropy_feedrot",
     "use_edit_page_button": False,
 }
-html_static_path = ["_static"]
 exclude_patterns += ["_build"]
 
 # Every public name is documented; automodapi writes its pages under api/.

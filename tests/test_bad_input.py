@@ -301,7 +301,7 @@ def test_computations_stay_offline():
     from astropy.utils import iers
 
     from astropy_feedrot import conf
-    from astropy_feedrot.config import iers_context
+    from astropy_feedrot.eop import iers_context
 
     with iers.conf.set_temp("auto_download", True):
         with iers_context():

@@ -1,0 +1,242 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Earth orientation beyond the tables: computed offline, with one warning.
+
+The tables are faked (the bundled ones cut short), so that nothing here depends
+on the machine's clock or on which astropy-iers-data is installed.
+"""
+
+import warnings
+
+import erfa
+import numpy as np
+import pytest
+from astropy import units as u
+from astropy.coordinates import HADec, SkyCoord
+from astropy.time import Time
+from astropy.utils import iers
+from helpers import MAS, SITES, sky_grid
+
+from astropy_feedrot import (
+    AltAzMount,
+    Antenna,
+    CassegrainFocus,
+    StaleEarthOrientationWarning,
+)
+from astropy_feedrot.cli import main
+from astropy_feedrot.eop import (
+    EARTH_ROTATION_RATE,
+    earth_orientation_status,
+    iers_context,
+)
+
+SOURCE = SkyCoord("03h19m48.16s +41d30m42.1s")
+SITE = SITES["WETTZ13S"]
+ANTENNA = Antenna(SITE, AltAzMount(), CassegrainFocus(), name="WETTZ13S")
+
+#: The faked tables: measured values to 2020-01-01 (MJD 58849), predictions
+#: (really measured values, which does not matter here) to 2021-01-01.
+MEASURED_UNTIL = 58849.0
+PREDICTED_UNTIL = 59215.0
+#: A year after the end of the faked tables.
+LATER = Time("2022-01-01T00:00", scale="utc")
+
+
+def _cut(table, last, predictive):
+    mjd = table["MJD"].to_value(u.day)
+    fake = table[mjd <= last]
+    fake.meta["predictive_mjd"] = predictive
+    fake.meta["predictive_index"] = int(np.searchsorted(mjd, predictive))
+    return fake
+
+
+@pytest.fixture
+def stale_tables():
+    """Tables whose measured values end on 2020-01-01 and predictions on 2021-01-01."""
+    fake = _cut(iers.IERS_Auto.open(), PREDICTED_UNTIL, MEASURED_UNTIL + 1)
+    with iers.earth_orientation_table.set(fake):
+        yield fake
+
+
+def _caught(function, *args, **kwargs):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = function(*args, **kwargs)
+    return result, caught
+
+
+# --- the status ------------------------------------------------------------
+
+
+def test_status_within_measured_values(stale_tables):
+    status = earth_orientation_status(Time("2019-06-01"), now=Time("2026-01-01"))
+    assert status.message is None
+    assert status.ut1_error == 0 * u.s
+    assert status.measured_until.iso.startswith("2020-01-01")
+    assert status.predicted_until.iso.startswith("2021-01-01")
+
+
+def test_status_fresh_predictions_are_quiet(stale_tables):
+    # 14 days after the last measured value, predictions are what astropy uses.
+    status = earth_orientation_status(Time("2020-06-01"), now=Time("2020-01-15"))
+    assert status.message is None
+    # Bulletin A's accuracy of a prediction 152 days ahead: 0.00025 * 152**0.75 s.
+    assert status.ut1_error.to_value(u.s) == pytest.approx(0.00025 * 152**0.75)
+
+
+def test_status_stale_predictions_warn(stale_tables):
+    status = earth_orientation_status(Time("2020-06-01"), now=Time("2020-03-01"))
+    assert status.age == 60 * u.day
+    assert "60 days old" in status.message
+    assert "152 days after the last measured value" in status.message
+    assert "within predictions older than the 30 days astropy accepts" in status.message
+
+
+def test_status_past_the_predictions(stale_tables):
+    status = earth_orientation_status(LATER, now=Time("2020-01-15"))
+    assert "731 days after the last measured value" in status.message
+    assert "365 days past the predictions" in status.message
+    assert "UT1 - UTC is held at its last predicted value" in status.message
+    assert "pip install -U astropy-iers-data" in status.message
+    assert "iers_auto_download = True" in status.message
+    # At least Bulletin A's accuracy 731 days ahead, and the hour angle turns
+    # by 15.04 arcsec per second of UT1 error (the Earth's rotation rate).
+    assert status.ut1_error.to_value(u.s) >= 0.00025 * 731**0.75
+    assert status.hour_angle_error.to_value(u.arcsec) == pytest.approx(
+        status.ut1_error.to_value(u.s) * 15.0411, rel=1e-4)
+    assert status.parallactic_angle_error.to_value(u.arcsec) == pytest.approx(
+        status.hour_angle_error.to_value(u.arcsec) / np.cos(np.radians(80)))
+
+
+def test_status_before_the_tables():
+    status = earth_orientation_status(Time("1970-01-01"), now=Time("2020-01-01"))
+    assert "before the Earth-orientation tables" in status.message
+
+
+def test_status_ignores_masked_and_empty_epochs(stale_tables):
+    times = LATER - [800, 0] * u.day
+    times[1] = np.ma.masked
+    assert earth_orientation_status(times, now=Time("2026-01-01")).message is None
+    empty = earth_orientation_status(Time([], format="mjd"), now=Time("2026-01-01"))
+    assert empty.message is None and empty.last is None
+
+
+def test_status_leap_seconds_beyond_the_table(stale_tables):
+    expires = Time(erfa.leap_seconds.expires)
+    status = earth_orientation_status(expires + 400 * u.day, now=Time("2020-01-15"))
+    assert "leap seconds after" in status.message
+
+
+# --- computing anyway, with one warning ------------------------------------
+
+
+@pytest.mark.parametrize("n_epochs", [3, 100])  # the rigorous and the fast path
+def test_a_year_after_the_tables_works_and_warns_once(stale_tables, n_epochs):
+    times = LATER + np.linspace(0, 12, n_epochs) * u.hour
+    psi, caught = _caught(ANTENNA.feed_rotation, SOURCE, times)
+    assert len(caught) == 1, [str(w.message) for w in caught]
+    assert caught[0].category is StaleEarthOrientationWarning
+    assert caught[0].filename == __file__  # it points at the caller's line
+    assert "days past the predictions" in str(caught[0].message)
+    # The same as ERFA's parallactic angle from astropy's HADec frame computed
+    # with the same tables and astropy's age check off (its extrapolation).
+    with iers.conf.set_temp("auto_max_age", None), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hadec = SOURCE.transform_to(HADec(obstime=times, location=SITE))
+    expected = erfa.hd2pa(hadec.ha.rad, hadec.dec.rad, SITE.lat.rad)
+    difference = np.angle(np.exp(1j * (psi.rad - expected)))
+    assert np.abs(difference).max() < 1 * MAS
+
+
+def test_one_warning_for_every_method(stale_tables):
+    times = LATER + np.arange(24) * u.hour
+    for method in (ANTENNA.parallactic_angle, ANTENNA.altaz, ANTENNA.feed_rotation_terms):
+        _, caught = _caught(method, SOURCE, times)
+        assert [w.category for w in caught] == [StaleEarthOrientationWarning], method
+
+
+def test_within_measured_values_is_quiet(stale_tables):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ANTENNA.feed_rotation(SOURCE, Time("2019-06-01") + np.arange(20) * u.hour)
+
+
+def test_ut1_error_moves_the_parallactic_angle_as_stated():
+    """A UT1 error dt moves Psi by -omega dt cos(lat) cos(A) / cos(E).
+
+    The derivative of Eq 16 with respect to the hour angle (a closed form,
+    independent of the package's vector path); the warning quotes its bound.
+    """
+    def epochs():  # new Time objects: a Time caches its UT1 - UTC
+        return Time("2023-01-25T00:00") + np.arange(0, 24, 3) * u.hour
+
+    sources = sky_grid(40)[:, np.newaxis]
+    dt = 0.5 * u.s
+    shifted = iers.IERS_Auto.open().copy()
+    shifted["UT1_UTC"] = shifted["UT1_UTC"] + dt
+    psi = ANTENNA.parallactic_angle(sources, epochs())
+    azimuth, elevation = ANTENNA.altaz(sources, epochs())
+    with iers.earth_orientation_table.set(shifted):
+        moved = ANTENNA.parallactic_angle(sources, epochs())
+    change = np.angle(np.exp(1j * (moved - psi).to_value(u.rad)))
+    rate = (EARTH_ROTATION_RATE * dt).to_value(u.rad, u.dimensionless_angles())
+    lat = SITE.lat.rad
+    keep = elevation < 80 * u.deg
+    predicted = -rate * np.cos(lat) * np.cos(azimuth.rad) / np.cos(elevation.rad)
+    assert np.abs(change - predicted)[keep].max() < 1e-3 * rate / np.cos(np.radians(80))
+    bound = rate * np.cos(lat) / np.cos(elevation.rad)
+    assert np.all(np.abs(change)[keep] <= bound[keep] * (1 + 1e-3))
+
+
+def test_context_restores_astropy_settings():
+    before = (iers.conf.auto_max_age, iers.conf.iers_degraded_accuracy)
+    with iers_context():
+        assert iers.conf.auto_max_age is None
+        assert iers.conf.iers_degraded_accuracy == "ignore"
+    assert (iers.conf.auto_max_age, iers.conf.iers_degraded_accuracy) == before
+
+
+def test_nested_contexts_warn_once_at_the_end(stale_tables):
+    def work():
+        with iers_context(LATER):
+            with iers_context(LATER + 1 * u.day):
+                pass
+            with iers_context(LATER + 2 * u.day):
+                pass
+
+    _, caught = _caught(work)
+    assert len(caught) == 1
+    assert "epochs up to 2022-01-03" in str(caught[0].message)
+
+
+def test_no_warning_when_the_call_fails(stale_tables):
+    def fails():
+        with iers_context(LATER):
+            raise ZeroDivisionError
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ZeroDivisionError):
+            fails()
+
+
+# --- the command line -------------------------------------------------------
+
+
+@pytest.mark.parametrize("step", ["1h", "5min"])  # 7 and 73 epochs
+def test_command_line_prints_one_line(stale_tables, capsys, step):
+    status = main(["natural", "EFLSBERG", "--source", "03h19m48.16s +41d30m42.1s",
+                   "--start", "2022-01-01T00:00", "--stop", "2022-01-01T06:00",
+                   "--step", step])
+    assert status == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1, err
+    assert err[0].startswith("feedrot: warning: computed anyway: epochs up to 2022-01-01")
+
+
+def test_command_line_start_now_works_offline(stale_tables, capsys):
+    status = main(["natural", "EFLSBERG", "--source", "03h19m48.16s +41d30m42.1s",
+                   "--start", "now", "--stop", "now"])
+    assert status == 0
+    out, err = capsys.readouterr()
+    assert "# %ECSV" in out
+    assert err.count("\n") == 1 and "days past the predictions" in err
