@@ -11,7 +11,7 @@ from .antenna import Antenna, FeedRotationTerms
 from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
 from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
-from .exceptions import DegenerateGeometryWarning
+from .exceptions import DegenerateGeometryWarning, OrbitWarning
 from .focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
@@ -64,6 +64,7 @@ __all__ = [
     "rotation_delay",
     "RotationDelay",
     "DegenerateGeometryWarning",
+    "OrbitWarning",
     "ContinuityWarning",
     "conf",
 ]

@@ -3,7 +3,7 @@
 
 from astropy.utils.exceptions import AstropyUserWarning
 
-__all__ = ["DegenerateGeometryWarning"]
+__all__ = ["DegenerateGeometryWarning", "OrbitWarning"]
 
 
 class DegenerateGeometryWarning(AstropyUserWarning):
@@ -22,4 +22,24 @@ class DegenerateGeometryWarning(AstropyUserWarning):
     ...     warnings.warn("2 of 10 epochs undefined", DegenerateGeometryWarning)
     >>> caught[0].category.__name__
     'DegenerateGeometryWarning'
+    """
+
+
+class OrbitWarning(AstropyUserWarning):
+    """An orbit gives no position, or a degraded one, at some of the requested epochs.
+
+    Raised once per call, saying how many epochs are affected and why: epochs
+    in a hole of an SP3 file (NaN there), epochs where SGP4 fails on an element
+    set (NaN there), or epochs too far from the epoch of an element set for
+    SGP4 to be trusted (positions returned, accuracy degraded).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from astropy_feedrot import OrbitWarning
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warnings.warn("3 of 10 epochs fall in holes of the SP3 file", OrbitWarning)
+    >>> caught[0].category.__name__
+    'OrbitWarning'
     """
