@@ -7,10 +7,12 @@ Lagrange polynomials (`SP3Orbit`), and positions the user already has as a
 `~astropy.coordinates.SkyCoord` (`CoordinateOrbit`).
 """
 
+import datetime
 import warnings
 
 import numpy as np
 from astropy import units as u
+from erfa import ErfaWarning
 from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
@@ -301,11 +303,12 @@ class TLEOrbit(Orbit):
         epoch = as_time(epoch).utc
         if not epoch.isscalar:
             raise ValueError(f"epoch must be one instant, got shape {epoch.shape}")
-        year = int(epoch.ymdhms["year"])
-        if not 1957 <= year <= 2056:
+        if not _TLE_FIRST_JD <= epoch.jd1 + epoch.jd2 < _TLE_END_JD:
+            with warnings.catch_warnings():  # ERFA finds UTC so far away "dubious"
+                warnings.simplefilter("ignore", ErfaWarning)
+                when = epoch.isot
             raise ValueError(f"epoch must be within 1957-2056, the years a TLE's two-digit "
-                             f"year can hold (57-99: 1957-1999, 00-56: 2000-2056), got "
-                             f"{epoch.isot}")
+                             f"year can hold (57-99: 1957-1999, 00-56: 2000-2056), got {when}")
         satrec = _sgp4().Satrec()
         satrec.sgp4init(
             0,  # WGS72
@@ -337,6 +340,10 @@ class TLEOrbit(Orbit):
 # largest catalogue number (Z9999 in the letter-and-four-digits form).
 _MAX_MEAN_MOTION = 100 * 2 * np.pi / 1440
 _MAX_SATNUM = 339999
+# Julian dates (UTC) of 1957-01-01 and 2057-01-01 (proleptic Gregorian ordinal day
+# + 1721424.5): the span a two-digit TLE year holds.
+_TLE_FIRST_JD = datetime.date(1957, 1, 1).toordinal() + 1721424.5
+_TLE_END_JD = datetime.date(2057, 1, 1).toordinal() + 1721424.5
 
 
 def _sgp4_error(code):

@@ -70,6 +70,7 @@ import re
 import numpy as np
 
 from ._common import (
+    DECIMAL,
     TIME_SYSTEMS,
     FileFormatError,
     check_epoch,
@@ -232,10 +233,13 @@ def _read(name, lines):
             if current < 0:
                 raise error(lineno, "an epoch line '## yyyy mm dd hh mm ss n' before the first "
                             "record", line)
-            try:
+            if not all(DECIMAL.fullmatch(p) for p in parts[3:]):
+                lower = [p.lower().lstrip("+-") for p in parts[3:]]
+                if not any(p.startswith(("nan", "inf")) for p in lower):
+                    raise error(lineno, _ATT_RECORD, line)
+                q = (np.nan,)
+            else:
                 q = (float(parts[3]), float(parts[4]), float(parts[5]), float(parts[6]))
-            except ValueError:
-                raise error(lineno, _ATT_RECORD, line) from None
             if not all(np.isfinite(q)):
                 raise error(lineno, _ATT_RECORD.replace("four numbers", "four finite numbers")
                             + " ('nan' and 'inf' are not quaternion components)", line)

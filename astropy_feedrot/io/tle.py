@@ -280,6 +280,7 @@ def read_tle(source):
     records = []
     with open_lines(source) as (filename, lines):
         title = None
+        previous = (0, "")  # the last title line: (lineno, line)
         pending = None  # (lineno, line 1)
         lineno = 0
         for lineno, raw in enumerate(lines, start=1):
@@ -302,9 +303,13 @@ def read_tle(source):
                 _check_in_file(filename, lineno, line, 1)
                 pending = (lineno, line)
             elif _is_element_line(line, 2):
+                if title is not None and previous[1][:1] == "1" and len(previous[1]) == 69:
+                    # A line 1 broken in its first columns, read as a title.
+                    _check_in_file(filename, *previous, 1)
                 raise FileFormatError(filename, lineno, "a title or line 1 before line 2", line)
             else:
                 title = line[2:].strip() if line.startswith("0 ") else line.strip()
+                previous = (lineno, line)
         if pending is not None:
             raise FileFormatError(filename, lineno + 1, "line 2 of the element set begun on "
                                   f"line {pending[0]}", None)
