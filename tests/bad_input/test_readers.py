@@ -922,3 +922,27 @@ def test_tle_file_truncated_anywhere(data):
         return
     # Only whole element sets survive, exactly as they were.
     assert [tuple(r) for r in records] == sets[:len(records)]
+
+
+# --- the warnings point at the caller ------------------------------------------------------
+
+
+def test_orbit_warnings_name_the_calling_line():
+    from astropy.coordinates import EarthLocation
+
+    from astropy_feedrot import AltAzMount, Antenna, Satellite
+    from astropy_feedrot.grid import feed_rotation_grid
+
+    t = Time("2023-01-25") + np.arange(0, 5, 0.5) * u.day
+    with pytest.warns(OrbitWarning) as caught:
+        decaying().position(t)
+    assert [w.filename for w in caught] == [__file__]
+    orbit = SP3Orbit(io.StringIO(sp3_with_holes({20: "missing"})), "G01")
+    with pytest.warns(OrbitWarning) as caught:
+        orbit.position(T0 + 6100 * u.s)
+    assert [w.filename for w in caught] == [__file__]
+    # The grid propagates element sets together, with the same warning.
+    antenna = Antenna(EarthLocation.from_geodetic(0 * u.deg, 45 * u.deg), AltAzMount())
+    with pytest.warns(OrbitWarning, match=r"SGP4 fails at 9 of 10 epochs") as caught:
+        feed_rotation_grid([antenna], [Satellite(decaying())], t)
+    assert [w.filename for w in caught if w.category is OrbitWarning] == [__file__]
