@@ -416,7 +416,7 @@ def propagate_tles(orbits, obstime, stacklevel=2):
             stacklevel=stacklevel)
     epochs = np.array([[o._satrec.jdsatepoch, o._satrec.jdsatepochF] for o in orbits])
     age = np.abs((jd1 - epochs[:, :1]) + (jd2 - epochs[:, 1:]))  # days, (S, T)
-    limits = np.array([o.max_age.to_value(u.day) for o in orbits])[:, np.newaxis]
+    limits = np.array([u.Quantity(o.max_age).to_value(u.day) for o in orbits])[:, np.newaxis]
     stale = age > limits
     if np.any(stale):
         worst = [f"{o.label} (epoch {o.epoch.iso[:10]}) up to {a.max():.1f} days away"
@@ -487,7 +487,8 @@ class SP3Orbit(Orbit):
     and each call warns once (`~astropy_feedrot.OrbitWarning`) with the
     number of such times: no position is ever interpolated across a hole.
     Within a stretch, times near a hole use a window shifted away from it, as
-    at the ends of the file.
+    at the ends of the file. (In a file in UTC or GLONASS time, a leap second
+    between two epochs breaks the interval too, and makes a hole.)
 
     Examples
     --------
