@@ -304,8 +304,8 @@ class QuaternionAttitude(Attitude):
     Raises
     ------
     ValueError
-        If shapes do not match, an epoch or a quaternion is not finite,
-        epochs do not increase strictly, a quaternion's norm is off by more
+        If shapes do not match, an epoch is masked, a quaternion is not
+        finite, epochs do not increase strictly, a quaternion's norm is off by more
         than 0.1 % (smaller errors are normalized away), or for an unknown
         ``convention``/``frame``.
 
@@ -351,9 +351,11 @@ class QuaternionAttitude(Attitude):
         if not np.all(finite):
             i = int(np.argmin(finite))
             raise ValueError(f"quaternion {i} at {obstime[i].isot} is not finite: {q[i]}")
-        seconds = (obstime - obstime[0]).to_value(u.s)
-        if not np.all(np.isfinite(seconds)):
-            raise ValueError("quaternion epochs must be finite times")
+        masked = np.asarray(obstime.mask) if obstime.masked else np.zeros(len(obstime), bool)
+        if np.any(masked):
+            raise ValueError(f"quaternion epochs must all be given: epoch {int(np.argmax(masked))} "
+                             "is masked")
+        seconds = np.asarray((obstime - obstime[0]).to_value(u.s), dtype=float)
         step = np.diff(seconds)
         if np.any(step <= 0):
             i = int(np.argmax(step <= 0))

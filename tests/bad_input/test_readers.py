@@ -606,6 +606,11 @@ def test_quaternion_attitude_refuses_non_finite_values():
     with pytest.raises(ValueError, match=r"must increase strictly: epoch 1 "
                        r"\(2023-01-25T00:00:00\.000\) is not after epoch 0"):
         QuaternionAttitude(t[[0, 0]], [[1, 0, 0, 0], [1, 0, 0, 0]])
+    masked = t.copy()
+    masked[1] = np.ma.masked
+    with pytest.raises(ValueError, match=r"quaternion epochs must all be given: epoch 1 is "
+                       r"masked"):
+        QuaternionAttitude(masked, [[1, 0, 0, 0], [1, 0, 0, 0]])
 
 
 # --- ORBEX: property-based mutations of the sample -----------------------------------------
@@ -746,6 +751,14 @@ def test_tle_check_functions():
         check_tle_line(None, 2)
     with pytest.raises(ValueError, match=r"different satellites: '41328' and '25544'"):
         check_tle_pair(LINE1, ISS[1])
+
+
+def test_read_tle_line_1_broken_in_its_first_columns():
+    # '1x' is no element line: read as a title, it is named when its line 2 comes.
+    text = f"GPS\n{put(LINE1, 2, 'x')}\n{LINE2}\n"
+    with pytest.raises(FileFormatError, match=r"^sats\.tle, line 2: expected line 1 of an "
+                       r"element set, starting '1 ', got '1x41328U"):
+        read_tle(stream(text, "sats.tle"))
 
 
 def test_read_tle_catalogue_numbers_differ():
