@@ -11,7 +11,7 @@ from .antenna import Antenna, FeedRotationTerms
 from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
 from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
-from .exceptions import DegenerateGeometryWarning, StaleEarthOrientationWarning
+from .exceptions import DegenerateGeometryWarning, OrbitWarning, StaleEarthOrientationWarning
 from .focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
@@ -65,6 +65,7 @@ __all__ = [
     "RotationDelay",
     "DegenerateGeometryWarning",
     "StaleEarthOrientationWarning",
+    "OrbitWarning",
     "ContinuityWarning",
     "conf",
 ]

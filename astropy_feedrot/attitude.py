@@ -6,6 +6,7 @@ panels towards the Sun (Eqs 26-27). `QuaternionAttitude` takes measured
 attitude quaternions, such as those of IGS ORBEX files (Eqs 24-25).
 """
 
+import os
 import warnings
 
 import numpy as np
@@ -22,6 +23,7 @@ from . import kernel
 from .eop import iers_context
 from .exceptions import DegenerateGeometryWarning
 from .frames import as_time
+from .io import read_orbex
 
 __all__ = [
     "Attitude",
@@ -302,9 +304,10 @@ class QuaternionAttitude(Attitude):
     Raises
     ------
     ValueError
-        If shapes do not match, epochs do not increase, a quaternion's norm is
-        off by more than 0.1 % (smaller errors are normalized away), or for an
-        unknown ``convention``/``frame``.
+        If shapes do not match, an epoch is masked, a quaternion is not
+        finite, epochs do not increase strictly, a quaternion's norm is off by more
+        than 0.1 % (smaller errors are normalized away), or for an unknown
+        ``convention``/``frame``.
 
     Notes
     -----
@@ -344,9 +347,22 @@ class QuaternionAttitude(Attitude):
             )
         if len(obstime) < 1:
             raise ValueError("need at least one epoch")
-        seconds = (obstime - obstime[0]).to_value(u.s)
-        if np.any(np.diff(seconds) <= 0):
-            raise ValueError("quaternion epochs must increase strictly")
+        finite = np.all(np.isfinite(q), axis=-1)
+        if not np.all(finite):
+            i = int(np.argmin(finite))
+            raise ValueError(f"quaternion {i} at {obstime[i].isot} is not finite: {q[i]}")
+        masked = np.asarray(obstime.mask) if obstime.masked else np.zeros(len(obstime), bool)
+        if np.any(masked):
+            raise ValueError(f"quaternion epochs must all be given: epoch {int(np.argmax(masked))} "
+                             "is masked")
+        seconds = np.asarray((obstime - obstime[0]).to_value(u.s), dtype=float)
+        step = np.diff(seconds)
+        if np.any(step <= 0):
+            i = int(np.argmax(step <= 0))
+            raise ValueError(
+                f"quaternion epochs must increase strictly: epoch {i + 1} "
+                f"({obstime[i + 1].isot}) is not after epoch {i} ({obstime[i].isot})"
+            )
         norm = np.linalg.norm(q, axis=-1)
         off = np.abs(norm - 1) > QUATERNION_NORM_TOLERANCE
         if np.any(off):
@@ -371,7 +387,7 @@ class QuaternionAttitude(Attitude):
         )
 
     @classmethod
-    def from_orbex(cls, source, satellite):
+    def from_orbex(cls, source, satellite, frame=None):
         """Read the attitude of one satellite from an IGS ORBEX file.
 
         Parameters
@@ -380,6 +396,10 @@ class QuaternionAttitude(Attitude):
             An ORBEX file with ``ATT`` records.
         satellite : str
             The satellite's ID, e.g. ``'G05'``.
+        frame : {'itrs', 'gcrs'}, optional
+            The frame the quaternions refer to, needed only when the file does
+            not say it (no ``FRAME_TYPE``); if given for a file that does, it
+            must agree (``ECEF`` is ``'itrs'``, ``ECI`` is ``'gcrs'``).
 
         Returns
         -------
@@ -388,9 +408,14 @@ class QuaternionAttitude(Attitude):
         Raises
         ------
         astropy_feedrot.io.FileFormatError
-            If the file is malformed (naming the line and what was expected).
+            If the file is malformed (naming the line and what was expected):
+            among others a ``FRAME_TYPE`` other than ``ECEF`` or ``ECI``,
+            quaternions that are not finite, epochs out of order or repeated.
         ValueError
-            If ``satellite`` has no attitude in the file (listing those that do).
+            If ``satellite`` has no attitude in the file (listing those that
+            do), the file gives no ``FRAME_TYPE`` and ``frame`` is not given,
+            ``frame`` contradicts the file, or a quaternion of the satellite
+            is not a unit quaternion (naming the file, satellite and epoch).
 
         Notes
         -----
@@ -408,17 +433,35 @@ class QuaternionAttitude(Attitude):
         >>> attitude.frame
         'itrs'
         """
-        from .io import read_orbex
-
+        if frame is not None and frame not in cls.FRAMES:
+            raise ValueError(f"frame must be one of {cls.FRAMES} or None, got {frame!r}")
         data = read_orbex(source)
+        name = _source_name(source)
         if satellite not in data.attitude:
             raise ValueError(
                 f"satellite {satellite!r} has no attitude in the ORBEX file; it has "
                 f"{', '.join(data.satellites)}"
             )
+        if data.frame_type is None:
+            if frame is None:
+                raise ValueError(
+                    f"{name}: the ORBEX file does not give FRAME_TYPE (ECEF or ECI) in its "
+                    "+FILE/DESCRIPTION block, so the frame of its quaternions is unknown; "
+                    "pass frame='itrs' (Earth-fixed) or frame='gcrs' (celestial)"
+                )
+        else:
+            from_file = _ORBEX_FRAMES[data.frame_type]
+            if frame is not None and frame != from_file:
+                raise ValueError(
+                    f"{name}: frame={frame!r} contradicts the file's FRAME_TYPE "
+                    f"{data.frame_type} ({from_file!r}); leave frame out"
+                )
+            frame = from_file
         times, quaternions = data.attitude[satellite]
-        frame = "gcrs" if "ECI" in data.frame.upper() else "itrs"
-        return cls(times, quaternions, convention="earth_to_body", frame=frame)
+        try:
+            return cls(times, quaternions, convention="earth_to_body", frame=frame)
+        except ValueError as error:
+            raise ValueError(f"{name}: ATT records of {satellite}: {error}") from None
 
     def quaternion(self, obstime):
         """Interpolated unit quaternions at the given epochs.
@@ -470,6 +513,18 @@ class QuaternionAttitude(Attitude):
                                    for v in (aligned, transverse))
         shape = np.broadcast_shapes(aligned.shape, np.shape(position))
         return np.broadcast_to(aligned, shape), np.broadcast_to(transverse, shape)
+
+
+#: The frame of `QuaternionAttitude` for each ORBEX ``FRAME_TYPE``.
+_ORBEX_FRAMES = {"ECEF": "itrs", "ECI": "gcrs"}
+
+
+def _source_name(source):
+    """The name of a file given as a path or a file object, for messages."""
+    if isinstance(source, (str, os.PathLike)):
+        return os.fsdecode(os.fspath(source))
+    name = getattr(source, "name", None)
+    return name if isinstance(name, str) and name else "<stream>"
 
 
 def _gcrs_to_itrs_direction(vector, obstime):

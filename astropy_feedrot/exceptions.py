@@ -3,7 +3,7 @@
 
 from astropy.utils.exceptions import AstropyUserWarning
 
-__all__ = ["DegenerateGeometryWarning", "StaleEarthOrientationWarning"]
+__all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning"]
 
 
 class DegenerateGeometryWarning(AstropyUserWarning):
@@ -25,6 +25,26 @@ class DegenerateGeometryWarning(AstropyUserWarning):
     """
 
 
+class OrbitWarning(AstropyUserWarning):
+    """An orbit gives no position, or a degraded one, at some of the requested epochs.
+
+    Raised once per call, saying how many epochs are affected and why: epochs
+    in a hole of an SP3 file (NaN there), epochs where SGP4 fails on an element
+    set (NaN there), or epochs too far from the epoch of an element set for
+    SGP4 to be trusted (positions returned, accuracy degraded).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from astropy_feedrot import OrbitWarning
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warnings.warn("3 of 10 epochs fall in holes of the SP3 file", OrbitWarning)
+    >>> caught[0].category.__name__
+    'OrbitWarning'
+    """
+
+
 class StaleEarthOrientationWarning(AstropyUserWarning):
     """The Earth-orientation tables do not cover the epochs well; computed anyway.
 
@@ -37,7 +57,6 @@ class StaleEarthOrientationWarning(AstropyUserWarning):
 
     Examples
     --------
-    >>> import warnings
     >>> from astropy_feedrot import StaleEarthOrientationWarning
     >>> issubclass(StaleEarthOrientationWarning, UserWarning)
     True

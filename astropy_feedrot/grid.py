@@ -54,7 +54,7 @@ from .frames import (
     source_direction,
 )
 from .mounts import FixedAxisMount, StationaryMount
-from .orbits import TLEOrbit, teme_to_itrs
+from .orbits import TLEOrbit, propagate_tles, teme_to_itrs
 from .polarization import polarization_sign
 from .satellite import LineOfSight, Satellite
 
@@ -599,15 +599,7 @@ def _earth_orientation(obstime):
 
 def _propagate_tle(orbits, obstime, orientation):
     """ITRS positions (S, T, 3) in metres of TLE orbits, propagated together."""
-    from sgp4.api import SatrecArray
-
-    utc = obstime.utc
-    jd1 = np.ascontiguousarray(utc.jd1, dtype=float)  # sgp4 needs C order
-    jd2 = np.ascontiguousarray(utc.jd2, dtype=float)
-    error, r, _ = SatrecArray([orbit._satrec for orbit in orbits]).sgp4(jd1, jd2)
-    r = np.asarray(r, dtype=float)
-    r *= 1e3
-    r[np.asarray(error) != 0] = np.nan
+    r = propagate_tles(orbits, obstime, stacklevel=6)  # NaN and a warning where SGP4 fails
     if orientation is not None:
         return orientation.teme_to_itrs(r)
     return np.stack([teme_to_itrs(one, obstime) for one in r])

@@ -7,16 +7,23 @@ Lagrange polynomials (`SP3Orbit`), and positions the user already has as a
 `~astropy.coordinates.SkyCoord` (`CoordinateOrbit`).
 """
 
+import datetime
+import warnings
+
 import numpy as np
 from astropy import units as u
+from erfa import ErfaWarning
 from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
 from .config import conf
 from .eop import iers_context
+from .exceptions import OrbitWarning
 from .frames import as_time, location_xyz
+from .io import read_sp3
+from .io.tle import check_tle_pair
 
-__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit"]
+__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles"]
 
 # WGS72 constants used by SGP4 (Vallado and Crawford 2008).
 _WGS72_MU = 398600.8  # km^3 / s^2
@@ -43,37 +50,16 @@ class Orbit:
         raise NotImplementedError  # pragma: no cover
 
 
-def _tle_checksum(line):
-    return sum(int(c) if c.isdigit() else c == "-" for c in line[:68]) % 10
-
-
-def _check_tle_line(line, number):
-    if not isinstance(line, str):
-        raise TypeError(f"TLE line {number} must be a str, got {type(line).__name__}")
-    line = line.rstrip()
-    if len(line) != 69:
-        raise ValueError(
-            f"TLE line {number} must have 69 characters, got {len(line)}: {line!r}"
-        )
-    if line[0] != str(number) or line[1] != " ":
-        raise ValueError(f"TLE line {number} must start with '{number} ', got {line[:2]!r}")
-    if not line[68].isdigit() or int(line[68]) != _tle_checksum(line):
-        raise ValueError(
-            f"TLE line {number} checksum: expected {_tle_checksum(line)} in column 69, "
-            f"got {line[68]!r}: {line!r}"
-        )
-    return line
-
-
 def _sgp4():
+    """The sgp4 package's ``api`` module (an optional dependency, imported when first needed)."""
     try:
-        from sgp4.api import Satrec
+        from sgp4 import api
     except ImportError:  # pragma: no cover - exercised only without sgp4
         raise ImportError(
             "TLE orbits need the sgp4 package: python -m pip install sgp4 "
             "(or astropy_feedrot[all])"
         ) from None
-    return Satrec
+    return api
 
 
 def teme_to_itrs(position, obstime):
@@ -125,18 +111,27 @@ class TLEOrbit(Orbit):
     Parameters
     ----------
     line1, line2 : str
-        The two lines of the element set (69 characters each, with valid
-        checksums).
+        The two lines of the element set (69 characters each, every field in
+        its format, valid checksums; see `astropy_feedrot.io.check_tle_line`).
     name : str, optional
         A label (e.g. ``'GPS SVN 76'``).
+
+    Attributes
+    ----------
+    max_age : `~astropy.units.Quantity`
+        How far from the epoch of the element set positions are computed
+        without a warning: 30 days (class attribute; set it on an instance
+        to change it for that orbit).
 
     Raises
     ------
     TypeError
         If a line is not a string.
     ValueError
-        If a line is malformed: its length, line number or checksum, naming
-        which line and what was expected.
+        If a line is malformed (its length, line number, a blank column, a
+        field that does not read, even with a valid checksum, or the
+        checksum), naming which line, field and columns; or if SGP4 refuses
+        the elements at their epoch.
     ImportError
         If the ``sgp4`` package is not installed.
 
@@ -144,7 +139,20 @@ class TLEOrbit(Orbit):
     -----
     SGP4 (the ``sgp4`` package) gives positions in the TEME frame; astropy
     rotates them to ITRS with Greenwich mean sidereal time, UT1 and polar
-    motion. Epochs where SGP4 fails (decayed orbit) are NaN.
+    motion.
+
+    Where SGP4 fails (a decayed satellite, an eccentricity driven out of
+    range by drag, ...) the positions are NaN and one
+    `~astropy_feedrot.OrbitWarning` says how many epochs and why.
+
+    An element set is a fit to a few days of observations; propagated away
+    from its epoch its errors grow, for GNSS orbits to kilometres within
+    weeks and faster for low, dragged orbits (Kelso 2007, "Validation of SGP4
+    and IS-GPS-200D against GPS precision ephemerides", AAS 07-127). Beyond
+    `max_age` (30 days: a month-old element set has been superseded many
+    times over, and at GNSS distance kilometres are already hundredths of a
+    degree of direction) positions are still computed, with one
+    `~astropy_feedrot.OrbitWarning` per call: use a fresher element set.
 
     Examples
     --------
@@ -159,22 +167,29 @@ class TLEOrbit(Orbit):
     >>> radius = np.linalg.norm(orbit.position(Time("2023-01-25T12:00")))
     >>> round(radius / 1e3)  # km from the geocentre
     26713
+    >>> orbit.max_age
+    <Quantity 30. d>
     """
 
+    max_age = 30 * u.day
+
     def __init__(self, line1, line2, name=None):
-        self.line1 = _check_tle_line(line1, 1)
-        self.line2 = _check_tle_line(line2, 2)
-        if self.line1[2:7] != self.line2[2:7]:
-            raise ValueError(
-                f"TLE lines describe different satellites: {self.line1[2:7]!r} and "
-                f"{self.line2[2:7]!r}"
-            )
-        self._satrec = _sgp4().twoline2rv(self.line1, self.line2)
+        self.line1, self.line2 = check_tle_pair(line1, line2)
+        satrec = _sgp4().Satrec.twoline2rv(self.line1, self.line2)
+        if satrec.error:
+            raise ValueError(f"SGP4 cannot start from this element set: "
+                             f"{_sgp4_error(satrec.error)}: {self.line1!r}, {self.line2!r}")
+        self._satrec = satrec
         self.name = name
 
     def __repr__(self):
         label = f", name={self.name!r}" if self.name else ""
         return f"TLEOrbit({self.line1!r}, {self.line2!r}{label})"
+
+    @property
+    def label(self):
+        """str: The name, or the catalogue number when there is none."""
+        return self.name or self.line1[2:7].strip()
 
     @property
     def epoch(self):
@@ -202,21 +217,27 @@ class TLEOrbit(Orbit):
         Parameters
         ----------
         epoch : `~astropy.time.Time`
-            Epoch of the elements.
+            Epoch of the elements, one instant from 1957 to 2056 (UTC): the
+            two-digit year of an element set reads 57-99 as 1957-1999 and
+            00-56 as 2000-2056.
         inclination, raan : `~astropy.units.Quantity` (angle)
-            Inclination and right ascension of the ascending node.
+            Inclination (0-180 deg) and right ascension of the ascending node
+            (any angle; it is wrapped to 0-360 deg).
         altitude : `~astropy.units.Quantity` (length), optional
             Altitude of a circular orbit above the SGP4 (WGS72) equatorial
             radius; gives the mean motion by Kepler's third law. Give either
             this or ``mean_motion``.
         mean_motion : `~astropy.units.Quantity` (angle / time), optional
-            Mean motion, e.g. ``2.0056 * u.cycle / u.day``.
+            Mean motion, e.g. ``2.0056 * u.cycle / u.day``; below 100
+            revolutions per day, as the element set can hold.
         eccentricity : float, optional
         argument_of_perigee, mean_anomaly : `~astropy.units.Quantity` (angle), optional
+            Wrapped to 0-360 deg.
         bstar : float, optional
             Drag term (1 / Earth radii); 0 for no drag.
         satnum : int, optional
-            Catalogue number written into the element set.
+            Catalogue number written into the element set, 0-339999 (above
+            99999 as the letter-and-four-digits form).
         name : str, optional
 
         Returns
@@ -228,7 +249,10 @@ class TLEOrbit(Orbit):
         ------
         ValueError
             If neither or both of ``altitude`` and ``mean_motion`` are given,
-            or an element is out of range.
+            an element is out of range or not finite, or the epoch is not one
+            instant the two-digit year can hold.
+        TypeError
+            If ``satnum`` is not an integer.
         astropy.units.UnitsError
             If an element has the wrong units.
 
@@ -249,20 +273,44 @@ class TLEOrbit(Orbit):
             raise ValueError("give exactly one of altitude and mean_motion")
         if altitude is not None:
             a_km = _WGS72_RADIUS + u.Quantity(altitude).to_value(u.km)
-            if a_km <= _WGS72_RADIUS:
+            if not a_km > _WGS72_RADIUS:
                 raise ValueError(f"altitude must be positive, got {altitude}")
             n = np.sqrt(_WGS72_MU / a_km**3) * 60.0  # rad / min
         else:
             n = u.Quantity(mean_motion).to_value(u.rad / u.min)  # u.cycle converts too
-            if n <= 0:
+            if not n > 0:
                 raise ValueError(f"mean_motion must be positive, got {mean_motion}")
+        if not n < _MAX_MEAN_MOTION:
+            raise ValueError(f"mean_motion must be below 100 revolutions per day (what an "
+                             f"element set holds), got {mean_motion}")
         if not 0 <= eccentricity < 1:
             raise ValueError(f"eccentricity must be in [0, 1), got {eccentricity}")
         inc = u.Quantity(inclination).to_value(u.rad)
         if not 0 <= inc <= np.pi:
             raise ValueError(f"inclination must be within 0-180 deg, got {inclination}")
+        angles = {}
+        for key, value in (("raan", raan), ("argument_of_perigee", argument_of_perigee),
+                           ("mean_anomaly", mean_anomaly)):
+            rad = u.Quantity(value).to_value(u.rad)
+            if np.ndim(rad) or not np.isfinite(rad):
+                raise ValueError(f"{key} must be one finite angle, got {value}")
+            angles[key] = float(np.mod(rad, 2 * np.pi))
+        if not np.isfinite(bstar):
+            raise ValueError(f"bstar must be finite, got {bstar}")
+        if isinstance(satnum, bool) or not isinstance(satnum, (int, np.integer)):
+            raise TypeError(f"satnum must be an integer, got {type(satnum).__name__}")
+        if not 0 <= satnum <= _MAX_SATNUM:
+            raise ValueError(f"satnum must be within 0-{_MAX_SATNUM}, got {satnum}")
         epoch = as_time(epoch).utc
-        satrec = _sgp4()()
+        if not epoch.isscalar:
+            raise ValueError(f"epoch must be one instant, got shape {epoch.shape}")
+        if not _TLE_FIRST_JD <= epoch.jd1 + epoch.jd2 < _TLE_END_JD:
+            with warnings.catch_warnings():  # ERFA finds UTC so far away "dubious"
+                warnings.simplefilter("ignore", ErfaWarning)
+                when = epoch.isot
+            raise ValueError(f"epoch must be within 1957-2056, the years a TLE's two-digit "
+                             f"year can hold (57-99: 1957-1999, 00-56: 2000-2056), got {when}")
+        satrec = _sgp4().Satrec()
         satrec.sgp4init(
             0,  # WGS72
             "i",
@@ -272,26 +320,115 @@ class TLEOrbit(Orbit):
             0.0,
             0.0,
             float(eccentricity),
-            u.Quantity(argument_of_perigee).to_value(u.rad),
+            angles["argument_of_perigee"],
             inc,
-            u.Quantity(mean_anomaly).to_value(u.rad),
+            angles["mean_anomaly"],
             n,
-            u.Quantity(raan).to_value(u.rad),
+            angles["raan"],
         )
-        from sgp4.exporter import export_tle
+        from sgp4.exporter import export_tle  # optional dependency, as in _sgp4
 
         line1, line2 = export_tle(satrec)
         return cls(line1, line2, name=name)
 
     def position(self, obstime):
         obstime = as_time(obstime)
-        utc = obstime.utc
-        jd1 = np.ascontiguousarray(utc.jd1, dtype=float).ravel()  # sgp4 needs C order
-        jd2 = np.ascontiguousarray(utc.jd2, dtype=float).ravel()
-        error, r, _ = self._satrec.sgp4_array(jd1, jd2)
-        r = np.asarray(r, dtype=float) * 1e3
-        r[np.asarray(error) != 0] = np.nan
-        return teme_to_itrs(r.reshape(obstime.shape + (3,)), obstime)
+        r = propagate_tles([self], obstime, stacklevel=3)[0]
+        return teme_to_itrs(r, obstime)
+
+
+# Largest mean motion an element set holds (99.99999999 rev/day), in rad/min;
+# largest catalogue number (Z9999 in the letter-and-four-digits form).
+_MAX_MEAN_MOTION = 100 * 2 * np.pi / 1440
+_MAX_SATNUM = 339999
+# Julian dates (UTC) of 1957-01-01 and 2057-01-01 (proleptic Gregorian ordinal day
+# + 1721424.5): the span a two-digit TLE year holds.
+_TLE_FIRST_JD = datetime.date(1957, 1, 1).toordinal() + 1721424.5
+_TLE_END_JD = datetime.date(2057, 1, 1).toordinal() + 1721424.5
+
+
+def _sgp4_error(code):
+    """SGP4's words for an error code."""
+    return _sgp4().SGP4_ERRORS.get(int(code), f"error {int(code)}")
+
+
+def propagate_tles(orbits, obstime, stacklevel=2):
+    """TEME positions of several element sets at the same epochs, with one SGP4 call.
+
+    Parameters
+    ----------
+    orbits : sequence of `TLEOrbit`
+        The element sets.
+    obstime : `~astropy.time.Time`
+        Epochs, any shape.
+    stacklevel : int, optional
+        Passed on to `warnings.warn`, for callers that wrap this function.
+
+    Returns
+    -------
+    ndarray, shape (len(orbits),) + obstime.shape + (3,)
+        Positions in the TEME frame of SGP4, in metres; NaN where SGP4 fails.
+
+    Warns
+    -----
+    `~astropy_feedrot.OrbitWarning`
+        Once if SGP4 fails at some epochs (their positions are NaN; the
+        message gives the counts and SGP4's reasons), and once if some epochs
+        lie further than `TLEOrbit.max_age` from the epoch of their element
+        set.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import TLEOrbit
+    >>> from astropy_feedrot.orbits import propagate_tles
+    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> t = Time("2023-01-25") + [0, 1, 2] * u.hour
+    >>> r = propagate_tles([TLEOrbit(*GPS_SVN76_TLE)], t)
+    >>> r.shape
+    (1, 3, 3)
+    >>> np.round(np.linalg.norm(r, axis=-1) / 1e6, 1)  # thousands of km
+    array([[26.7, 26.7, 26.6]])
+    """
+    orbits = list(orbits)
+    for i, orbit in enumerate(orbits):
+        if not isinstance(orbit, TLEOrbit):
+            raise TypeError(f"orbits[{i}] must be a TLEOrbit, got {type(orbit).__name__}")
+    obstime = as_time(obstime)
+    utc = obstime.utc
+    jd1 = np.ascontiguousarray(utc.jd1, dtype=float).ravel()  # sgp4 needs C order
+    jd2 = np.ascontiguousarray(utc.jd2, dtype=float).ravel()
+    satrecs = _sgp4().SatrecArray([orbit._satrec for orbit in orbits])
+    error, r, _ = satrecs.sgp4(jd1, jd2)
+    error = np.asarray(error)
+    r = np.asarray(r, dtype=float) * 1e3
+    r[error != 0] = np.nan
+    if np.any(error != 0):
+        parts = []
+        for orbit, codes in zip(orbits, error):
+            for code in np.unique(codes[codes != 0]):
+                parts.append(f"{orbit.label}: {np.count_nonzero(codes == code)} epochs, "
+                             f"{_sgp4_error(code)}")
+        warnings.warn(
+            f"SGP4 fails at {np.count_nonzero(error)} of {error.size} epochs "
+            f"({'; '.join(parts)}); their positions are NaN", OrbitWarning,
+            stacklevel=stacklevel)
+    epochs = np.array([[o._satrec.jdsatepoch, o._satrec.jdsatepochF] for o in orbits])
+    age = np.abs((jd1 - epochs[:, :1]) + (jd2 - epochs[:, 1:]))  # days, (S, T)
+    limits = np.array([u.Quantity(o.max_age).to_value(u.day) for o in orbits])[:, np.newaxis]
+    stale = age > limits
+    if np.any(stale):
+        worst = [f"{o.label} (epoch {o.epoch.iso[:10]}) up to {a.max():.1f} days away"
+                 for o, a, s in zip(orbits, age, stale) if s.any()]
+        warnings.warn(
+            f"{np.count_nonzero(stale)} of {stale.size} epochs lie more than "
+            f"{limits.min():g} days from the epoch of their element set "
+            f"({'; '.join(worst)}); SGP4 positions degrade away from the epoch (kilometres "
+            "within weeks): use an element set closer to the observation", OrbitWarning,
+            stacklevel=stacklevel)
+    return r.reshape((len(orbits),) + obstime.shape + (3,))
 
 
 class SP3Orbit(Orbit):
@@ -308,20 +445,51 @@ class SP3Orbit(Orbit):
         interpolating polynomial (default 10, i.e. degree 9, the usual choice
         for 5- and 15-minute IGS orbits).
 
+    Attributes
+    ----------
+    satellite, points : str, int
+        As given.
+    epochs : `~astropy.time.Time`
+        The epochs of the file.
+    interval : `~astropy.units.Quantity`
+        The epoch interval of the file's header.
+    spans : `~astropy.time.Time`, shape (K, 2)
+        Start and end of each stretch where positions are interpolated:
+        ``points`` or more consecutive epochs at the file's interval, all
+        with a valid position of the satellite.
+
     Raises
     ------
     astropy_feedrot.io.FileFormatError
         If the file is malformed (naming the line and what was expected).
     ValueError
-        If ``satellite`` is not in the file (listing those that are), or it has
-        fewer epochs than ``points``.
+        If ``satellite`` is not in the file (listing those that are), the
+        file has fewer epochs than ``points``, or the satellite has nowhere
+        ``points`` consecutive valid epochs.
+
+    Warns
+    -----
+    `~astropy_feedrot.OrbitWarning`
+        From `position`, once per call, when some times fall in a hole.
 
     Notes
     -----
     Positions are interpolated coordinate by coordinate with a polynomial
-    through the ``points`` epochs nearest to each requested time (a centred
-    window, shifted at the ends of the file). Times outside the file's epochs
-    raise an error; a window containing a missing record gives NaN.
+    through ``points`` consecutive epochs around each requested time (a
+    centred window, shifted at the ends of a stretch). Times outside the
+    file's epochs raise an error.
+
+    The window is made only of consecutive epochs at the interval of the
+    file's header where the satellite has a valid position. A hole is any
+    break in that: epochs the file skips, an epoch without a record of the
+    satellite, a position marked bad or absent (0.000000 for x, y and z). A
+    requested time that cannot be given such a window (in a hole, or in a
+    stretch of fewer than ``points`` valid epochs between holes) gets NaN,
+    and each call warns once (`~astropy_feedrot.OrbitWarning`) with the
+    number of such times: no position is ever interpolated across a hole.
+    Within a stretch, times near a hole use a window shifted away from it, as
+    at the ends of the file. (In a file in UTC or GLONASS time, a leap second
+    between two epochs breaks the interval too, and makes a hole.)
 
     Examples
     --------
@@ -335,11 +503,11 @@ class SP3Orbit(Orbit):
     >>> xyz = orbit.position(Time("2023-01-25T00:20:00", scale="tai"))
     >>> round(float(np.linalg.norm(xyz)) / 1e3)  # km from the geocentre
     26560
+    >>> orbit.spans.isot
+    array([['2023-01-25T00:00:19.000', '2023-01-25T00:45:19.000']], dtype='<U23')
     """
 
     def __init__(self, source, satellite, points=10):
-        from .io import read_sp3
-
         data = read_sp3(source)
         if satellite not in data.positions:
             raise ValueError(
@@ -357,10 +525,21 @@ class SP3Orbit(Orbit):
         self.satellite = satellite
         self.points = points
         self.epochs = data.epochs
+        self.interval = data.interval * u.s
         self.coordinate_system = data.coordinate_system
         self._t0 = data.epochs[0]
         self._seconds = (data.epochs - self._t0).to_value(u.s)
         self._xyz = data.positions[satellite]
+        self._run_start, self._run_end = _stretches(self._seconds, self._xyz, data.interval)
+        long_enough = self._run_end - self._run_start + 1 >= points
+        if not np.any(long_enough):
+            raise ValueError(
+                f"{satellite} has no {points} consecutive epochs at the {data.interval:g} s "
+                "interval of the SP3 file with a valid position, as the interpolation window "
+                f"needs (its longest stretch has {np.max(self._run_end - self._run_start) + 1}); "
+                "give fewer points or a file without holes"
+            )
+        self._usable = long_enough
 
     def __repr__(self):
         return (
@@ -368,17 +547,75 @@ class SP3Orbit(Orbit):
             f"{self.epochs[0].isot} to {self.epochs[-1].isot}>"
         )
 
+    @property
+    def spans(self):
+        """`~astropy.time.Time`, shape (K, 2): where positions are interpolated."""
+        start = self._run_start[self._usable]
+        end = self._run_end[self._usable]
+        return self.epochs[np.stack([start, end], axis=-1)]
+
     def position(self, obstime):
         obstime = as_time(obstime)
-        x = np.atleast_1d((obstime - self._t0).to_value(u.s))
-        outside = (x < self._seconds[0] - 1e-6) | (x > self._seconds[-1] + 1e-6)
+        x = np.atleast_1d((obstime - self._t0).to_value(u.s)).ravel()
+        tol = 1e-6
+        outside = (x < self._seconds[0] - tol) | (x > self._seconds[-1] + tol)
         if np.any(outside):
             raise ValueError(
                 f"times outside the coverage of the SP3 orbit of {self.satellite}: "
                 f"{self.epochs[0].isot} to {self.epochs[-1].isot} {self.epochs.scale.upper()}"
             )
-        return lagrange_interpolate(self._seconds, self._xyz, x, self.points).reshape(
-            obstime.shape + (3,))
+        run = _stretch_of(self._seconds, self._run_start, self._run_end, x, tol)
+        ok = run >= 0
+        ok[ok] = self._usable[run[ok]]
+        out = np.full(x.shape + (3,), np.nan)
+        if np.any(ok):
+            first = self._run_start[run[ok]]
+            last = self._run_end[run[ok]]
+            start = np.searchsorted(self._seconds, x[ok]) - self.points // 2
+            start = np.clip(start, first, last - self.points + 1)
+            out[ok] = _lagrange(self._seconds, self._xyz, x[ok], start, self.points)
+        if not np.all(ok):
+            bad = np.flatnonzero(~ok)
+            first_bad = (self._t0 + x[bad[0]] * u.s).isot
+            warnings.warn(
+                f"{bad.size} of {x.size} times fall in holes of the SP3 orbit of "
+                f"{self.satellite} (the first at {first_bad} {self.epochs.scale.upper()}), "
+                f"where no {self.points} consecutive epochs at the {self.interval.value:g} s "
+                "interval have valid positions: skipped epochs, missing records or positions "
+                "marked bad; NaN is returned there (SP3Orbit.spans lists where positions are "
+                "interpolated)",
+                OrbitWarning,
+                stacklevel=2,
+            )
+        return out.reshape(obstime.shape + (3,))
+
+
+def _stretches(seconds, xyz, interval, tol=1e-3):
+    """First and last index of each stretch of consecutive valid epochs at the interval.
+
+    An epoch without a valid position is a stretch of its own, never usable
+    (its length is counted as 0 by making its last index precede its first).
+    """
+    valid = np.all(np.isfinite(xyz), axis=-1)
+    step = np.abs(np.diff(seconds) - interval) < tol
+    link = valid[:-1] & valid[1:] & step
+    starts = np.flatnonzero(np.r_[True, ~link])
+    ends = np.r_[starts[1:] - 1, len(seconds) - 1]
+    ends = np.where(valid[starts], ends, starts - 1)
+    return starts, ends
+
+
+def _stretch_of(seconds, run_start, run_end, x, tol):
+    """Index of the stretch each time lies in, -1 in a hole."""
+    node = np.clip(np.searchsorted(seconds, x - tol, side="left"), 0, len(seconds) - 1)
+    # The last node at or before x (up to tol), and the stretch holding it.
+    node = np.where(seconds[node] > x + tol, node - 1, node)
+    node = np.clip(node, 0, len(seconds) - 1)
+    run = np.searchsorted(run_start, node, side="right") - 1
+    at_node = np.abs(seconds[node] - x) <= tol
+    next_in_run = (node + 1 <= run_end[run])
+    inside = (node <= run_end[run]) & (at_node | next_in_run)
+    return np.where(inside, run, -1)
 
 
 def lagrange_interpolate(x, y, x_new, points):
@@ -401,6 +638,11 @@ def lagrange_interpolate(x, y, x_new, points):
     ndarray, shape (M, ...)
         Interpolated values; NaN where the window holds a NaN.
 
+    Notes
+    -----
+    The window is chosen by position in the table only: this function does
+    not know about holes in it. `SP3Orbit` chooses windows that avoid them.
+
     Examples
     --------
     A cubic is reproduced exactly by a 4-point window:
@@ -417,6 +659,11 @@ def lagrange_interpolate(x, y, x_new, points):
     n = len(x)
     start = np.searchsorted(x, x_new) - points // 2
     start = np.clip(start, 0, n - points)
+    return _lagrange(x, y, x_new, start, points)
+
+
+def _lagrange(x, y, x_new, start, points):
+    """Lagrange interpolation through the window ``start[m]:start[m] + points`` for each x_new."""
     window = start[:, np.newaxis] + np.arange(points)  # (M, points)
     xs = x[window]
     # Lagrange basis: w_j = prod_{k != j} (x_new - x_k) / (x_j - x_k)

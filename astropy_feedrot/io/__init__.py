@@ -5,7 +5,8 @@
   Earth-fixed satellite positions and clock corrections.
 * `read_orbex` reads the attitude quaternions (``ATT`` records) of ORBEX
   files.
-* `read_tle` reads the element sets of two- and three-line element files.
+* `read_tle` reads the element sets of two- and three-line element files;
+  `check_tle_line` and `check_tle_pair` check element lines field by field.
 
 Epochs come back as astropy `~astropy.time.Time`, converted from the file's
 GNSS time system; files that break their format raise `FileFormatError`,
@@ -35,6 +36,16 @@ Examples
 from ._common import FileFormatError
 from .orbex import ORBEXData, read_orbex
 from .sp3 import SP3Data, read_sp3
-from .tle import TLE, read_tle
+from .tle import TLE, check_tle_line, check_tle_pair, read_tle
 
-__all__ = ["read_sp3", "read_orbex", "read_tle", "SP3Data", "ORBEXData", "TLE", "FileFormatError"]
+__all__ = [
+    "read_sp3",
+    "read_orbex",
+    "read_tle",
+    "SP3Data",
+    "ORBEXData",
+    "TLE",
+    "check_tle_line",
+    "check_tle_pair",
+    "FileFormatError",
+]

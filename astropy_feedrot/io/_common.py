@@ -5,6 +5,7 @@ import calendar
 import contextlib
 import gzip
 import os
+import re
 
 import numpy as np
 from astropy import units as u
@@ -32,6 +33,12 @@ TIME_SYSTEMS = {
 
 # Longest stretch of a line quoted in an error message.
 _QUOTE = 90
+
+#: A decimal number as GNSS files write it: digits, an optional point and an
+#: optional exponent. Python's float() also reads 'nan', 'inf', '1_000' and
+#: blanks around a number; none of them is a number of these formats.
+DECIMAL = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+_INTEGER = re.compile(r"\d+")
 
 
 class FileFormatError(ValueError):
@@ -133,14 +140,16 @@ def known_time_systems():
 def check_epoch(fields, time_system):
     """Check and convert six calendar fields; return a tuple or None if invalid.
 
-    ``fields`` are strings ``year month day hour minute second``. A second of
-    60 (a leap second) is accepted only for UTC-based time systems.
+    ``fields`` start with strings ``year month day hour minute second``: five
+    unsigned integers and a decimal number. A second of 60 (a leap second) is
+    accepted only for UTC-based time systems.
     """
-    try:
-        year, month, day, hour, minute = (int(f) for f in fields[:5])
-        second = float(fields[5])
-    except ValueError:
+    if len(fields) < 6 or not all(_INTEGER.fullmatch(f) for f in fields[:5]):
         return None
+    if not DECIMAL.fullmatch(fields[5]):
+        return None
+    year, month, day, hour, minute = (int(f) for f in fields[:5])
+    second = float(fields[5])
     if not (1 <= month <= 12 and 0 <= hour <= 23 and 0 <= minute <= 59):
         return None
     if not 1 <= day <= calendar.monthrange(year, month)[1]:

@@ -7,13 +7,26 @@ blocks opened by ``+NAME`` and closed by ``-NAME`` lines, after a first line
 ``%=ORBEX <version>`` and up to a last line ``%END_ORBEX``. This reader uses
 
 * the ``+FILE/DESCRIPTION`` block: ``TIME_SYSTEM`` (``GPS``, ``GAL``, ...),
-  ``COORD_SYSTEM`` (the terrestrial frame, e.g. ``IGS20``) and
-  ``FRAME_TYPE`` (``ECEF`` or ``ECI``);
+  ``COORD_SYSTEM`` (the terrestrial frame, one word, e.g. ``IGS20``) and
+  ``FRAME_TYPE``, exactly ``ECEF`` or ``ECI``; each given once (or repeated
+  with the same value);
 * the ``+EPHEMERIS/DATA`` block: epoch lines
-  ``## yyyy mm dd hh mm ss.ssssssssssss n`` and, for each of them, records
-  ``' <TYPE> <sat> ... N <N values>'``. Only ``ATT`` records (``N = 4``)
-  are read; positions, velocities and clocks (``POS``, ``VEL``, ``CLK``,
-  ``PCS``, ...) and comment lines ``*`` are skipped.
+  ``## yyyy mm dd hh mm ss.ssssssssssss n``, each later than the one before,
+  and, for each of them, records ``' <TYPE> <sat> ... N <N values>'``. Only
+  ``ATT`` records (``N = 4``, four finite numbers) are read; positions,
+  velocities and clocks (``POS``, ``VEL``, ``CLK``, ``PCS``, ...) and
+  comment lines ``*`` are skipped.
+
+What the reader refuses, with a `FileFormatError` naming the line: a
+``FRAME_TYPE`` other than ``ECEF`` or ``ECI`` (``ecef``, ``ITRF``,
+``ECEF J2000``...), a ``COORD_SYSTEM`` that is not one word, a description
+field given twice with different values, an epoch line that repeats or
+precedes the one before it, an ``ATT`` record with a number that does not
+read or is not finite (``nan``, ``inf``, ``1e999``), a second ``ATT`` record
+of a satellite at one epoch; besides the breaks of the layout above. A file
+without ``FRAME_TYPE`` is read (`ORBEXData.frame_type` is None), but
+`~astropy_feedrot.QuaternionAttitude.from_orbex` then needs to be told the
+frame.
 
 Quaternion convention
 ---------------------
@@ -51,11 +64,13 @@ rotation).
 """
 
 import dataclasses
+import datetime
 import re
 
 import numpy as np
 
 from ._common import (
+    DECIMAL,
     TIME_SYSTEMS,
     FileFormatError,
     check_epoch,
@@ -69,6 +84,13 @@ from ._common import (
 __all__ = ["ORBEXData", "read_orbex"]
 
 _ATT_RECORD = "an ATT record ' ATT <sat> 4 q0 q1 q2 q3' with four numbers"
+_FRAME_TYPES = ("ECEF", "ECI")
+# Description fields the reader uses, and what each must hold.
+_FIELDS = {
+    "TIME_SYSTEM": "a TIME_SYSTEM, one of " + known_time_systems(),
+    "COORD_SYSTEM": "a COORD_SYSTEM, one word such as IGS20",
+    "FRAME_TYPE": "a FRAME_TYPE, one of " + ", ".join(_FRAME_TYPES),
+}
 _EPOCH_LINE = "an epoch line '## yyyy mm dd hh mm ss.ssssssssssss n' with a valid date and time"
 # Any other data record: a blank, a three-character record type, a blank.
 _OTHER_RECORD = re.compile(r" [A-Z][A-Z0-9]{2} ")
@@ -89,6 +111,10 @@ class ORBEXData:
     frame : str
         ``COORD_SYSTEM`` and ``FRAME_TYPE`` of the file, e.g.
         ``'IGS20 ECEF'`` (whichever of the two the file gives).
+    frame_type : str or None
+        ``FRAME_TYPE`` of the file: ``'ECEF'`` (quaternions from the
+        terrestrial frame), ``'ECI'`` (from a celestial frame), or None when
+        the file does not give it.
     satellites : tuple of str
         IDs of the satellites with ``ATT`` records, in order of appearance.
     attitude : dict of str to (`~astropy.time.Time`, ndarray)
@@ -124,6 +150,7 @@ class ORBEXData:
     satellites: tuple
     attitude: dict
     quaternion_convention: str
+    frame_type: str = None
 
     def __repr__(self):
         nsat = len(self.satellites)
@@ -166,6 +193,7 @@ def _read(name, lines):
 
     # --- header blocks, up to +EPHEMERIS/DATA -----------------------------------
     description = {}
+    where = {}
     in_description = False
     for lineno, line in enumerate(lines, start=2):
         if line.startswith("+EPHEMERIS/DATA"):
@@ -177,9 +205,13 @@ def _read(name, lines):
         elif in_description and line.startswith(" "):
             key, _, value = line.strip().partition(" ")
             value = value.strip()
-            if key == "TIME_SYSTEM" and value not in TIME_SYSTEMS:
-                raise error(lineno, "a TIME_SYSTEM, one of " + known_time_systems(), line)
+            if key in _FIELDS and not _valid_field(key, value):
+                raise error(lineno, _FIELDS[key], line)
+            if key in _FIELDS and description.get(key, value) != value:
+                raise error(lineno, f"{_FIELDS[key]}, the same as on line {where[key]} "
+                            f"({description[key]})", line)
             description.setdefault(key, value)
+            where.setdefault(key, lineno)
     else:
         raise error(lineno + 1, "a '+EPHEMERIS/DATA' block (this ORBEX file has none)", None)
     time_system = description.get("TIME_SYSTEM")
@@ -192,6 +224,7 @@ def _read(name, lines):
     index = {}
     ep_idx, sat_idx, linenos, quats = [], [], [], []
     current = -1
+    epoch_line = None
     for lineno, line in enumerate(lines, start=lineno + 1):
         if line.startswith(" ATT "):
             parts = line.split()
@@ -200,10 +233,16 @@ def _read(name, lines):
             if current < 0:
                 raise error(lineno, "an epoch line '## yyyy mm dd hh mm ss n' before the first "
                             "record", line)
-            try:
+            if not all(DECIMAL.fullmatch(p) for p in parts[3:]):
+                lower = [p.lower().lstrip("+-") for p in parts[3:]]
+                if not any(p.startswith(("nan", "inf")) for p in lower):
+                    raise error(lineno, _ATT_RECORD, line)
+                q = (np.nan,)
+            else:
                 q = (float(parts[3]), float(parts[4]), float(parts[5]), float(parts[6]))
-            except ValueError:
-                raise error(lineno, _ATT_RECORD, line) from None
+            if not all(np.isfinite(q)):
+                raise error(lineno, _ATT_RECORD.replace("four numbers", "four finite numbers")
+                            + " ('nan' and 'inf' are not quaternion components)", line)
             k = index.setdefault(parts[1], len(index))
             ep_idx.append(current)
             sat_idx.append(k)
@@ -212,9 +251,16 @@ def _read(name, lines):
         elif line.startswith("##"):
             fields = line[2:].split()
             epoch = check_epoch(fields, time_system) if len(fields) in (6, 7) else None
-            if epoch is None:
+            if epoch is None or (len(fields) == 7 and not fields[6].isdigit()):
                 raise error(lineno, _EPOCH_LINE, line)
+            if epochs:
+                step = _seconds_between(epochs[-1], epoch)
+                if step <= 0:
+                    how = "repeats it" if step == 0 else "is earlier"
+                    raise error(lineno, f"an epoch later than the one on line {epoch_line} "
+                                f"(epochs must increase; this one {how})", line)
             epochs.append(epoch)
+            epoch_line = lineno
             current = len(epochs) - 1
         elif line.startswith("*") or not line.strip() or _OTHER_RECORD.match(line):
             continue
@@ -256,7 +302,24 @@ def _read(name, lines):
         satellites=satellites,
         attitude=attitude,
         quaternion_convention=_convention(frame_type),
+        frame_type=frame_type or None,
     )
+
+
+def _valid_field(key, value):
+    """Whether a description field the reader uses holds a valid value."""
+    if key == "TIME_SYSTEM":
+        return value in TIME_SYSTEMS
+    if key == "FRAME_TYPE":
+        return value in _FRAME_TYPES
+    return bool(value) and len(value.split()) == 1
+
+
+def _seconds_between(earlier, later):
+    """Seconds from one calendar reading to another (leap seconds ignored, as the labels)."""
+    days = (datetime.date(*later[:3]).toordinal() - datetime.date(*earlier[:3]).toordinal())
+    return (days * 86400.0 + (later[3] - earlier[3]) * 3600.0 + (later[4] - earlier[4]) * 60.0
+            + (later[5] - earlier[5]))
 
 
 def read_orbex(source):

@@ -4,8 +4,9 @@
 The format is described in S. Hilla, "The Extended Standard Product 3 Orbit
 Format (SP3-c)" (NGS, 2010) and "(SP3-d)" (NGS, 2016). The reader relies on:
 
-* line 1: ``#`` and the version letter in column 2, the coordinate system in
-  columns 47-51;
+* line 1: ``#`` and the version letter in column 2, the number of epochs in
+  columns 33-39, the coordinate system in columns 47-51;
+* line 2: ``##`` and the epoch interval in seconds in columns 25-38;
 * the ``+`` lines: the number of satellites in columns 4-6 of the first one
   and 17 three-character satellite IDs per line from column 10 (unused slots
   ``  0``). SP3-c has exactly five such lines (at most 85 satellites); SP3-d
@@ -13,13 +14,22 @@ Format (SP3-c)" (NGS, 2010) and "(SP3-d)" (NGS, 2016). The reader relies on:
 * the first ``%c`` line: the time system in columns 10-12;
 * comment lines ``/*`` (four in SP3-c, any number in SP3-d), skipped wherever
   they are in the header;
-* epoch lines ``*  yyyy mm dd hh mm ss.ssssssss``;
+* epoch lines ``*  yyyy mm dd hh mm ss.ssssssss``, increasing by the
+  interval of line 2 or by a whole number of intervals (a gap, recorded in
+  `SP3Data.gaps`);
 * position records ``P<sat>`` with x, y, z in km in columns 5-46 and the
-  clock in microseconds in columns 47-60. A bad or absent position is written
-  as 0.000000 for all three coordinates, a bad or absent clock as
-  999999.999999; both become NaN here. Velocity (``V``) and correlation
-  (``EP``, ``EV``) records are skipped;
+  clock in microseconds in columns 47-60, fixed-point numbers (F14.6). A bad
+  or absent position is written as 0.000000 for all three coordinates, a bad
+  or absent clock as 999999.999999; both become NaN here. Velocity (``V``)
+  and correlation (``EP``, ``EV``) records are skipped;
 * the last line ``EOF``.
+
+What the reader refuses, with a `FileFormatError` naming the line: an epoch
+that repeats or precedes the one before it, or lies off the grid of the
+interval; a number of epochs that disagrees with line 1 (a truncated file
+closed by ``EOF``); a number that is not a fixed-point number, including
+``nan`` and ``inf``; a record cut short inside a number; besides the breaks
+of the layout above.
 
 SP3-a files (satellite IDs as I3 numbers) and SP3-b files are read too; their
 satellite IDs ``'  5'`` or ``'G 5'`` become ``'G05'`` and, when the ``%c`` line
@@ -27,6 +37,8 @@ leaves the time system open, it is GPS time.
 """
 
 import dataclasses
+import datetime
+import re
 
 import numpy as np
 from astropy.time import Time
@@ -47,8 +59,16 @@ __all__ = ["SP3Data", "read_sp3"]
 #: Clock values at or above this (the format writes 999999.999999) are bad or absent.
 BAD_CLOCK = 999999.0
 
+#: Two epochs closer than this (seconds) are the same; an epoch further than
+#: this from a whole number of intervals after the previous one is off the grid.
+EPOCH_TOLERANCE = 1e-5
+
 _VERSIONS = "abcd"
 _POSITION_RECORD = "a position record 'P<sat> x y z clock' (numbers in columns 5-60)"
+# A fixed-point number as the format writes it (F14.6): no exponent, no 'nan' or 'inf'.
+_FIXED = re.compile(r" *-?(\d+\.?\d*|\.\d+)")
+_NOT_FINITE = ("finite numbers in columns 5-60 ('nan' and 'inf' are not SP3 values: a bad "
+               "or absent position is written 0.000000, a bad or absent clock 999999.999999)")
 
 
 @dataclasses.dataclass(frozen=True, eq=False, repr=False)
@@ -76,6 +96,11 @@ class SP3Data:
     clock : dict of str to ndarray, shape (N,)
         Clock correction of each satellite in seconds; NaN where the file has
         no record or marks the clock bad.
+    interval : float
+        Epoch interval of the header (line 2), in seconds.
+    gaps : tuple of (int, int)
+        Where the file skips epochs: pairs ``(i, i + 1)`` of indices into
+        ``epochs`` between which more than one interval passes.
 
     Examples
     --------
@@ -100,6 +125,8 @@ class SP3Data:
     epochs: Time
     positions: dict
     clock: dict
+    interval: float = None
+    gaps: tuple = ()
 
     def __repr__(self):
         nsat = len(self.satellites)
@@ -155,10 +182,11 @@ class _Reader:
         return None
 
     def read(self):
-        version, coordinate_system = self.read_first_lines()
+        version, coordinate_system, nominal = self.read_first_lines()
         satellites, time_system, line = self.read_header(version)
         epochs, records = self.read_data(satellites, time_system, line)
-        return self.build(version, time_system, coordinate_system, satellites, epochs, records)
+        return self.build(version, time_system, coordinate_system, satellites, epochs, records,
+                          nominal)
 
     # --- header ---------------------------------------------------------------
 
@@ -171,12 +199,20 @@ class _Reader:
             raise self.error(expected, first)
         if first[2] not in "PV":
             raise self.error(expected + ", with 'P' or 'V' in column 3", first)
+        count = first[32:39]
+        if not count.strip().isdigit():
+            raise self.error("the number of epochs in columns 33-39 of line 1", first)
         coordinate_system = first[46:51].strip()
         second = self.next_line()
         if second is None or not second.startswith("##"):
             raise self.error("the second header line '## <GPS week> <seconds of week> ...'",
                              second)
-        return first[1], coordinate_system
+        interval = second[24:38]
+        if not _FIXED.fullmatch(interval) or not float(interval) > 0:
+            raise self.error("the epoch interval in seconds, above zero, in columns 25-38 of "
+                             "line 2", second)
+        nominal = {"line": first, "epochs": int(count), "interval": float(interval)}
+        return first[1], coordinate_system, nominal
 
     def read_header(self, version):
         ids = []
@@ -258,22 +294,16 @@ class _Reader:
                         f"a record for one of the {len(satellites)} satellites of the header "
                         f"({', '.join(satellites[:5])}{', ...' if len(satellites) > 5 else ''})",
                         line)
-                try:
-                    x, y, z = float(line[4:18]), float(line[18:32]), float(line[32:46])
-                    clk = line[46:60]
-                    clk = float(clk) if clk.strip() else np.nan
-                except ValueError:
-                    raise self.error(_POSITION_RECORD, line) from None
                 ep_idx.append(len(epochs) - 1)
                 sat_idx.append(k)
                 linenos.append(self.lineno)
-                values.append((x, y, z, clk))
+                values.append(self.parse_record(line))
             elif head == "*":
                 fields = line[1:].split()
                 epoch = check_epoch(fields, time_system) if len(fields) == 6 else None
                 if epoch is None:
                     raise self.error(epoch_expected + " with a valid date and time", line)
-                epochs.append(epoch)
+                epochs.append((epoch, self.lineno, line))
             elif head == "V" or line.startswith(("EP", "EV", "/*")) or not line.strip():
                 pass
             elif line.startswith("EOF"):
@@ -284,9 +314,63 @@ class _Reader:
             line = self.next_line()
         raise self.error("the last line 'EOF' (the file seems truncated)", None)
 
-    def build(self, version, time_system, coordinate_system, satellites, epochs, records):
+    def parse_record(self, line):
+        """x, y, z (km) and clock (microseconds, NaN if blank) of a position record."""
+        if len(line) < 46:
+            raise self.error(_POSITION_RECORD + ", x, y and z complete in columns 5-46", line)
+        fields = [line[4:18], line[18:32], line[32:46]]
+        clock = line[46:60]
+        if clock.strip():
+            fields.append(clock)
+        for field in fields:
+            if not _FIXED.fullmatch(field):
+                text = field.strip().lower().lstrip("+-")
+                if text.startswith(("nan", "inf")) or _is_overflow(field):
+                    raise self.error(_NOT_FINITE, line)
+                raise self.error(_POSITION_RECORD, line)
+        x, y, z = (float(f) for f in fields[:3])
+        return (x, y, z, float(clock) if clock.strip() else np.nan)
+
+    def check_epochs(self, epochs, interval):
+        """Seconds of each epoch after the first, checking the steps; return them and the gaps."""
+        first = epochs[0][0]
+        day0 = datetime.date(*first[:3]).toordinal()
+        offsets = np.array([
+            (datetime.date(*e[:3]).toordinal() - day0) * 86400.0
+            + (e[3] - first[3]) * 3600.0 + (e[4] - first[4]) * 60.0 + (e[5] - first[5])
+            for e, _, _ in epochs])
+        steps = np.diff(offsets)
+        multiples = np.round(steps / interval)
+        off_grid = np.abs(steps - multiples * interval) > EPOCH_TOLERANCE
+        bad = (steps <= EPOCH_TOLERANCE) | off_grid
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            _, previous, _ = epochs[i]
+            _, lineno, line = epochs[i + 1]
+            if steps[i] < -EPOCH_TOLERANCE:
+                what = (f"an epoch later than the one on line {previous} (epochs must "
+                        "increase; this one is earlier)")
+            elif steps[i] <= EPOCH_TOLERANCE:
+                what = (f"an epoch later than the one on line {previous} (this one repeats "
+                        "it)")
+            else:
+                what = (f"an epoch a whole number of {interval:g} s intervals (line 2) after "
+                        f"the one on line {previous} ({steps[i]:.8g} s later)")
+            raise self.error(what, line, lineno=lineno)
+        gaps = tuple((int(i), int(i) + 1) for i in np.flatnonzero(multiples > 1))
+        return offsets, gaps
+
+    def build(self, version, time_system, coordinate_system, satellites, epochs, records,
+              nominal):
         ep_idx, sat_idx, linenos, values = records
         nsat, nep = len(satellites), len(epochs)
+        offsets, gaps = self.check_epochs(epochs, nominal["interval"])
+        span = int(round(offsets[-1] / nominal["interval"])) + 1
+        if nominal["epochs"] not in (nep, span):
+            raise self.error(
+                f"the number of epochs in columns 33-39 of line 1 to count the {nep} epoch "
+                f"lines of the file (or the {span} epochs of its span); is the file cut "
+                "short or joined from several?", nominal["line"], lineno=1)
         dup = first_duplicate(ep_idx, sat_idx, nsat)
         if dup is not None:
             raise self.error(f"one record per satellite and epoch, not a second one for "
@@ -307,10 +391,20 @@ class _Reader:
             time_system=time_system,
             coordinate_system=coordinate_system,
             satellites=satellites,
-            epochs=epochs_to_time(epochs, time_system),
+            epochs=epochs_to_time([e for e, _, _ in epochs], time_system),
             positions={sat: readonly(pos[k]) for k, sat in enumerate(satellites)},
             clock={sat: readonly(clk[k]) for k, sat in enumerate(satellites)},
+            interval=nominal["interval"],
+            gaps=gaps,
         )
+
+
+def _is_overflow(field):
+    """Whether a field reads as a number too large for a float (e.g. '1e999')."""
+    try:
+        return not np.isfinite(float(field))
+    except ValueError:
+        return False
 
 
 def read_sp3(source):
