@@ -33,4 +33,3 @@ class Conf(_config.ConfigNamespace):
 
 
 conf = Conf()
-
