@@ -62,6 +62,8 @@ from .polarization import polarization_sign
 from .satellite import LineOfSight, Satellite
 
 __all__ = [
+    "UNIT_TOLERANCE",
+    "FOCUS_TERMS",
     "ReceiverArrays",
     "receiver_arrays",
     "wind_up",
@@ -509,29 +511,33 @@ def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transve
     Parameters
     ----------
     station_xyz : array-like, shape (A, 3)
-        Geocentric ITRS positions of the antennas, in metres.
+        Geocentric ITRS positions of the antennas, in metres: finite, and
+        Earth stations (see `~astropy_feedrot.frames.check_station_xyz`).
     station_axes : array-like, shape (A, 3, 3)
         East, north and up unit vectors of each site in ITRS (the rows of
-        ``np.stack(local_frame(location))``).
+        ``np.stack(local_frame(location))``), orthonormal and right-handed.
     stationary : array-like of bool, shape (A,)
         True for a crossed dipole fixed to the ground (aligned dipole east,
         transverse north, boresight up, Eq 28), False for a tracking antenna
         turning about ``fixed_axis``.
     target : array-like, shape (T, S, 3) or (T, A, S, 3)
-        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3);
-        or, with ``directions=True``, unit vectors from the antennas to the
-        targets, shape (T, S, 3) (the same for every antenna) or (T, A, S, 3).
+        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3),
+        outside the Earth; or, with ``directions=True``, unit vectors from the
+        antennas to the targets, shape (T, S, 3) (the same for every antenna)
+        or (T, A, S, 3). A vector with a NaN component is missing data.
     aligned, transverse : array-like, shape (T, S, 3), optional
         The transmitters' aligned and transverse dipoles in ITRS (from
-        `nominal_attitude`, or measured). Leave both out for natural sources,
-        whose transmitter dipole is the projected celestial pole (Eq 11).
+        `nominal_attitude`, or measured): orthogonal unit vectors, or NaN
+        where unknown. Leave both out for natural sources, whose transmitter
+        dipole is the projected celestial pole (Eq 11).
     fixed_axis : array-like, shape (A, 3), optional
-        Fixed axis of each tracking mount in ITRS (Eq 10): the up vector for
-        alt-az (the default), ``[0, 0, 1]`` for equatorial, north or east for
-        X-Y. Ignored for stationary antennas.
+        Fixed axis of each tracking mount in ITRS (Eq 10), a unit vector: the
+        up vector for alt-az (the default), ``[0, 0, 1]`` for equatorial,
+        north or east for X-Y. Ignored for stationary antennas.
     focus_terms : array-like, shape (A, 2), optional
-        Multiples of the elevation and the azimuth that the focus adds (see
-        `ReceiverArrays`); zero (a conventional focus) by default.
+        Multiples of the elevation and the azimuth that the focus adds, each
+        row one of `FOCUS_TERMS` (see `ReceiverArrays`); zero (a
+        conventional focus) by default.
     directions : bool, optional
         Whether ``target`` holds directions instead of positions.
     form : {'beyerle', 'wu'}, optional
@@ -543,12 +549,22 @@ def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transve
     ndarray, shape (T, A, S)
         The feed rotation of a right-hand (RCP) receiver in radians, in
         [-pi, pi]; negate it for LCP. NaN where the geometry is degenerate
-        (see `~astropy_feedrot.kernel`), without a warning.
+        (see `~astropy_feedrot.kernel`; a transmitter at an antenna's
+        position too) or a vector is missing (NaN), without a warning.
 
     Raises
     ------
+    TypeError
+        If an array is not numbers, ``stationary`` not booleans or
+        ``directions`` not a bool.
     ValueError
-        If the shapes do not fit (naming both), or for an unknown ``form``.
+        If the shapes do not fit (naming both), for an unknown ``form``, a
+        station that is not on the Earth (NaN, infinite, in km), a unit
+        vector (direction, axis, dipole) whose length is off by more than
+        `UNIT_TOLERANCE` (those within it are normalized), axes that are not
+        an orthonormal right-handed set, dipoles that are not orthogonal,
+        transmitter positions inside the Earth or infinite, or focus terms
+        not in `FOCUS_TERMS`.
 
     Notes
     -----
@@ -872,7 +888,8 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
         S satellites (TLE, SP3 or coordinate orbits; nominal or quaternion
         attitude), or natural sources as one scalar or 1-d coordinate.
     obstime : `~astropy.time.Time`
-        The epochs, scalar or 1-d (T of them).
+        The epochs, scalar or 1-d (T of them); masked epochs give NaN, without
+        a warning.
     polarization : {'RCP', 'LCP'}, optional
         Hand of the receivers: each satellite's own hand by default, RCP for
         natural sources; see `~astropy_feedrot.Antenna.feed_rotation`.
@@ -881,7 +898,7 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
         default, or Eq 31).
     min_elevation : `~astropy.units.Quantity`, optional
         NaN (without a warning) where a target is lower than this above an
-        antenna's horizon.
+        antenna's horizon: one angle in [-90, 90] deg.
 
     Returns
     -------
@@ -894,11 +911,15 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     ------
     TypeError
         If ``antennas`` or ``targets`` hold objects of the wrong kind (a single
-        antenna or satellite must be put in a list).
+        antenna or satellite must be put in a list), ``obstime`` is not a time
+        or ``min_elevation`` a plain number.
     ValueError
         For a multi-dimensional ``obstime``, an unknown ``polarization`` or
-        ``form``, a receiver hand that differs from a satellite's, or an orbit
-        that does not give one position per epoch.
+        ``form``, a receiver hand that differs from a satellite's, an orbit
+        that does not give one position per epoch, or a ``min_elevation``
+        that is not one angle in [-90, 90] deg.
+    astropy.units.UnitsError
+        If ``min_elevation`` is not an angle.
 
     Warns
     -----
@@ -1059,13 +1080,15 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
         Shape (T, A, S), from `feed_rotation_grid` (or, in degrees, from
         `feed_rotation_grid_dask`; only the baselines' columns are computed).
     frequency : `~astropy.units.Quantity`
-        Observing (sky) frequency, positive.
+        Observing (sky) frequency: one positive frequency (not a wavelength,
+        not a plain number).
     baseline : (int, int) or sequence of them, optional
         Indices ``(i, j)`` of the two antennas: the delay is antenna ``j``
         minus antenna ``i``, as ``rotation_delay(antennas[i], antennas[j],
         ...)``. Several pairs give one delay series each.
     obstime : `~astropy.time.Time`, optional
-        The T epochs, needed with ``max_gap``.
+        The T epochs (shape (T,)), needed with ``max_gap``; masked ones
+        restart the series.
     max_gap : `~astropy.units.Quantity`, optional
         Restart the continuous series after longer time steps (see
         `~astropy_feedrot.unwrap`).
@@ -1081,10 +1104,12 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
     Raises
     ------
     TypeError
-        If ``feed_rotation`` is not an angle or dask array.
+        If ``feed_rotation`` is not an angle or dask array, or ``frequency``
+        not a Quantity.
     ValueError
         If ``feed_rotation`` is not (T, A, S), a baseline is not a pair of
-        antenna indices, or ``frequency`` is not positive.
+        antenna indices, ``frequency`` is not one positive finite value, or
+        ``obstime`` does not hold T epochs in order.
     astropy.units.UnitsError
         If ``frequency`` is not a frequency.
 
