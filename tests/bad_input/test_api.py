@@ -597,3 +597,414 @@ def test_get_antenna_epoch_checks():
     with pytest.raises(ValueError, match=r"station A: position at .* is .* from the "
                                          r"geocentre, at a geodetic height"):
         get_antenna("A", catalogue, epoch=far)
+
+
+# --- frequencies that are not one frequency -----------------------------------
+
+FREQUENCY_ERRORS = [
+    (1.4e9, TypeError, r"frequency must be a frequency Quantity \(e.g. 1575.42 \* u.MHz\), "
+                       r"got float 1400000000.0; plain numbers are refused"),
+    (21 * u.cm, u.UnitsError, r"frequency must be a frequency .* got a quantity in cm; for a "
+                              r"wavelength convert it first: wavelength.to\(u.GHz, "
+                              r"equivalencies=u.spectral\(\)\)"),
+    (1 * u.s, u.UnitsError, r"got a quantity in s$"),
+    (1 * u.one, u.UnitsError, r"got a quantity in dimensionless units"),
+    ([1, 2] * u.GHz, ValueError, r"frequency must be a single frequency, got shape \(2,\)"),
+    (0 * u.Hz, ValueError, r"frequency must be positive and finite, got 0.0 Hz"),
+    (-1 * u.GHz, ValueError, r"must be positive and finite"),
+    (np.nan * u.GHz, ValueError, r"must be positive and finite, got nan GHz"),
+    (np.inf * u.GHz, ValueError, r"must be positive and finite, got inf GHz"),
+]
+
+
+@pytest.mark.parametrize("frequency, error, match", FREQUENCY_ERRORS)
+def test_rotation_delay_refuses_what_is_not_a_frequency(frequency, error, match):
+    times = GPS_PASS[:20]
+    with pytest.raises(error, match=match):
+        rotation_delay(DBR, FD, gps_svn76(), times, frequency)
+    with pytest.raises(error, match=match):
+        baseline_table(DBR, FD, gps_svn76(), times, frequency)
+    phi = feed_rotation_grid([DBR, FD], [gps_svn76()], times)
+    with pytest.raises(error, match=match):
+        rotation_delay_grid(phi, frequency)
+
+
+# --- the time axis of a continuous series ------------------------------------
+
+#: Three sources that rise and set over Wettzell in a day.
+SOURCES = SkyCoord(ra=[49.95, 150.0, 280.0] * u.deg, dec=[41.51, 20.0, 75.0] * u.deg)
+
+
+def test_rotation_delay_follows_the_time_axis():
+    wettzell, effelsberg = get_antenna("WETTZ13S"), get_antenna("EFLSBERG")
+    times = DAY[:40]
+    # Reference: one 1-d series per source.
+    single = np.stack([rotation_delay(wettzell, effelsberg, source, times, 8.4 * u.GHz).delay
+                       for source in SOURCES])
+    last = rotation_delay(wettzell, effelsberg, SOURCES[:, np.newaxis], times, 8.4 * u.GHz)
+    first = rotation_delay(wettzell, effelsberg, SOURCES, times[:, np.newaxis], 8.4 * u.GHz)
+    assert last.delay.shape == (3, 40) and first.delay.shape == (40, 3)
+    np.testing.assert_allclose(last.delay.to_value(u.ps), single.to_value(u.ps), atol=1e-9)
+    np.testing.assert_allclose(first.delay.T.to_value(u.ps), single.to_value(u.ps), atol=1e-9)
+    # One epoch: each source is a series of one sample; nothing is carried between them.
+    one = rotation_delay(wettzell, effelsberg, SOURCES, times[5], 8.4 * u.GHz)
+    np.testing.assert_allclose(one.delay.to_value(u.ps), single[:, 5].to_value(u.ps),
+                               atol=1e-9)
+
+
+def test_time_axis_refuses_ambiguity():
+    wettzell, effelsberg = get_antenna("WETTZ13S"), get_antenna("EFLSBERG")
+    grid_of_times = DAY[:6].reshape(2, 3)
+    with pytest.raises(ValueError, match=r"obstime of shape \(2, 3\) runs along axes \[0, 1\] "
+                                         r"of the shape \(2, 3\); a continuous series"):
+        rotation_delay(wettzell, effelsberg, SOURCE, grid_of_times, 8.4 * u.GHz)
+    with pytest.raises(ValueError, match=r"runs along axes \[0, 1\]"):
+        baseline_rr_ll(wettzell, effelsberg, SOURCE, grid_of_times, wrap=False)
+    with pytest.raises(ValueError, match=r"does not broadcast to the shape \(3,\)"):
+        time_axis((2, 3), (3,))
+    assert time_axis((1, 4), (3, 4)) == 1
+
+
+def test_rr_minus_ll_follows_the_time_axis():
+    wettzell, effelsberg = get_antenna("WETTZ13S"), get_antenna("EFLSBERG")
+    times = DAY[:40]
+    rows = baseline_rr_ll(wettzell, effelsberg, SOURCES[:, np.newaxis], times, wrap=False)
+    columns = baseline_rr_ll(wettzell, effelsberg, SOURCES, times[:, np.newaxis], wrap=False)
+    np.testing.assert_allclose(columns.T.deg, rows.deg, atol=1e-9)
+    for i, source in enumerate(SOURCES):
+        np.testing.assert_allclose(
+            rows[i].deg, baseline_rr_ll(wettzell, effelsberg, source, times, wrap=False).deg,
+            atol=1e-9)
+
+
+def test_unwrap_time_axis_and_order():
+    angles = np.radians([[170.0, -170, -150], [10, 20, 30]])
+    times = DAY[:3]
+    with pytest.raises(ValueError, match=r"obstime of shape \(2, 1\) runs along axis 0 of the "
+                                         r"angles of shape \(2, 3\), but axis=1: pass axis=0"):
+        unwrap(angles, obstime=times[:2, np.newaxis])
+    assert unwrap(angles.T, axis=0, obstime=times[:, np.newaxis]).shape == (3, 2)
+    with pytest.raises(ValueError, match="obstime decreases along the time axis; sort the "
+                                         "series by time"):
+        unwrap(angles, obstime=times[::-1])
+    with pytest.raises(ValueError, match=r"axis 2 is out of range for angles with 2 "
+                                         r"dimensions; give one of -2..1"):
+        unwrap(angles, axis=2)
+    with pytest.raises(TypeError, match="axis must be an integer, got float 1.5"):
+        unwrap(angles, axis=1.5)
+
+
+# --- elevation limits that are not one angle in [-90, 90] deg -----------------
+
+ELEVATION_ERRORS = [
+    (np.nan * u.deg, ValueError, r"min_elevation must be within \[-90, 90\] deg, got nan deg"),
+    (10, TypeError, r"min_elevation must be an angle Quantity \(e.g. 10 \* u.deg\) or None, "
+                    r"got int 10; plain numbers are refused"),
+    (10 * u.m, u.UnitsError, r"min_elevation must be an angle .* got a quantity in m"),
+    (95 * u.deg, ValueError, r"within \[-90, 90\] deg, got 95.0 deg"),
+    (-1.6 * u.rad, ValueError, r"within \[-90, 90\] deg, got -1.6 rad"),
+    ([5, 10] * u.deg, ValueError, r"min_elevation must be a single angle, got shape \(2,\)"),
+]
+
+
+@pytest.mark.parametrize("limit, error, match", ELEVATION_ERRORS)
+def test_elevation_limit_refused_everywhere(limit, error, match):
+    times = GPS_PASS[:20]
+    calls = [
+        lambda: FD.feed_rotation(gps_svn76(), times, min_elevation=limit),
+        lambda: FD.feed_rotation_terms(SOURCE, times, min_elevation=limit),
+        lambda: feed_rotation_grid([DBR, FD], [gps_svn76()], times, min_elevation=limit),
+        lambda: feed_rotation_grid_dask([DBR, FD], SOURCE, times, min_elevation=limit),
+        lambda: feed_rotation_table(FD, gps_svn76(), times, min_elevation=limit),
+        lambda: baseline_table(DBR, FD, gps_svn76(), times, L1, min_elevation=limit),
+        lambda: rotation_delay(DBR, FD, gps_svn76(), times, L1, min_elevation=limit),
+        lambda: baseline_rr_ll(DBR, FD, SOURCE, times, min_elevation=limit),
+    ]
+    for call in calls:
+        with pytest.raises(error, match=match):
+            call()
+
+
+def test_elevation_limit_edges():
+    assert as_elevation_limit(None) is None
+    assert as_elevation_limit(90 * u.deg) == np.pi / 2
+    assert as_elevation_limit(-90 * u.deg) == -np.pi / 2
+    below = FD.feed_rotation(gps_svn76(), GPS_PASS[:20], min_elevation=90 * u.deg)
+    assert np.all(np.isnan(below))
+    every = FD.feed_rotation(gps_svn76(), GPS_PASS[:20], min_elevation=-90 * u.deg)
+    assert np.all(np.isfinite(every))
+
+
+# --- unwrap: masked arrays, units, kinds -----------------------------------
+
+
+def test_unwrap_honours_masks_of_masked_arrays():
+    degrees = np.array([170.0, -170, 0, -150, 170, -170])
+    mask = np.array([False, False, True, False, False, False])
+    expected = unwrap(degrees * u.deg, mask=mask)
+    # NaN at the masked sample (its value, 0, is never used) and a restart after it.
+    np.testing.assert_allclose(expected.deg, [170, 190, np.nan, -150, -190, -170])
+    numpy_masked = unwrap(np.ma.masked_array(np.radians(degrees), mask=mask))
+    np.testing.assert_allclose(numpy_masked.to_value(u.deg), expected.deg)
+    astropy_masked = unwrap(Masked(degrees * u.deg, mask=mask))
+    assert astropy_masked.unit == u.deg and not isinstance(astropy_masked, Masked)
+    np.testing.assert_allclose(astropy_masked.deg, expected.deg)
+
+
+@pytest.mark.parametrize("angle, kwargs, error, match", [
+    ([1, 2] * u.m, {}, u.UnitsError, "angle must be an angle .* got a quantity in m"),
+    (np.array(["a", "b"], dtype=object), {}, TypeError,
+     "angle must be an angle Quantity or numbers .* dtype object"),
+    ("abc", {}, TypeError, r"dtype <U3"),
+    ([1.0, 2.0], {"mask": ["yes", "no"]}, TypeError, r"mask must be booleans, got dtype <U3"),
+    ([1.0, 2.0], {"mask": [True, False, True]}, ValueError,
+     r"angle has shape \(2,\), mask has shape \(3,\)"),
+    ([1.0, 2.0], {"obstime": DAY[:2], "max_gap": 5}, TypeError,
+     "max_gap must be a time Quantity .* got int 5"),
+    ([1.0, 2.0], {"obstime": DAY[:2], "max_gap": 5 * u.m}, u.UnitsError,
+     "max_gap must be a time .* got a quantity in m"),
+    ([1.0, 2.0], {"obstime": DAY[:2], "max_gap": -5 * u.min}, ValueError,
+     "max_gap must be one positive finite time, got -5.0 min"),
+    ([1.0, 2.0], {"obstime": [1.0, 2.0]}, TypeError,
+     "obstime must be an astropy Time .* plain numbers; their format cannot be guessed"),
+])
+def test_unwrap_refuses(angle, kwargs, error, match):
+    with pytest.raises(error, match=match):
+        unwrap(angle, **kwargs)
+
+
+def test_unwrap_accepts_dimensionless_and_object_numbers():
+    np.testing.assert_allclose(unwrap([3.0, -3.0] * u.one).value, [3.0, 2 * np.pi - 3.0])
+    np.testing.assert_allclose(unwrap(np.array([3.0, -3.0], dtype=object)).value,
+                               [3.0, 2 * np.pi - 3.0])
+    assert unwrap([] * u.deg).shape == (0,)
+
+
+# --- wind_up on plain arrays -------------------------------------------------
+
+ENU = np.array([[[0.0, 1, 0], [0, 0, 1], [1, 0, 0]]])  # east, north, up at lon 0, lat 0
+ON_EQUATOR = [[6.378137e6, 0, 0]]
+C30, S30 = np.cos(np.radians(30)), np.sin(np.radians(30))
+OVERHEAD = [[[2.6e7, 1e6, 2e6]]]
+ALIGNED, TRANSVERSE = [[[0, C30, S30]]], [[[0, S30, -C30]]]
+DIRECTION = np.array([[[0.6, 0.0, 0.8]]])
+
+
+@pytest.mark.parametrize("kwargs, error, match", [
+    (dict(station_xyz=[[np.nan, 0, 0]]), ValueError,
+     r"station_xyz\[0\] has a NaN or infinite coordinate"),
+    (dict(station_xyz=[[6378.137, 0, 0]]), ValueError,
+     r"station_xyz\[0\] is 6378 m from the geocentre"),
+    (dict(station_xyz=[["a", 0, 0]]), TypeError, "station_xyz must be an array of numbers"),
+    (dict(station_axes=2 * ENU), ValueError,
+     r"station_axes must be unit vectors .* station_axes\[0, 0\] has length 2"),
+    (dict(station_axes=ENU[:, [1, 0, 2]]), ValueError,
+     r"station_axes\[0\] must hold east, north and up as an orthonormal right-handed set"),
+    (dict(stationary=["False"]), TypeError, "stationary must be booleans"),
+    (dict(stationary=[0.5]), TypeError, "stationary must be booleans"),
+    (dict(target=[[[2.6e4, 0, 0]]]), ValueError,
+     r"target\[0, 0\] is 26000 m from the geocentre, inside the Earth; .* \(kilometres\?\)"),
+    (dict(target=[[[np.inf, 0, 0]]]), ValueError, "target positions have infinite components"),
+    (dict(aligned=[[[0, 2 * C30, 2 * S30]]]), ValueError,
+     r"aligned must be unit vectors .* aligned\[0, 0\] has length 2"),
+    (dict(aligned=[[[0, 0, 0]]]), ValueError, "has length 0; normalize them .* a zero vector "
+                                              "has no direction"),
+    (dict(transverse=ALIGNED), ValueError,
+     r"aligned\[0, 0\] and transverse\[0, 0\] must be orthogonal"),
+    (dict(fixed_axis=[[0, 0, 0]]), ValueError, r"fixed_axis\[0\] has length 0"),
+    (dict(focus_terms=[[0.5, 0]]), ValueError,
+     r"focus_terms\[0\] is \[0.5, 0.0\]; it must be one of \[\(0, 0\), \(1, 0\)"),
+    (dict(directions="yes"), TypeError, "directions must be True or False, got 'yes'"),
+])
+def test_wind_up_refuses(kwargs, error, match):
+    arguments = dict(station_xyz=ON_EQUATOR, station_axes=ENU, stationary=[True],
+                     target=OVERHEAD, aligned=ALIGNED, transverse=TRANSVERSE)
+    arguments.update(kwargs)
+    with pytest.raises(error, match=match):
+        wind_up(**arguments)
+
+
+@pytest.mark.parametrize("scale, match", [(2.0, "has length 2"), (0.0, "has length 0")])
+def test_wind_up_refuses_directions_that_are_not_unit(scale, match):
+    with pytest.raises(ValueError, match=r"target directions must be unit vectors \(length "
+                                         r"within 1e-06 of 1\), but target directions\[0, 0\] "
+                                         + match):
+        wind_up(ON_EQUATOR, ENU, [False], scale * DIRECTION, directions=True)
+
+
+def test_wind_up_normalizes_rounding_and_keeps_missing_data():
+    exact = wind_up(ON_EQUATOR, ENU, [False, ], DIRECTION, directions=True)
+    rounded = wind_up(ON_EQUATOR, ENU, [False], DIRECTION * (1 + 5e-7), directions=True)
+    assert np.array_equal(exact, rounded)
+    # A NaN direction or position is missing data: NaN, without a warning.
+    missing = np.concatenate([DIRECTION, np.full((1, 1, 3), np.nan)], axis=1)
+    phi = wind_up(ON_EQUATOR, ENU, [False], missing, directions=True)
+    assert np.isfinite(phi[0, 0, 0]) and np.isnan(phi[0, 0, 1])
+    # A transmitter at the antenna: no line of sight, NaN.
+    assert np.isnan(wind_up(ON_EQUATOR, ENU, [False], [ON_EQUATOR])[0, 0, 0])
+
+
+def test_receiver_arrays_pass_the_checks():
+    # What receiver_arrays builds from Antenna objects is what wind_up accepts.
+    arrays = receiver_arrays([DBR, FD, get_antenna("YEBES40M", focus=NasmythFocus("right"))])
+    s = np.array([[[0.3, -0.8, 0.52]]]) / np.linalg.norm([0.3, -0.8, 0.52])
+    assert wind_up(*arrays[:3], s, fixed_axis=arrays.fixed_axis,
+                   focus_terms=arrays.focus_terms, directions=True).shape == (1, 3, 1)
+
+
+# --- moving stars: proper motion is applied from the coordinate's epoch -------
+
+#: Barnard's star, Gaia DR2 (Gaia Collaboration, Brown et al. 2018, A&A 616,
+#: A1): position at the epoch J2015.5 (TCB), proper motion, parallax 547.45
+#: mas (1.8266 pc), and the radial velocity.
+BARNARD = SkyCoord(ra=269.452075 * u.deg, dec=4.693391 * u.deg,
+                   pm_ra_cosdec=-801.551 * u.mas / u.yr, pm_dec=10362.394 * u.mas / u.yr,
+                   distance=1.8266 * u.pc, radial_velocity=-110.6 * u.km / u.s,
+                   obstime=Time("J2015.5", scale="tcb"))
+
+
+def _astropy_parallactic_angle(coord, site, times):
+    """ERFA's hd2pa of astropy's HADec of a coordinate moved to the epochs."""
+    moved = coord.apply_space_motion(new_obstime=times)
+    # Positions only: astropy cannot carry velocities of a star without distance.
+    moved = SkyCoord(moved.frame.realize_frame(moved.data.without_differentials()))
+    hadec = moved.transform_to(HADec(obstime=times, location=site))
+    return erfa.hd2pa(hadec.ha.rad, hadec.dec.rad, site.lat.rad)
+
+
+@pytest.mark.parametrize("n", [1, 3, 20])
+def test_proper_motion_is_applied(n):
+    site = SITES["YEBES"]
+    antenna = Antenna(site, EquatorialMount())
+    # Ten years after the catalogue epoch, over a night.
+    times = Time("2025-07-02T20:00") + np.arange(n) * 20 * u.min
+    psi = antenna.parallactic_angle(BARNARD, times)
+    expected = _astropy_parallactic_angle(BARNARD, site, times)
+    assert np.max(np.abs(psi.rad - expected)) < 1 * MAS
+    # Without the motion (104 arcsec in ten years) the angle would differ by far more.
+    static = SkyCoord(BARNARD.frame.realize_frame(BARNARD.data.without_differentials()))
+    assert np.min(np.abs(antenna.parallactic_angle(static, times).rad - expected)) > 1000 * MAS
+    grid = feed_rotation_grid([Antenna(site, AltAzMount())], BARNARD.reshape((1,)), times)
+    np.testing.assert_allclose(np.radians(grid.deg[..., 0, 0]), np.atleast_1d(expected),
+                               rtol=0, atol=MAS)
+
+
+def test_proper_motion_needs_an_epoch():
+    moving = SkyCoord(ra=269.45 * u.deg, dec=4.69 * u.deg, pm_ra_cosdec=-801.551 * u.mas / u.yr,
+                      pm_dec=10362.394 * u.mas / u.yr)
+    with pytest.raises(ValueError, match=r"target has a proper motion or radial velocity but "
+                                         r"no epoch for its position; give the catalogue "
+                                         r"epoch, e.g. SkyCoord\(..., obstime="):
+        get_antenna("YEBES40M").feed_rotation(moving, DAY[:3])
+    # No motion at all needs no epoch.
+    still = SkyCoord(ra=269.45 * u.deg, dec=4.69 * u.deg, pm_ra_cosdec=0 * u.mas / u.yr,
+                     pm_dec=0 * u.mas / u.yr)
+    antenna = get_antenna("WETTZ13S")
+    assert np.array_equal(antenna.feed_rotation(still, DAY[:3]),
+                          antenna.feed_rotation(SkyCoord(ra=269.45 * u.deg, dec=4.69 * u.deg),
+                                                DAY[:3]))
+
+
+def test_proper_motion_without_distance():
+    # ERFA takes a star without parallax as very distant (and says so; not us).
+    site = SITES["WETTZ13S"]
+    star = SkyCoord(ra=269.452075 * u.deg, dec=4.693391 * u.deg,
+                    pm_ra_cosdec=-801.551 * u.mas / u.yr, pm_dec=10362.394 * u.mas / u.yr,
+                    obstime=Time("J2015.5", scale="tcb"))
+    times = Time("2025-07-02T20:00") + np.arange(3) * u.hour
+    psi = Antenna(site, EquatorialMount()).parallactic_angle(star, times)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", erfa.ErfaWarning)
+        expected = _astropy_parallactic_angle(star, site, times)
+    assert np.max(np.abs(psi.rad - expected)) < 1 * MAS
+
+
+# --- other hostile inputs at the edge ----------------------------------------
+
+
+@pytest.mark.parametrize("obstime, match", [
+    (DAY - DAY[0], r"got a TimeDelta \(a duration\); add it to a start epoch"),
+    (np.arange(3.0), r"got ndarray of plain numbers; their format cannot be guessed: say it, "
+                     r"e.g. Time\(values, format='mjd', scale='utc'\)"),
+    (59969.5, "got float of plain numbers"),
+    (3 * u.hour, r"got a Quantity in h; add durations to a start epoch"),
+    (np.array([1.0, "x"], dtype=object), "got ndarray: Input values did not match"),
+    ([["2023-01-25"], ["2023-01-25", "2023-01-26"]], "got list"),
+])
+def test_obstime_refused(obstime, match):
+    with pytest.raises(TypeError, match="obstime must be an astropy Time.*" + match):
+        get_antenna("WETTZ13S").feed_rotation(SOURCE, obstime)
+
+
+def test_obstime_kinds_accepted():
+    antenna = get_antenna("WETTZ13S")
+    reference = antenna.feed_rotation(SOURCE, DAY[:2])
+    as_objects = np.array([DAY[0], DAY[1]], dtype=object)
+    as_datetime64 = DAY[:2].datetime64
+    for obstime in (as_objects, as_datetime64, DAY[:2].isot.tolist()):
+        np.testing.assert_allclose(antenna.feed_rotation(SOURCE, obstime).deg, reference.deg,
+                                   rtol=0, atol=1e-9)
+
+
+def test_empty_epochs_give_empty_results():
+    antenna = get_antenna("WETTZ13S")
+    none = DAY[:0]
+    assert antenna.feed_rotation(SOURCE, none).shape == (0,)
+    assert DBR.feed_rotation(gps_svn76(), none).shape == (0,)
+    assert antenna.altaz(SOURCE, none)[1].shape == (0,)
+    assert feed_rotation_grid([DBR, FD], [gps_svn76()], none).shape == (0, 2, 1)
+    assert len(feed_rotation_table(antenna, SOURCE, none)) == 0
+    assert rotation_delay(DBR, FD, gps_svn76(), none, L1).delay.shape == (0,)
+
+
+def test_tables_take_one_target():
+    sources = SkyCoord([1, 2] * u.deg, [3, 4] * u.deg)
+    with pytest.raises(ValueError, match=r"a table follows one target, got a coordinate of "
+                                         r"shape \(2,\); make one table per source"):
+        feed_rotation_table(get_antenna("WETTZ13S"), sources, DAY[:3])
+    with pytest.raises(ValueError, match="a table follows one target"):
+        baseline_table(DBR, FD, sources, DAY[:3], L1)
+    with pytest.raises(TypeError, match="target must be an astropy SkyCoord"):
+        feed_rotation_table(FD, "3C 84", DAY[:3])
+    one = feed_rotation_table(get_antenna("WETTZ13S"), SOURCE.reshape((1, 1)), DAY[:3])
+    assert one["total"].shape == (3,)
+
+
+def test_baseline_summary_needs_a_baseline_table():
+    single = feed_rotation_table(get_antenna("WETTZ13S"), SOURCE, DAY[:3])
+    with pytest.raises(ValueError, match="table is not from baseline_table: its meta has no "
+                                         "'antennas' pair"):
+        baseline_summary(single)
+    with pytest.raises(TypeError, match="table must be an astropy Table from baseline_table, "
+                                        "got dict"):
+        baseline_summary({"antennas": ["A", "B"]})
+    table = baseline_table(DBR, FD, gps_svn76(), GPS_PASS[:10], L1)
+    del table["rotation_delay"]
+    with pytest.raises(ValueError, match="table is not from baseline_table: it lacks "
+                                         "rotation_delay"):
+        baseline_summary(table)
+
+
+def test_correction_reads_masked_angles_as_nan():
+    angles = Masked([10.0, 20.0] * u.deg, mask=[False, True])
+    corrected = correct_phase([100.0, 100.0] * u.deg, angles)
+    assert corrected[0] == 90 * u.deg and np.isnan(corrected[1])
+
+
+def test_correction_keeps_the_mask_of_visibilities():
+    values = np.exp(1j * np.radians([[10.0, -10.0], [30.0, 50.0]]))
+    mask = np.array([[False, True], [False, False]])
+    numpy_masked = correct_visibilities(np.ma.masked_array(values, mask), 5 * u.deg,
+                                        15 * u.deg, ("RR", "LL"))
+    assert isinstance(numpy_masked, np.ma.MaskedArray)
+    assert np.array_equal(numpy_masked.mask, mask)
+    astropy_masked = correct_visibilities(Masked(values * u.Jy, mask=mask), 5 * u.deg,
+                                          15 * u.deg, ("RR", "LL"))
+    assert isinstance(astropy_masked, Masked) and astropy_masked.unit == u.Jy
+    assert np.array_equal(astropy_masked.mask, mask)
+    # Linear feeds mix the four products of a sample: one flag flags the sample.
+    linear = np.ones((2, 4), complex)
+    flags = np.array([[False, False, True, False], [False] * 4])
+    out = correct_linear_visibilities(np.ma.masked_array(linear, flags), 30 * u.deg,
+                                      30 * u.deg)
+    assert out.mask.tolist() == [[True] * 4, [False] * 4]
