@@ -195,8 +195,9 @@ class StationCatalogue:
             if not speed[row] <= MAX_VELOCITY.to_value(u.m / u.yr):  # NaN too
                 raise ValueError(
                     f"{where}: velocity is {speed[row]:.4g} m/yr; station velocities are "
-                    f"below {MAX_VELOCITY.to_value(u.m / u.yr):g} m/yr (plate motions, < 0.2 m/yr): check the unit of "
-                    "vx, vy, vz (mm/yr labelled m/yr? m/s instead of m/yr?)"
+                    f"below {MAX_VELOCITY.to_value(u.m / u.yr):g} m/yr (plate motions, "
+                    "< 0.2 m/yr): check the unit of vx, vy, vz (mm/yr labelled m/yr? m/s "
+                    "instead of m/yr?)"
                 )
             if np.any(self._velocity[row].value != 0) and np.isnan(self._epoch[row]):
                 raise ValueError(f"{where}: a velocity needs the epoch (MJD) of the position")
