@@ -13,7 +13,9 @@ from .exceptions import DegenerateGeometryWarning
 from .focus import CassegrainFocus, Focus
 from .frames import (
     VERTICALS,
+    as_elevation_limit,
     as_location,
+    check_station_xyz,
     horizontal,
     local_frame,
     location_xyz,
@@ -86,7 +88,9 @@ class Antenna:
     Parameters
     ----------
     location : `~astropy.coordinates.EarthLocation`
-        The antenna's reference point (a single site).
+        The antenna's reference point: a single site on the Earth, with a
+        geodetic height between -12 and +100 km (see
+        `~astropy_feedrot.frames.STATION_HEIGHTS`).
     mount : `~astropy_feedrot.mounts.Mount`
         `AltAzMount`, `EquatorialMount`, `XYMount`, `FixedAxisMount` or
         `StationaryMount`.
@@ -108,8 +112,10 @@ class Antenna:
     TypeError
         If an argument is not of the expected kind.
     ValueError
-        If ``location`` is not a single site, for an unknown ``vertical``, or if
-        ``focus`` does not fit ``mount``.
+        If ``location`` is not a single site, has a NaN or infinite
+        coordinate, or is not an Earth station (the geocentre, coordinates in
+        km read as m, a height beyond 100 km), for an unknown ``vertical``, or
+        if ``focus`` does not fit ``mount``.
 
     Examples
     --------
@@ -134,6 +140,7 @@ class Antenna:
                 f"an Antenna has one location, got an array of shape {self.location.shape}; "
                 "make one Antenna per site"
             )
+        check_station_xyz(location_xyz(self.location), "location")
         self.mount = _check_instance(mount, Mount, "mount")
         if focus is None:
             focus = CassegrainFocus()
@@ -183,11 +190,10 @@ class Antenna:
             return target._receiver_sign(polarization)
         return polarization_sign("RCP" if polarization is None else polarization)
 
-    def _below(self, s, min_elevation):
-        """Where the line of sight is below ``min_elevation`` (all False for None)."""
-        if min_elevation is None:
+    def _below(self, s, limit):
+        """Where the line of sight is below ``limit`` (radians; all False for None)."""
+        if limit is None:
             return np.zeros(s.shape[:-1], dtype=bool)
-        limit = u.Quantity(min_elevation).to_value(u.rad)
         return horizontal(s, self._local)[1] < limit
 
     def _receiver_phase(self, s, t):
@@ -233,9 +239,13 @@ class Antenna:
         Parameters
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
-            Natural source(s) in any celestial frame, or a satellite.
+            Natural source(s) in any celestial frame, or a satellite. A
+            proper motion or radial velocity is applied from the coordinate's
+            ``obstime`` (its catalogue epoch) to each epoch of observation
+            (see `~astropy_feedrot.frames.at_epochs`).
         obstime : `~astropy.time.Time`
-            Epoch(s) of observation (UTC scale or any other).
+            Epoch(s) of observation (UTC scale or any other). Masked epochs
+            give NaN, without a warning.
         polarization : {'RCP', 'LCP'}, optional
             Hand of the receiver: RCP by default for a natural source, the
             satellite's hand for a satellite. The LCP feed rotation is the
@@ -246,8 +256,9 @@ class Antenna:
             are identical for tracking antennas and natural sources.
         min_elevation : `~astropy.units.Quantity`, optional
             Return NaN (without warning) where the target is lower than this
-            above the antenna's horizon. By default angles are computed for
-            every epoch, below the horizon too.
+            above the antenna's horizon: one angle in [-90, 90] deg. By
+            default angles are computed for every epoch, below the horizon
+            too.
 
         Returns
         -------
@@ -265,11 +276,17 @@ class Antenna:
         Raises
         ------
         TypeError
-            If ``target`` is not a coordinate or ``obstime`` not a time.
+            If ``target`` is not a coordinate, ``obstime`` not a time (plain
+            numbers, a `~astropy.time.TimeDelta`), or ``min_elevation`` a
+            plain number.
         ValueError
             For an unknown ``polarization`` or ``form``, a receiver hand that
-            differs from a satellite's, a frame without data, or shapes of
-            ``target`` and ``obstime`` that do not broadcast.
+            differs from a satellite's, a frame without data, a moving target
+            without an epoch, shapes of ``target`` and ``obstime`` that do
+            not broadcast, or a ``min_elevation`` that is NaN, not a single
+            value or outside [-90, 90] deg.
+        astropy.units.UnitsError
+            If ``min_elevation`` is not an angle.
 
         Warns
         -----
@@ -304,11 +321,14 @@ class Antenna:
         >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
-        return self._feed_rotation_of(self._line_of_sight(target, obstime),
-                                      self._sign(target, polarization), form, min_elevation)
+        sign = self._sign(target, polarization)
+        limit = as_elevation_limit(min_elevation)
+        if form not in FORMS + (None,):
+            raise ValueError(f"form must be one of {FORMS}, got {form!r}")
+        return self._feed_rotation_of(self._line_of_sight(target, obstime), sign, form, limit)
 
-    def _feed_rotation_of(self, los, sign, form=None, min_elevation=None):
-        below = self._below(los.s, min_elevation)
+    def _feed_rotation_of(self, los, sign, form=None, limit=None):
+        below = self._below(los.s, limit)
         return self._finish(sign * self._phase(los, form), los.s, below=below)
 
     def feed_rotation_terms(self, target, obstime, polarization=None, min_elevation=None):
@@ -317,9 +337,9 @@ class Antenna:
         Parameters
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
-            Natural source(s) or a satellite.
+            Natural source(s) or a satellite, as for `feed_rotation`.
         obstime : `~astropy.time.Time`
-            Epoch(s) of observation.
+            Epoch(s) of observation; masked epochs give NaN.
         polarization : {'RCP', 'LCP'}, optional
             As for `feed_rotation`; LCP flips the signs of both terms.
         min_elevation : `~astropy.units.Quantity`, optional
@@ -331,6 +351,11 @@ class Antenna:
             Named tuple ``(transmitter, receiver, total)`` of
             `~astropy.coordinates.Angle` in degrees; ``transmitter + receiver``
             equals ``total`` modulo 360 deg.
+
+        Raises
+        ------
+        TypeError, ValueError, astropy.units.UnitsError
+            As for `feed_rotation`.
 
         Notes
         -----
@@ -356,11 +381,12 @@ class Antenna:
         >>> (sum_of_terms - terms.total).wrap_at(180 * u.deg)  # doctest: +FLOAT_CMP
         <Angle 0. deg>
         """
-        return self._terms_of(self._line_of_sight(target, obstime),
-                              self._sign(target, polarization), min_elevation)
+        sign = self._sign(target, polarization)
+        limit = as_elevation_limit(min_elevation)
+        return self._terms_of(self._line_of_sight(target, obstime), sign, limit)
 
-    def _terms_of(self, los, sign, min_elevation=None):
-        below = self._below(los.s, min_elevation)
+    def _terms_of(self, los, sign, limit=None):
+        below = self._below(los.s, limit)
         transmitter = self._finish(sign * kernel.transmitter_term(los.s, los.t), los.s,
                                    "transmitter term", below)
         natural = kernel.project(kernel.NORTH_POLE, los.s)
@@ -379,9 +405,9 @@ class Antenna:
         Parameters
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
-            Natural source(s) or a satellite.
+            Natural source(s) or a satellite, as for `feed_rotation`.
         obstime : `~astropy.time.Time`
-            Epoch(s) of observation.
+            Epoch(s) of observation; masked epochs give NaN.
 
         Returns
         -------
@@ -415,9 +441,9 @@ class Antenna:
         Parameters
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
-            Natural source(s) or a satellite.
+            Natural source(s) or a satellite, as for `feed_rotation`.
         obstime : `~astropy.time.Time`
-            Epoch(s) of observation.
+            Epoch(s) of observation; masked epochs give NaN.
 
         Returns
         -------

@@ -20,16 +20,22 @@ Conventions (see ``docs/correction.rst`` for the derivation):
   (``PJones``): :math:`\\mathrm{diag}(e^{-i\\Phi}, e^{i\\Phi})` for circular
   feeds and :math:`[[\\cos\\Phi, \\sin\\Phi], [-\\sin\\Phi, \\cos\\Phi]]` for
   linear ones.
+* Masked inputs: a masked angle (astropy's `~astropy.utils.masked.Masked`
+  quantities) counts as NaN; masked visibilities (`numpy.ma.MaskedArray` or
+  `~astropy.utils.masked.Masked`) come back with their mask, of the same
+  kind (for linear feeds a sample's four products share it, since the
+  correction mixes them).
 """
 
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle
+from astropy.utils.masked import Masked
 
 from . import kernel
 from .antenna import Antenna
 from .continuity import unwrap
-from .frames import broadcast_shape
+from .frames import as_time, broadcast_shape, time_axis
 from .polarization import polarization_sign
 from .satellite import Satellite
 
@@ -53,7 +59,11 @@ LINEAR_PRODUCTS = ("XX", "XY", "YX", "YY")
 
 
 def _radians(value, name):
-    """An angle Quantity as a float ndarray in radians; anything else is refused."""
+    """An angle Quantity as a float ndarray in radians (NaN where masked); else refused."""
+    mask = None
+    if isinstance(value, Masked):
+        mask = np.array(value.mask, dtype=bool)
+        value = value.unmasked
     if not isinstance(value, u.Quantity):
         raise TypeError(
             f"{name} must be an angle Quantity or Angle (e.g. 30 * u.deg), got "
@@ -66,7 +76,8 @@ def _radians(value, name):
             f"{value.unit.to_string() or 'dimensionless units'}; attach an angle unit, "
             "e.g. value * u.rad"
         )
-    return np.asarray(value.to_value(u.rad), dtype=float)
+    radians = np.asarray(value.to_value(u.rad), dtype=float)
+    return radians if mask is None else np.where(mask, np.nan, radians)
 
 
 def _to_angle(radians, unit=u.deg):
@@ -123,7 +134,14 @@ def _products(products, valid, all_required):
 
 
 def _visibilities(visibilities, names):
-    """The complex values (ndarray) and unit (or None) of a visibility array."""
+    """The complex values (ndarray), unit (or None) and mask (see `_finish`)."""
+    mask = None
+    if isinstance(visibilities, Masked):
+        mask = ("astropy", np.array(visibilities.mask, dtype=bool))
+        visibilities = visibilities.unmasked
+    elif np.ma.isMaskedArray(visibilities):
+        mask = ("numpy", np.ma.getmaskarray(visibilities))
+        visibilities = np.ma.getdata(visibilities)
     unit = None
     if isinstance(visibilities, u.Quantity):
         unit = visibilities.unit
@@ -140,12 +158,17 @@ def _visibilities(visibilities, names):
             f"the last axis of visibilities must hold the {len(names)} products "
             f"{names}, got shape {values.shape}"
         )
-    return values, unit
+    return values, unit, mask
 
 
-def _finish(values, dtype, unit):
+def _finish(values, dtype, unit, mask=None):
+    """Values of ``dtype``, with the unit and the mask (its kind and flags) given back."""
     values = values.astype(dtype, copy=False)
-    return values if unit is None else u.Quantity(values, unit, copy=False)
+    values = values if unit is None else u.Quantity(values, unit, copy=False)
+    if mask is None:
+        return values
+    kind, flags = mask
+    return Masked(values, mask=flags) if kind == "astropy" else np.ma.MaskedArray(values, flags)
 
 
 # --- single antenna ------------------------------------------------------------
@@ -243,8 +266,8 @@ def correct_visibilities(visibilities, feed_rotation1, feed_rotation2, products)
     -------
     `~numpy.ndarray` or `~astropy.units.Quantity`
         New corrected visibilities, of the same shape, dtype (complex64 stays
-        complex64) and unit as ``visibilities``; NaN where an angle is NaN.
-        The input is not modified.
+        complex64), unit and mask as ``visibilities``; NaN where an angle is
+        NaN or masked. The input is not modified.
 
     Raises
     ------
@@ -281,14 +304,14 @@ def correct_visibilities(visibilities, feed_rotation1, feed_rotation2, products)
     array([10., 10.])
     """
     names = _products(products, CIRCULAR_PRODUCTS, all_required=False)
-    values, unit = _visibilities(visibilities, names)
+    values, unit, mask = _visibilities(visibilities, names)
     phi1 = _radians(feed_rotation1, "feed_rotation1")
     phi2 = _radians(feed_rotation2, "feed_rotation2")
     _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
     hand1 = np.array([polarization_sign(name[0]) for name in names], dtype=float)
     hand2 = np.array([polarization_sign(name[1]) for name in names], dtype=float)
     angle = phi1[..., np.newaxis] * hand1 - phi2[..., np.newaxis] * hand2
-    return _finish(values * np.exp(1j * angle), values.dtype, unit)
+    return _finish(values * np.exp(1j * angle), values.dtype, unit, mask)
 
 
 # --- linear feeds --------------------------------------------------------------
@@ -365,8 +388,9 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
     -------
     `~numpy.ndarray` or `~astropy.units.Quantity`
         New visibilities :math:`R(\\Phi_1)\\,V\\,R(\\Phi_2)^T` in the frame of
-        (north, east) dipoles, same shape, dtype and unit as the input; the
-        input is not modified.
+        (north, east) dipoles, same shape, dtype and unit as the input; masked
+        as the input, a sample wholly where any of its products is; the input
+        is not modified.
 
     Raises
     ------
@@ -408,7 +432,10 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
     True
     """
     names = _products(products, LINEAR_PRODUCTS, all_required=True)
-    values, unit = _visibilities(visibilities, names)
+    values, unit, mask = _visibilities(visibilities, names)
+    if mask is not None:  # R V R^T mixes the four products of a sample
+        mask = (mask[0], np.broadcast_to(np.any(mask[1], axis=-1, keepdims=True),
+                                         values.shape).copy())
     phi1 = _radians(feed_rotation1, "feed_rotation1")
     phi2 = _radians(feed_rotation2, "feed_rotation2")
     _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
@@ -417,7 +444,7 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
     corrected = _rotation(phi1) @ matrix @ np.swapaxes(_rotation(phi2), -1, -2)
     out = np.empty(values.shape, dtype=np.result_type(values.dtype, corrected.dtype))
     out[..., order] = corrected.reshape(values.shape)
-    return _finish(out, values.dtype, unit)
+    return _finish(out, values.dtype, unit, mask)
 
 
 # --- the dual-polarization check (Eq 46) ----------------------------------------
@@ -490,11 +517,12 @@ def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation
     target : `~astropy.coordinates.SkyCoord`
         Natural source(s), weakly polarized.
     obstime : `~astropy.time.Time`
-        Epoch(s); with ``wrap=False`` time must be the last axis of the
-        broadcast shape.
+        Epoch(s); masked epochs give NaN. With ``wrap=False`` the series runs
+        along the one axis of the broadcast shape along which the epochs run
+        (as for `~astropy_feedrot.rotation_delay`).
     wrap : bool, optional
         Wrap to (-180, 180] deg (default). If False, :math:`\\Phi_2 - \\Phi_1`
-        is made continuous along the last axis (Eq 9, see
+        is made continuous along the time axis (Eq 9, see
         `~astropy_feedrot.unwrap`), starting each segment in (-180, 180] deg,
         and then doubled.
     min_elevation : `~astropy.units.Quantity`, optional
@@ -516,7 +544,8 @@ def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation
         If an antenna is not an `~astropy_feedrot.Antenna`, or ``target`` is a
         `~astropy_feedrot.Satellite` (it transmits one hand only).
     ValueError
-        If ``max_gap`` is given with ``wrap=True``, and as for
+        If ``max_gap`` is given with ``wrap=True``, with ``wrap=False`` if
+        the epochs run along several axes or go back in time, and as for
         `~astropy_feedrot.Antenna.feed_rotation`.
 
     Warns
@@ -556,6 +585,7 @@ def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation
         )
     if wrap and max_gap is not None:
         raise ValueError("max_gap applies to the continuous series only; pass wrap=False")
+    obstime = as_time(obstime)
     phi1 = antenna1.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
     phi2 = antenna2.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
     if wrap:
@@ -563,6 +593,7 @@ def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation
     # Eq 9 on the difference of the feed rotations, then doubled: each segment
     # starts from Phi_2 - Phi_1 in (-180, 180] deg.
     difference = kernel.wrap_phase(phi2.to_value(u.rad) - phi1.to_value(u.rad)) * u.rad
-    difference = unwrap(difference, axis=-1, obstime=obstime if max_gap is not None else None,
-                        max_gap=max_gap)
+    axis = time_axis(obstime.shape, difference.shape)
+    if axis is not None:  # a single epoch has nothing to make continuous
+        difference = unwrap(difference, axis=axis, obstime=obstime, max_gap=max_gap)
     return _to_angle(2 * difference.to_value(u.rad))

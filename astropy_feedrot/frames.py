@@ -13,8 +13,10 @@ UT1-UTC and polar motion from the IERS tables bundled with astropy; see
 happens beyond the tables.
 """
 
+import warnings
 from typing import NamedTuple
 
+import erfa
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import (
@@ -32,7 +34,7 @@ from astropy.coordinates import (
     Supergalactic,
     UnitSphericalRepresentation,
 )
-from astropy.time import Time
+from astropy.time import Time, TimeDelta
 
 from .config import conf
 from .eop import iers_context
@@ -41,10 +43,16 @@ from .kernel import dot, unit
 __all__ = [
     "LocalFrame",
     "VERTICALS",
+    "STATION_HEIGHTS",
     "as_location",
     "as_time",
     "as_skycoord",
+    "as_elevation_limit",
     "broadcast_shape",
+    "at_epochs",
+    "check_station_xyz",
+    "fill_masked",
+    "time_axis",
     "horizontal",
     "local_frame",
     "location_xyz",
@@ -54,6 +62,15 @@ __all__ = [
 #: Accepted definitions of the local vertical: the ellipsoid normal or the
 #: geocentric direction (see `local_frame`).
 VERTICALS = ("geodetic", "geocentric")
+
+#: Geodetic heights (metres above the WGS84 ellipsoid) between which a
+#: position is taken as an Earth station. The lowest covers the deepest places
+#: people have put instruments (the Challenger Deep, 10.9 km below the sea,
+#: and deep mines, 4 km) with margin; the highest covers aircraft and
+#: stratospheric balloons (below 55 km) up to the Karman line at 100 km, above
+#: which an antenna is a spacecraft. A position outside is almost always in
+#: the wrong unit (kilometres read as metres put a station near the geocentre).
+STATION_HEIGHTS = (-12e3, 100e3)
 
 
 class LocalFrame(NamedTuple):
@@ -119,7 +136,13 @@ def as_time(obstime):
     Raises
     ------
     TypeError
-        If ``obstime`` cannot be read as a time.
+        If ``obstime`` cannot be read as a time: plain numbers (their format,
+        MJD, JD or seconds, cannot be guessed), a `~astropy.time.TimeDelta`
+        (a duration, not an epoch) or unreadable strings.
+
+    Notes
+    -----
+    A masked `~astropy.time.Time` is returned as it is; see `fill_masked`.
 
     Examples
     --------
@@ -129,13 +152,259 @@ def as_time(obstime):
     """
     if isinstance(obstime, Time):
         return obstime
+    if isinstance(obstime, TimeDelta):
+        raise TypeError(
+            "obstime must be an astropy Time (an epoch), got a TimeDelta (a duration); "
+            "add it to a start epoch, e.g. Time('2023-01-25T08:00') + offsets"
+        )
+    if isinstance(obstime, u.Quantity):
+        raise TypeError(
+            f"obstime must be an astropy Time, got a Quantity in {obstime.unit}; "
+            "add durations to a start epoch, e.g. Time('2023-01-25T08:00') + offsets"
+        )
+    try:
+        kind = "U" if isinstance(obstime, str) else np.asarray(obstime).dtype.kind
+    except ValueError:  # ragged nested sequences
+        kind = "O"
+    if kind in "biufc":
+        raise TypeError(
+            f"obstime must be an astropy Time (or ISO strings that Time() reads), "
+            f"got {type(obstime).__name__} of plain numbers; their format cannot be "
+            "guessed: say it, e.g. Time(values, format='mjd', scale='utc')"
+        )
     try:
         return Time(obstime)
     except Exception as exc:
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise TypeError(
             f"obstime must be an astropy Time (or ISO strings that Time() reads), "
-            f"got {type(obstime).__name__}: {exc}"
+            f"got {type(obstime).__name__}: {reason}"
         ) from None
+
+
+def fill_masked(obstime):
+    """Split a possibly masked `~astropy.time.Time` into epochs to compute with and a mask.
+
+    Masked epochs stand for missing data. The package computes nothing for
+    them and returns NaN there (never a number, never a masked array): the
+    geometry functions take the epochs returned here, where each masked epoch
+    is replaced by the nearest earlier valid one (the first valid one for
+    leading masked epochs), so that no orbit is asked for an epoch outside its
+    span, and set their results to NaN where ``mask`` is True.
+
+    Parameters
+    ----------
+    obstime : `~astropy.time.Time`
+        Epoch(s), masked or not (astropy >= 6 keeps the mask of a `Time`
+        in ``Time.mask``; the values under the mask are meaningless).
+
+    Returns
+    -------
+    filled : `~astropy.time.Time`
+        Unmasked epochs of the same shape. Where every epoch is masked they
+        are the values under the mask, which callers must not use.
+    mask : ndarray of bool or None
+        True at masked epochs, shape ``obstime.shape``; None if no epoch is
+        masked.
+
+    Raises
+    ------
+    TypeError
+        If ``obstime`` is not a time (see `as_time`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.frames import fill_masked
+    >>> times = Time("2023-01-25T08:00") + [0, 1, 2] * u.hour
+    >>> times[1] = np.ma.masked
+    >>> filled, mask = fill_masked(times)
+    >>> filled.isot.tolist(), mask.tolist()
+    (['2023-01-25T08:00:00.000', '2023-01-25T08:00:00.000', '2023-01-25T10:00:00.000'], \
+[False, True, False])
+    """
+    obstime = as_time(obstime)
+    if not obstime.masked:
+        return obstime, None
+    mask = np.array(obstime.mask, dtype=bool)
+    plain = obstime.unmasked
+    if not mask.any():
+        return plain, None
+    flat = mask.ravel()
+    valid = np.flatnonzero(~flat)
+    if not valid.size:
+        return plain, mask
+    index = np.maximum.accumulate(np.where(flat, -1, np.arange(flat.size)))
+    index[index < 0] = valid[0]
+    return plain.ravel()[index].reshape(mask.shape), mask
+
+
+def time_axis(obstime_shape, shape):
+    """The axis of a broadcast shape along which the epochs run.
+
+    Parameters
+    ----------
+    obstime_shape : tuple of int
+        Shape of the epochs.
+    shape : tuple of int
+        The broadcast shape of a result (epochs with targets, or angles).
+
+    Returns
+    -------
+    int or None
+        The index (in ``shape``, counted from 0) of the one axis along which
+        ``obstime`` has more than one epoch, aligned as numpy broadcasts
+        (trailing axes first); None for a single epoch, where each element is
+        a series of one sample.
+
+    Raises
+    ------
+    ValueError
+        If the epochs do not broadcast to ``shape`` without enlarging it, or
+        run along more than one axis (which of them is time would be a guess).
+
+    Examples
+    --------
+    Epochs of shape (T,) with sources of shape (S, 1) run along the last axis;
+    epochs of shape (T, 1) with sources of shape (S,) along the first:
+
+    >>> from astropy_feedrot.frames import time_axis
+    >>> time_axis((24,), (3, 24))
+    1
+    >>> time_axis((24, 1), (24, 3))
+    0
+    >>> time_axis((), (3,)) is None
+    True
+    """
+    obstime_shape, shape = tuple(obstime_shape), tuple(shape)
+    if len(obstime_shape) > len(shape) or broadcast_shape(
+            obstime=obstime_shape, angles=shape) != shape:
+        raise ValueError(f"obstime has shape {obstime_shape}, which does not broadcast to "
+                         f"the shape {shape} of the series without enlarging it")
+    aligned = (1,) * (len(shape) - len(obstime_shape)) + obstime_shape
+    varying = [k for k, n in enumerate(aligned) if n > 1]
+    if len(varying) > 1:
+        raise ValueError(
+            f"obstime of shape {obstime_shape} runs along axes {varying} of the shape "
+            f"{shape}; a continuous series needs the epochs along one axis: give obstime "
+            "of shape (T,) and targets of shape (S, 1), or compute one series at a time"
+        )
+    return varying[0] if varying else None
+
+
+def as_elevation_limit(min_elevation, name="min_elevation"):
+    """Check an elevation limit and return it in radians.
+
+    Parameters
+    ----------
+    min_elevation : `~astropy.units.Quantity` or None
+        A single angle in [-90, 90] deg, or None for no limit.
+    name : str, optional
+        How to call it in error messages.
+
+    Returns
+    -------
+    float or None
+        The limit in radians (None for None).
+
+    Raises
+    ------
+    TypeError
+        If it is a plain number (degrees and radians cannot be told apart) or
+        not a number at all.
+    astropy.units.UnitsError
+        If its unit is not an angle.
+    ValueError
+        If it is not a single value, is NaN or infinite, or lies outside
+        [-90, 90] deg.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.frames import as_elevation_limit
+    >>> as_elevation_limit(30 * u.deg)  # doctest: +FLOAT_CMP
+    0.5235987755982988
+    """
+    if min_elevation is None:
+        return None
+    if not isinstance(min_elevation, u.Quantity):
+        raise TypeError(
+            f"{name} must be an angle Quantity (e.g. 10 * u.deg) or None, got "
+            f"{type(min_elevation).__name__} {min_elevation!r}; plain numbers are refused "
+            "because degrees and radians cannot be told apart"
+        )
+    if min_elevation.unit.physical_type != "angle":
+        raise u.UnitsError(f"{name} must be an angle (e.g. 10 * u.deg), got a quantity in "
+                           f"{min_elevation.unit.to_string() or 'dimensionless units'}")
+    if not min_elevation.isscalar:
+        raise ValueError(f"{name} must be a single angle, got shape {min_elevation.shape}")
+    degrees = float(min_elevation.to_value(u.deg))
+    if not -90 <= degrees <= 90:  # also False for NaN
+        raise ValueError(f"{name} must be within [-90, 90] deg, got {min_elevation}")
+    return float(np.radians(degrees))
+
+
+def _index(where):
+    """``[i, j]`` for a non-empty index tuple, nothing for a scalar."""
+    return f"[{', '.join(str(int(i)) for i in where)}]" if where else ""
+
+
+def check_station_xyz(xyz, name="location"):
+    """Check that geocentric positions (metres) are on or near the Earth's surface.
+
+    Parameters
+    ----------
+    xyz : array-like, shape (..., 3)
+        Geocentric ITRS positions in metres.
+    name : str, optional
+        How to call them in error messages.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The positions as floats.
+
+    Raises
+    ------
+    ValueError
+        If a coordinate is NaN or infinite, or a geodetic height (WGS84) is
+        outside `STATION_HEIGHTS`: the geocentre, coordinates in kilometres,
+        a satellite.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.frames import check_station_xyz
+    >>> check_station_xyz([4075659.180, 931824.551, 4801516.102]).shape
+    (3,)
+    >>> check_station_xyz([4075.659, 931.825, 4801.516])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: location is 6367 m from the geocentre, at a geodetic height of ... km; ...
+    """
+    xyz = np.asarray(xyz, dtype=float)
+    if xyz.ndim == 0 or xyz.shape[-1] != 3:
+        raise ValueError(f"{name} must be geocentric x, y, z, got shape {xyz.shape}")
+    finite = np.all(np.isfinite(xyz), axis=-1)
+    if not np.all(finite):
+        where = tuple(np.argwhere(~finite)[0])
+        raise ValueError(f"{name}{_index(where)} has a NaN or infinite coordinate: "
+                         f"{xyz[where].tolist()}; give finite geocentric coordinates")
+    height = erfa.gc2gd(1, xyz)[2]  # 1: WGS84
+    low, high = STATION_HEIGHTS
+    bad = (height < low) | (height > high)
+    if np.any(bad):
+        where = tuple(np.argwhere(bad)[0])
+        which = _index(where)
+        radius = float(np.linalg.norm(xyz[where]))
+        raise ValueError(
+            f"{name}{which} is {radius:.0f} m from the geocentre, at a geodetic height of "
+            f"{float(height[where]) / 1e3:.1f} km; an Earth station lies between "
+            f"{low / 1e3:.0f} and {high / 1e3:.0f} km from the WGS84 ellipsoid (are the "
+            "coordinates in metres?)"
+        )
+    return xyz
 
 
 def as_skycoord(target):
@@ -337,7 +606,84 @@ def source_direction(target, location, obstime):
     """
     target = as_skycoord(target)
     location = as_location(location)
-    obstime = as_time(obstime)
+    obstime, masked = fill_masked(obstime)
+    shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
+    if masked is not None and masked.all():
+        return np.full(shape + (3,), np.nan)
+    s = _apparent_direction(at_epochs(target, obstime), location, obstime)
+    if masked is None:
+        return s
+    return np.where(np.broadcast_to(masked, shape)[..., np.newaxis], np.nan, s)
+
+
+def at_epochs(target, obstime):
+    """A target moved to the epochs of observation by its space motion.
+
+    Parameters
+    ----------
+    target : `~astropy.coordinates.SkyCoord`
+        Natural source(s). With a proper motion or radial velocity, the
+        position is the one at ``target.obstime`` (the catalogue epoch, e.g.
+        J2015.5 for Gaia DR2), and it is moved to every epoch of ``obstime``
+        with astropy's `~astropy.coordinates.SkyCoord.apply_space_motion`
+        (ERFA ``pmsafe``; a target without distance is taken as very far).
+        An `~astropy.coordinates.ITRS` target (a position at the epochs) and
+        a target without space motion are returned as they are.
+    obstime : `~astropy.time.Time`
+        Epoch(s) of observation, unmasked.
+
+    Returns
+    -------
+    `~astropy.coordinates.SkyCoord`
+        Without velocities; for a moving target the positions at the
+        broadcast shape of ``target`` and ``obstime``.
+
+    Raises
+    ------
+    ValueError
+        If the target moves but has no epoch (``obstime``) for its position.
+
+    Examples
+    --------
+    Barnard's star (Gaia DR2: Gaia Collaboration, Brown et al. 2018, A&A 616,
+    A1; epoch J2015.5) moves 10.4 arcsec a year:
+
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.frames import at_epochs
+    >>> barnard = SkyCoord(ra=269.452075 * u.deg, dec=4.693391 * u.deg,
+    ...                    pm_ra_cosdec=-801.551 * u.mas / u.yr,
+    ...                    pm_dec=10362.394 * u.mas / u.yr, distance=1.8266 * u.pc,
+    ...                    radial_velocity=-110.6 * u.km / u.s,
+    ...                    obstime=Time("J2015.5", scale="tcb"))
+    >>> later = at_epochs(barnard, Time("J2025.5", scale="tcb"))
+    >>> later.separation(barnard).to(u.arcsec)  # doctest: +FLOAT_CMP
+    <Angle 103.99788719 arcsec>
+    """
+    target = as_skycoord(target)
+    if isinstance(target.frame, ITRS) or not target.data.differentials:
+        return target
+    motion = next(iter(target.data.differentials.values()))
+    static = SkyCoord(target.frame.realize_frame(target.data.without_differentials()))
+    if all(np.all(getattr(motion, name) == 0) for name in motion.components):
+        return static
+    if target.obstime is None:
+        raise ValueError(
+            "target has a proper motion or radial velocity but no epoch for its position; "
+            "give the catalogue epoch, e.g. SkyCoord(..., obstime=Time('J2015.5', "
+            "scale='tcb')) for Gaia DR2, or drop the motion"
+        )
+    with warnings.catch_warnings():
+        # A target without distance is taken as very distant, as ERFA says.
+        warnings.filterwarnings("ignore", message=".*distance overridden",
+                                category=erfa.ErfaWarning)
+        moved = target.apply_space_motion(new_obstime=obstime)
+    return SkyCoord(moved.frame.realize_frame(moved.data.without_differentials()))
+
+
+def _apparent_direction(target, location, obstime):
+    """`source_direction` for unmasked epochs and a target without space motion."""
     shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
     if isinstance(target.frame, ITRS):
         xyz = _earth_fixed_offset(target, location)

@@ -41,14 +41,17 @@ from .attitude import (
     sun_position,
 )
 from .config import conf
-from .continuity import _delay_of_difference, _frequency_hz
+from .continuity import delay_of_difference, frequency_hz
 from .exceptions import DegenerateGeometryWarning
 from .focus import BeamWaveguideFocus, Focus, NasmythFocus
 from .frames import (
     LocalFrame,
     _fast_path_applies,
+    as_elevation_limit,
     as_skycoord,
     as_time,
+    check_station_xyz,
+    fill_masked,
     horizontal,
     location_xyz,
     source_direction,
@@ -59,6 +62,8 @@ from .polarization import polarization_sign
 from .satellite import LineOfSight, Satellite
 
 __all__ = [
+    "UNIT_TOLERANCE",
+    "FOCUS_TERMS",
     "ReceiverArrays",
     "receiver_arrays",
     "wind_up",
@@ -226,33 +231,102 @@ def _shape_error(name, shape, expected, why):
     return ValueError(f"{name} has shape {shape}, but {why} needs {expected}")
 
 
+#: Tolerance on the length of the unit vectors given to `wind_up` (directions,
+#: axes, dipoles): within it they are normalized (rounding), beyond it refused.
+UNIT_TOLERANCE = 1e-6
+
+#: The focus terms `wind_up` accepts: conventional, Nasmyth right and left,
+#: beam waveguide right and left.
+FOCUS_TERMS = ((0, 0), (1, 0), (-1, 0), (1, -1), (-1, 1))
+
+# Transmitters closer to the geocentre than this (metres) are inside the Earth:
+# positions in kilometres read as metres.
+_MIN_TRANSMITTER_RADIUS = 6.3e6
+
+
+def _floats(value, name):
+    """A float ndarray; TypeError for what is not numbers."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be an array of numbers, got "
+                        f"{type(value).__name__}") from None
+    return array
+
+
+def _unit_vectors(vectors, name, allow_nan):
+    """Vectors (..., 3) normalized; ValueError if a length is off by more than UNIT_TOLERANCE.
+
+    With ``allow_nan``, a vector with a NaN component is missing data and
+    becomes all NaN; infinities are always refused.
+    """
+    if np.any(np.isinf(vectors)):
+        raise ValueError(f"{name} has infinite components")
+    missing = np.any(np.isnan(vectors), axis=-1)
+    if np.any(missing) and not allow_nan:
+        raise ValueError(f"{name} has NaN components")
+    norm = np.sqrt(np.einsum("...i,...i->...", vectors, vectors))
+    bad = ~missing & ~(np.abs(norm - 1) <= UNIT_TOLERANCE)
+    if np.any(bad):
+        where = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ValueError(
+            f"{name} must be unit vectors (length within {UNIT_TOLERANCE:g} of 1), but "
+            f"{name}[{', '.join(map(str, where))}] has length {norm[where]:.6g}; normalize "
+            "them (v / np.linalg.norm(v, axis=-1, keepdims=True)); a zero vector has no "
+            "direction"
+        )
+    with np.errstate(invalid="ignore"):
+        return np.where(missing[..., np.newaxis], np.nan, vectors / norm[..., np.newaxis])
+
+
 def _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms):
-    xyz = np.asarray(station_xyz, dtype=float)
+    xyz = _floats(station_xyz, "station_xyz")
     if xyz.ndim != 2 or xyz.shape[1] != 3:
         raise ValueError(f"station_xyz must have shape (A, 3), got {xyz.shape}")
+    check_station_xyz(xyz, "station_xyz")
     n = len(xyz)
-    axes = np.asarray(station_axes, dtype=float)
+    axes = _floats(station_axes, "station_axes")
     if axes.shape != (n, 3, 3):
         raise _shape_error("station_axes", axes.shape, (n, 3, 3),
                            f"station_xyz of shape {xyz.shape}")
-    station = np.asarray(stationary, dtype=bool)
+    axes = _unit_vectors(axes, "station_axes", allow_nan=False)
+    gram = np.einsum("aij,akj->aik", axes, axes) - np.eye(3)
+    handed = np.einsum("ai,ai->a", np.cross(axes[:, 0], axes[:, 1]), axes[:, 2])
+    bad = np.flatnonzero((np.max(np.abs(gram), axis=(1, 2)) > UNIT_TOLERANCE) | (handed < 0))
+    if bad.size:
+        raise ValueError(f"station_axes[{bad[0]}] must hold east, north and up as an "
+                         "orthonormal right-handed set of rows (east x north = up), e.g. "
+                         "np.stack(local_frame(location))")
+    raw = np.asarray(stationary)
+    if raw.dtype.kind not in "biu" or (raw.dtype.kind != "b" and np.any((raw != 0) & (raw != 1))):
+        raise TypeError(f"stationary must be booleans (True for a ground-fixed crossed "
+                        f"dipole), got {raw.dtype} values")
+    station = raw.astype(bool)
     if station.shape != (n,):
         raise _shape_error("stationary", station.shape, (n,),
                            f"station_xyz of shape {xyz.shape}")
     if fixed_axis is None:
         axis = axes[:, 2]
     else:
-        axis = np.asarray(fixed_axis, dtype=float)
+        axis = _floats(fixed_axis, "fixed_axis")
         if axis.shape != (n, 3):
             raise _shape_error("fixed_axis", axis.shape, (n, 3),
                                f"station_xyz of shape {xyz.shape}")
+        axis = _unit_vectors(axis, "fixed_axis", allow_nan=False)
     if focus_terms is None:
         terms = np.zeros((n, 2))
     else:
-        terms = np.asarray(focus_terms, dtype=float)
+        terms = _floats(focus_terms, "focus_terms")
         if terms.shape != (n, 2):
             raise _shape_error("focus_terms", terms.shape, (n, 2),
                                f"station_xyz of shape {xyz.shape}")
+        known = np.array(FOCUS_TERMS, dtype=float)
+        valid = np.any(np.all(terms[:, np.newaxis] == known, axis=-1), axis=-1)
+        if not np.all(valid):
+            i = int(np.flatnonzero(~valid)[0])
+            raise ValueError(f"focus_terms[{i}] is {terms[i].tolist()}; it must be one of "
+                             f"{list(FOCUS_TERMS)} (conventional, Nasmyth right and left, "
+                             "beam waveguide right and left)")
     return ReceiverArrays(xyz, axes, station, axis, terms)
 
 
@@ -265,7 +339,9 @@ def _check_form(form):
 
 
 def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shape):
-    target = np.asarray(target, dtype=float)
+    if not isinstance(directions, (bool, np.bool_)):
+        raise TypeError(f"directions must be True or False, got {directions!r}")
+    target = _floats(target, "target")
     if directions:
         if target.ndim == 4:
             if target.shape[1] != n_antennas or target.shape[-1] != 3:
@@ -281,14 +357,37 @@ def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shap
     if (aligned is None) != (transverse is None):
         raise ValueError("give both aligned and transverse (a transmitter) or neither "
                          "(natural sources)")
+    if directions:
+        target = _unit_vectors(target, "target directions", allow_nan=True)
+    else:
+        if np.any(np.isinf(target)):
+            raise ValueError("target positions have infinite components")
+        with np.errstate(invalid="ignore"):
+            radius = np.sqrt(np.einsum("...i,...i->...", target, target))
+        inside = radius < _MIN_TRANSMITTER_RADIUS  # False for NaN: missing data
+        if np.any(inside):
+            where = tuple(int(i) for i in np.argwhere(inside)[0])
+            raise ValueError(
+                f"target[{', '.join(map(str, where))}] is {radius[where]:.0f} m from the "
+                "geocentre, inside the Earth; target positions are geocentric ITRS in "
+                "metres (kilometres?), or pass unit directions with directions=True"
+            )
     expected = target.shape[:1] + target.shape[-2:]
     if aligned is not None:
-        aligned = np.asarray(aligned, dtype=float)
-        transverse = np.asarray(transverse, dtype=float)
+        aligned = _floats(aligned, "aligned")
+        transverse = _floats(transverse, "transverse")
         for name, value in (("aligned", aligned), ("transverse", transverse)):
             if value.shape != expected:
                 raise _shape_error(name, value.shape, expected,
                                    f"target of shape {target.shape}")
+        aligned = _unit_vectors(aligned, "aligned", allow_nan=True)
+        transverse = _unit_vectors(transverse, "transverse", allow_nan=True)
+        with np.errstate(invalid="ignore"):
+            skew = np.abs(np.einsum("...i,...i->...", aligned, transverse)) > UNIT_TOLERANCE
+        if np.any(skew):
+            where = ", ".join(str(int(i)) for i in np.argwhere(skew)[0])
+            raise ValueError(f"aligned[{where}] and transverse[{where}] must be orthogonal "
+                             "(a crossed dipole)")
     return target, aligned, transverse
 
 
@@ -412,29 +511,33 @@ def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transve
     Parameters
     ----------
     station_xyz : array-like, shape (A, 3)
-        Geocentric ITRS positions of the antennas, in metres.
+        Geocentric ITRS positions of the antennas, in metres: finite, and
+        Earth stations (see `~astropy_feedrot.frames.check_station_xyz`).
     station_axes : array-like, shape (A, 3, 3)
         East, north and up unit vectors of each site in ITRS (the rows of
-        ``np.stack(local_frame(location))``).
+        ``np.stack(local_frame(location))``), orthonormal and right-handed.
     stationary : array-like of bool, shape (A,)
         True for a crossed dipole fixed to the ground (aligned dipole east,
         transverse north, boresight up, Eq 28), False for a tracking antenna
         turning about ``fixed_axis``.
     target : array-like, shape (T, S, 3) or (T, A, S, 3)
-        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3);
-        or, with ``directions=True``, unit vectors from the antennas to the
-        targets, shape (T, S, 3) (the same for every antenna) or (T, A, S, 3).
+        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3),
+        outside the Earth; or, with ``directions=True``, unit vectors from the
+        antennas to the targets, shape (T, S, 3) (the same for every antenna)
+        or (T, A, S, 3). A vector with a NaN component is missing data.
     aligned, transverse : array-like, shape (T, S, 3), optional
         The transmitters' aligned and transverse dipoles in ITRS (from
-        `nominal_attitude`, or measured). Leave both out for natural sources,
-        whose transmitter dipole is the projected celestial pole (Eq 11).
+        `nominal_attitude`, or measured): orthogonal unit vectors, or NaN
+        where unknown. Leave both out for natural sources, whose transmitter
+        dipole is the projected celestial pole (Eq 11).
     fixed_axis : array-like, shape (A, 3), optional
-        Fixed axis of each tracking mount in ITRS (Eq 10): the up vector for
-        alt-az (the default), ``[0, 0, 1]`` for equatorial, north or east for
-        X-Y. Ignored for stationary antennas.
+        Fixed axis of each tracking mount in ITRS (Eq 10), a unit vector: the
+        up vector for alt-az (the default), ``[0, 0, 1]`` for equatorial,
+        north or east for X-Y. Ignored for stationary antennas.
     focus_terms : array-like, shape (A, 2), optional
-        Multiples of the elevation and the azimuth that the focus adds (see
-        `ReceiverArrays`); zero (a conventional focus) by default.
+        Multiples of the elevation and the azimuth that the focus adds, each
+        row one of `FOCUS_TERMS` (see `ReceiverArrays`); zero (a
+        conventional focus) by default.
     directions : bool, optional
         Whether ``target`` holds directions instead of positions.
     form : {'beyerle', 'wu'}, optional
@@ -446,12 +549,22 @@ def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transve
     ndarray, shape (T, A, S)
         The feed rotation of a right-hand (RCP) receiver in radians, in
         [-pi, pi]; negate it for LCP. NaN where the geometry is degenerate
-        (see `~astropy_feedrot.kernel`), without a warning.
+        (see `~astropy_feedrot.kernel`; a transmitter at an antenna's
+        position too) or a vector is missing (NaN), without a warning.
 
     Raises
     ------
+    TypeError
+        If an array is not numbers, ``stationary`` not booleans or
+        ``directions`` not a bool.
     ValueError
-        If the shapes do not fit (naming both), or for an unknown ``form``.
+        If the shapes do not fit (naming both), for an unknown ``form``, a
+        station that is not on the Earth (NaN, infinite, in km), a unit
+        vector (direction, axis, dipole) whose length is off by more than
+        `UNIT_TOLERANCE` (those within it are normalized), axes that are not
+        an orthonormal right-handed set, dipoles that are not orthogonal,
+        transmitter positions inside the Earth or infinite, or focus terms
+        not in `FOCUS_TERMS`.
 
     Notes
     -----
@@ -605,9 +718,16 @@ def _propagate_tle(orbits, obstime, orientation):
     return np.stack([teme_to_itrs(one, obstime) for one in r])
 
 
-def _satellite_arrays(satellites, obstime, polarization):
-    """Positions and dipoles (T, S, 3) of satellites, and their signs (S,)."""
+def _satellite_arrays(satellites, obstime, polarization, masked=None):
+    """Positions and dipoles (T, S, 3) of satellites, and their signs (S,).
+
+    NaN at ``masked`` epochs (True), where ``obstime`` holds stand-ins.
+    """
     n_t, n_s = obstime.size, len(satellites)
+    sign = np.array([sat._receiver_sign(polarization) for sat in satellites], dtype=float)
+    if masked is not None and masked.all():
+        nothing = np.full((n_t, n_s, 3), np.nan)
+        return nothing, nothing.copy(), nothing.copy(), sign
     orientation = _earth_orientation(obstime)
     position = np.empty((n_t, n_s, 3))
     tle = {i for i, sat in enumerate(satellites)
@@ -625,6 +745,8 @@ def _satellite_arrays(satellites, obstime, polarization):
                              f"for obstime of shape {obstime.shape}; a grid needs one position "
                              "per epoch")
         position[:, i] = xyz
+    if masked is not None:
+        position[masked] = np.nan
     aligned = np.empty_like(position)
     transverse = np.empty_like(position)
     nominal = [i for i, sat in enumerate(satellites)
@@ -640,7 +762,8 @@ def _satellite_arrays(satellites, obstime, polarization):
     for i in sorted(others):
         a, t = satellites[i].attitude.dipoles(obstime, position[:, i])
         aligned[:, i], transverse[:, i] = a, t
-    sign = np.array([sat._receiver_sign(polarization) for sat in satellites], dtype=float)
+    if masked is not None:
+        aligned[masked] = transverse[masked] = np.nan
     return position, aligned, transverse, sign
 
 
@@ -672,22 +795,27 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
         raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
                          f"got shape {obstime.shape}; flatten it with .ravel()")
     shape = obstime.shape
-    obstime = obstime.reshape((obstime.size,))
+    obstime, masked = fill_masked(obstime.reshape((obstime.size,)))
     form = _check_form(form)
     min_sine = None
-    if min_elevation is not None:
+    limit = as_elevation_limit(min_elevation)
+    if limit is not None:
         # Below where arcsin(s . up) < limit, as Antenna: s . up < sin(limit) within +-90 deg.
-        limit = float(u.Quantity(min_elevation).to_value(u.rad))
-        min_sine = (np.inf if limit > np.pi / 2 else -np.inf if limit <= -np.pi / 2
-                    else float(np.sin(limit)))
+        min_sine = -np.inf if limit <= -np.pi / 2 else float(np.sin(limit))
     receivers, traced = _receivers(antennas)
     if kind == "satellites":
-        target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization)
+        target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization,
+                                                              masked)
         directions = False
     else:
         sign = np.full(targets.size, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
-        target = _source_directions(targets, antennas, obstime)
+        if masked is not None and masked.all():
+            target = np.full((obstime.size, len(antennas), targets.size, 3), np.nan)
+        else:
+            target = _source_directions(targets, antennas, obstime)
+        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+            target[masked] = np.nan
         aligned = transverse = None
         directions = True
     return _Grid(receivers, traced, target, aligned, transverse, directions, form, sign,
@@ -752,7 +880,8 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
         S satellites (TLE, SP3 or coordinate orbits; nominal or quaternion
         attitude), or natural sources as one scalar or 1-d coordinate.
     obstime : `~astropy.time.Time`
-        The epochs, scalar or 1-d (T of them).
+        The epochs, scalar or 1-d (T of them); masked epochs give NaN, without
+        a warning.
     polarization : {'RCP', 'LCP'}, optional
         Hand of the receivers: each satellite's own hand by default, RCP for
         natural sources; see `~astropy_feedrot.Antenna.feed_rotation`.
@@ -761,7 +890,7 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
         default, or Eq 31).
     min_elevation : `~astropy.units.Quantity`, optional
         NaN (without a warning) where a target is lower than this above an
-        antenna's horizon.
+        antenna's horizon: one angle in [-90, 90] deg.
 
     Returns
     -------
@@ -774,11 +903,15 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     ------
     TypeError
         If ``antennas`` or ``targets`` hold objects of the wrong kind (a single
-        antenna or satellite must be put in a list).
+        antenna or satellite must be put in a list), ``obstime`` is not a time
+        or ``min_elevation`` a plain number.
     ValueError
         For a multi-dimensional ``obstime``, an unknown ``polarization`` or
-        ``form``, a receiver hand that differs from a satellite's, or an orbit
-        that does not give one position per epoch.
+        ``form``, a receiver hand that differs from a satellite's, an orbit
+        that does not give one position per epoch, or a ``min_elevation``
+        that is not one angle in [-90, 90] deg.
+    astropy.units.UnitsError
+        If ``min_elevation`` is not an angle.
 
     Warns
     -----
@@ -939,13 +1072,15 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
         Shape (T, A, S), from `feed_rotation_grid` (or, in degrees, from
         `feed_rotation_grid_dask`; only the baselines' columns are computed).
     frequency : `~astropy.units.Quantity`
-        Observing (sky) frequency, positive.
+        Observing (sky) frequency: one positive frequency (not a wavelength,
+        not a plain number).
     baseline : (int, int) or sequence of them, optional
         Indices ``(i, j)`` of the two antennas: the delay is antenna ``j``
         minus antenna ``i``, as ``rotation_delay(antennas[i], antennas[j],
         ...)``. Several pairs give one delay series each.
     obstime : `~astropy.time.Time`, optional
-        The T epochs, needed with ``max_gap``.
+        The T epochs (shape (T,)), needed with ``max_gap``; masked ones
+        restart the series.
     max_gap : `~astropy.units.Quantity`, optional
         Restart the continuous series after longer time steps (see
         `~astropy_feedrot.unwrap`).
@@ -961,10 +1096,12 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
     Raises
     ------
     TypeError
-        If ``feed_rotation`` is not an angle or dask array.
+        If ``feed_rotation`` is not an angle or dask array, or ``frequency``
+        not a Quantity.
     ValueError
         If ``feed_rotation`` is not (T, A, S), a baseline is not a pair of
-        antenna indices, or ``frequency`` is not positive.
+        antenna indices, ``frequency`` is not one positive finite value, or
+        ``obstime`` does not hold T epochs in order.
     astropy.units.UnitsError
         If ``frequency`` is not a frequency.
 
@@ -1001,14 +1138,18 @@ def rotation_delay_grid(feed_rotation, frequency, baseline=(0, 1), *, obstime=No
             or np.any(pairs < -n_a) or np.any(pairs >= n_a)):
         raise ValueError(f"baseline must be a pair of antenna indices (or pairs), each in "
                          f"0..{n_a - 1}, got {baseline!r}")
-    f_hz = _frequency_hz(frequency)
+    f_hz = frequency_hz(frequency)
+    if obstime is not None:
+        obstime = as_time(obstime)
+        if obstime.shape != degrees.shape[:1]:
+            raise ValueError(f"obstime must hold the {degrees.shape[0]} epochs of the grid "
+                             f"(shape ({degrees.shape[0]},)), got shape {obstime.shape}")
     difference = degrees[:, pairs[:, 1]] - degrees[:, pairs[:, 0]]
     if lazy:
         difference = difference.compute()
     if single:
         difference = difference[:, 0]
     if obstime is not None:
-        obstime = as_time(obstime)
         obstime = obstime.reshape((obstime.size,) + (1,) * (difference.ndim - 1))
-    return _delay_of_difference(Angle(difference, u.deg), f_hz, axis=0, obstime=obstime,
-                                max_gap=max_gap)
+    return delay_of_difference(Angle(difference, u.deg), f_hz, axis=0, obstime=obstime,
+                               max_gap=max_gap)

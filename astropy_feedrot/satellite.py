@@ -1,10 +1,11 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """A transmitting satellite: an orbit, an attitude and a circular polarization."""
 
+import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .frames import as_location, as_time, location_xyz
+from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit
 from .polarization import polarization_sign
 
@@ -129,6 +130,7 @@ class Satellite:
         Parameters
         ----------
         obstime : `~astropy.time.Time`
+            Epoch(s); masked epochs give NaN.
 
         Returns
         -------
@@ -145,7 +147,13 @@ class Satellite:
         >>> sat.position(Time("2023-01-25"))  # doctest: +FLOAT_CMP
         array([26000000.,        0.,        0.])
         """
-        return self.orbit.position(as_time(obstime))
+        obstime, masked = fill_masked(obstime)
+        if masked is not None and masked.all():
+            return np.full(obstime.shape + (3,), np.nan)
+        position = np.asarray(self.orbit.position(obstime), dtype=float)
+        if masked is not None:
+            position = np.where(masked[..., np.newaxis], np.nan, position)
+        return position
 
     def line_of_sight(self, location, obstime):
         """Source vector and transmitter dipoles seen from a site.
@@ -155,7 +163,8 @@ class Satellite:
         location : `~astropy.coordinates.EarthLocation`
             The receiver's site.
         obstime : `~astropy.time.Time`
-            Epoch(s).
+            Epoch(s). Masked epochs give NaN vectors (which give NaN angles
+            without a warning).
 
         Returns
         -------
@@ -174,8 +183,13 @@ class Satellite:
         array([1., 0., 0.])
         """
         location = as_location(location)
-        obstime = as_time(obstime)
-        position = self.orbit.position(obstime)
+        filled, masked = fill_masked(obstime)
+        position = self.position(obstime)
         s = kernel.unit(position - location_xyz(location))
-        aligned, transverse = self.attitude.dipoles(obstime, position)
+        if masked is not None and masked.all():
+            return LineOfSight(s, s, s)
+        aligned, transverse = self.attitude.dipoles(filled, position)
+        if masked is not None:
+            aligned = np.where(masked[..., np.newaxis], np.nan, aligned)
+            transverse = np.where(masked[..., np.newaxis], np.nan, transverse)
         return LineOfSight(s, aligned, transverse)

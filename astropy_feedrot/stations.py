@@ -27,6 +27,7 @@ from astropy.time import Time
 
 from .antenna import Antenna
 from .data import sample_file
+from .frames import check_station_xyz
 from .focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
@@ -38,6 +39,7 @@ from .focus import (
 from .labels import mount_from_label
 
 __all__ = [
+    "MAX_VELOCITY",
     "StationCatalogue",
     "default_catalogue",
     "read_catalogue",
@@ -65,10 +67,29 @@ FOCUS_NAMES = {
     "wark30m": MirrorTrain.wark30m,
 }
 
-# A geocentric distance outside this range is not a position on the Earth's
-# surface in metres (the lowest and highest points are about 6352 and
-# 6384 km from the geocentre).
-_RADIUS_RANGE = (6.30e6, 6.45e6)
+#: Largest station velocity a catalogue may give. Tectonic plates move by
+#: less than 0.2 m/yr (the fastest, near the Tonga trench, about 0.24 m/yr),
+#: and the linear velocities of geodetic catalogues are those of the plates;
+#: a speed above 1 m/yr is a unit error (mm/yr labelled m/yr gives about
+#: 20 m/yr, m/s instead of m/yr thousands of km/yr), which would move a
+#: station off the Earth.
+MAX_VELOCITY = 1 * u.m / u.yr
+
+
+def _epoch(epoch):
+    """One unmasked epoch; strings are read as TT (a position epoch needs no leap seconds)."""
+    if not isinstance(epoch, Time):
+        try:
+            epoch = Time(epoch, scale="tt")
+        except Exception:  # astropy raises several kinds for what it cannot read
+            raise TypeError(f"epoch must be an astropy Time or an ISO string that Time() "
+                            f"reads (e.g. '2030-01-01'), got {type(epoch).__name__} "
+                            f"{epoch!r}") from None
+    if not epoch.isscalar:
+        raise ValueError(f"epoch must be a single time, got shape {epoch.shape}")
+    if epoch.masked and epoch.mask:
+        raise ValueError("epoch is masked; give the epoch at which to place the station")
+    return epoch
 
 
 def _key(name):
@@ -129,7 +150,11 @@ class StationCatalogue:
     ------
     ValueError
         For a missing column, an unknown mount code or focus, a duplicated
-        name, or a position that is not on the Earth's surface (e.g. in km).
+        name, a missing (masked) or non-finite coordinate, a position that is
+        not an Earth station (e.g. in km; see
+        `~astropy_feedrot.frames.check_station_xyz`), a velocity faster than
+        `MAX_VELOCITY` (a unit error) or given for some axes only, or an
+        epoch that is not an MJD number.
     astropy.units.UnitsError
         For coordinates or velocities without compatible units.
 
@@ -150,22 +175,30 @@ class StationCatalogue:
             raise ValueError(f"{self._origin}: missing column(s) {', '.join(missing)}; a "
                              f"catalogue needs {', '.join(REQUIRED_COLUMNS)}")
         table = Table(table, copy=True)
-        self._xyz = self._quantity(table, ("x", "y", "z"), u.m)
+        self._xyz, missing = self._quantity(table, ("x", "y", "z"), u.m)
+        self._check_missing(table, ("x", "y", "z"), missing, np.any(missing, axis=-1))
         if all(c in table.colnames for c in ("vx", "vy", "vz")):
-            self._velocity = self._quantity(table, ("vx", "vy", "vz"), u.m / u.yr)
+            self._velocity, missing = self._quantity(table, ("vx", "vy", "vz"), u.m / u.yr)
+            # A row without any velocity has no velocity model; half of one is an error.
+            self._check_missing(table, ("vx", "vy", "vz"), missing,
+                                np.any(missing, axis=-1) & ~np.all(missing, axis=-1))
+            self._velocity[np.all(missing, axis=-1)] = 0
         else:
             self._velocity = np.zeros((len(table), 3)) * u.m / u.yr
-        epoch = table["epoch"] if "epoch" in table.colnames else np.full(len(table), np.nan)
-        self._epoch = np.ma.filled(np.ma.asarray(epoch, dtype=float), np.nan)
-        radius = np.linalg.norm(self._xyz.to_value(u.m), axis=-1)
+        self._epoch = self._epochs(table)
+        speed = np.linalg.norm(self._velocity.to_value(u.m / u.yr), axis=-1)
         self._table = table
         self._index = {}
         for row, name in enumerate(table["name"]):
             where = f"{self._origin}, station {name}"
-            if not _RADIUS_RANGE[0] <= radius[row] <= _RADIUS_RANGE[1]:
-                raise ValueError(f"{where}: position is {radius[row]:.0f} m from the "
-                                 "geocentre; expected ITRF coordinates on the Earth's "
-                                 "surface (check the unit of x, y, z)")
+            check_station_xyz(self._xyz[row].to_value(u.m), f"{where}: position")
+            if not speed[row] <= MAX_VELOCITY.to_value(u.m / u.yr):  # NaN too
+                raise ValueError(
+                    f"{where}: velocity is {speed[row]:.4g} m/yr; station velocities are "
+                    f"below {MAX_VELOCITY.to_value(u.m / u.yr):g} m/yr (plate motions, "
+                    "< 0.2 m/yr): check the unit of vx, vy, vz (mm/yr labelled m/yr? m/s "
+                    "instead of m/yr?)"
+                )
             if np.any(self._velocity[row].value != 0) and np.isnan(self._epoch[row]):
                 raise ValueError(f"{where}: a velocity needs the epoch (MJD) of the position")
             self._mount_and_focus(row)
@@ -177,18 +210,52 @@ class StationCatalogue:
                 self._index[_key(label)] = row
 
     def _quantity(self, table, columns, unit):
-        values = []
+        """Columns as a (rows, 3) Quantity in ``unit``, and where values are missing."""
+        values, missing = [], []
         for column in columns:
             col = table[column]
             if col.unit is None:
                 raise u.UnitsError(f"{self._origin}: column {column!r} has no unit; "
                                    f"give it one convertible to {unit}")
             try:
-                values.append(u.Quantity(col).to(unit))
+                data = np.asarray(np.ma.getdata(col), dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"{self._origin}: column {column!r} must hold numbers, "
+                                 f"got {col.dtype}") from None
+            try:
+                values.append(u.Quantity(data, col.unit).to(unit))
             except u.UnitConversionError:
                 raise u.UnitsError(f"{self._origin}: column {column!r} is in {col.unit}, "
                                    f"which is not convertible to {unit}") from None
-        return u.Quantity(values).T
+            missing.append(np.ma.getmaskarray(col))
+        return u.Quantity(values).T, np.stack(missing, axis=-1)
+
+    def _check_missing(self, table, columns, missing, refused):
+        """ValueError naming the first station in ``refused`` with a missing value."""
+        rows = np.flatnonzero(refused)
+        if rows.size:
+            row = rows[0]
+            empty = [c for c, gone in zip(columns, missing[row]) if gone]
+            raise ValueError(f"{self._origin}, station {table['name'][row]}: no value in "
+                             f"column(s) {', '.join(empty)}; every station needs "
+                             f"{', '.join(columns)}")
+
+    def _epochs(self, table):
+        """The ``epoch`` column as MJD floats, NaN where missing (no velocity model)."""
+        if "epoch" not in table.colnames:
+            return np.full(len(table), np.nan)
+        column = table["epoch"]
+        try:
+            epoch = np.asarray(np.ma.getdata(column), dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"{self._origin}: column 'epoch' must hold MJD numbers, got "
+                             f"{column.dtype}") from None
+        epoch = np.where(np.ma.getmaskarray(column), np.nan, epoch)
+        if np.any(np.isinf(epoch)):
+            row = int(np.flatnonzero(np.isinf(epoch))[0])
+            raise ValueError(f"{self._origin}, station {table['name'][row]}: epoch is "
+                             f"{epoch[row]}; give the MJD of the position (or nan for none)")
+        return epoch
 
     def _mount_and_focus(self, row):
         where = f"{self._origin}, station {self._table['name'][row]}"
@@ -298,8 +365,12 @@ class StationCatalogue:
 
         Raises
         ------
+        TypeError
+            If ``epoch`` is not a time.
         ValueError
-            For an unknown name (close matches are suggested).
+            For an unknown name (close matches are suggested), an ``epoch``
+            that is masked or not a single time, or one so far from the
+            catalogue's that the velocity moves the station off the Earth.
 
         Examples
         --------
@@ -310,13 +381,14 @@ class StationCatalogue:
         """
         row = self._row(name)
         xyz = self._xyz[row]
+        if epoch is not None:
+            epoch = _epoch(epoch)
         if epoch is not None and not np.isnan(self._epoch[row]):
-            # A position epoch needs no leap seconds: read strings as TT.
-            epoch = epoch if isinstance(epoch, Time) else Time(epoch, scale="tt")
-            if not epoch.isscalar:
-                raise ValueError("epoch must be a single time")
             years = (epoch - Time(self._epoch[row], format="mjd", scale="tt")).to(u.yr)
             xyz = xyz + self._velocity[row] * years
+            check_station_xyz(xyz.to_value(u.m),
+                              f"{self._origin}, station {self.names[row]}: position at "
+                              f"{epoch.isot}")
         return EarthLocation.from_geocentric(*xyz)
 
     def get_antenna(self, name, epoch=None, focus=None):
@@ -338,8 +410,9 @@ class StationCatalogue:
 
         Raises
         ------
-        ValueError
-            For an unknown name (close matches are suggested).
+        TypeError, ValueError
+            As `location`, and for a ``focus`` that is not a focus or does
+            not fit the mount.
 
         Examples
         --------
@@ -428,8 +501,9 @@ def get_antenna(name, catalogue=None, epoch=None, focus=None):
 
     Raises
     ------
-    ValueError
-        For an unknown name, with the close matches.
+    TypeError, ValueError
+        For an unknown name (with the close matches), and as
+        `StationCatalogue.get_antenna` and `read_catalogue`.
 
     Examples
     --------

@@ -13,8 +13,9 @@ from astropy import units as u
 from astropy.table import Table
 
 from .antenna import Antenna
-from .continuity import _delay_of_difference, _frequency_hz, unwrap
-from .frames import as_time
+from .continuity import delay_of_difference, frequency_hz, unwrap
+from .frames import as_elevation_limit, as_skycoord, fill_masked
+from .satellite import Satellite
 
 __all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary"]
 
@@ -24,41 +25,60 @@ COLUMNS = ("azimuth", "elevation", "parallactic_angle", "transmitter", "receiver
 
 
 def _max_gap(times):
-    if times.size < 2:
+    """Two sampling steps: the longest step between valid epochs, doubled."""
+    filled, masked = fill_masked(times)
+    jd = filled.jd if masked is None else filled.jd[~masked]
+    if jd.size < 2:
         return None
-    return 2 * np.max(np.diff(times.jd)) * u.day
+    return 2 * np.max(np.diff(jd)) * u.day
 
 
 def _check_times(obstime):
-    times = as_time(obstime)
+    times, masked = fill_masked(obstime)
     if times.ndim != 1:
         raise ValueError(f"obstime must be a one-dimensional series of epochs, got shape "
                          f"{times.shape}")
-    if times.size > 1 and np.any(np.diff(times.jd) <= 0):
-        raise ValueError("obstime must increase strictly")
-    return times
+    jd = times.jd if masked is None else times.jd[~masked]
+    if jd.size > 1 and np.any(np.diff(jd) <= 0):
+        raise ValueError("obstime must increase strictly (masked epochs aside); sort it, "
+                         "e.g. obstime[np.argsort(obstime)], and drop repeated epochs")
+    return obstime if masked is not None else times
 
 
-def _antenna_columns(antenna, target, times, polarization, min_elevation):
+def _check_target(target):
+    """One satellite or one natural source."""
+    if isinstance(target, Satellite):
+        return target
+    coord = as_skycoord(target)
+    if not coord.isscalar and coord.size != 1:
+        raise ValueError(f"a table follows one target, got a coordinate of shape "
+                         f"{coord.shape}; make one table per source, or use "
+                         "astropy_feedrot.grid.feed_rotation_grid for many")
+    return coord.reshape(())
+
+
+def _antenna_columns(antenna, target, times, polarization, limit):
     if not isinstance(antenna, Antenna):
         raise TypeError(f"antenna must be an Antenna, got {type(antenna).__name__}")
     # One line of sight (orbit propagation, Earth rotation) serves every column.
     sign = antenna._sign(target, polarization)
     los = antenna._line_of_sight(target, times)
     azimuth, elevation = antenna._altaz(los.s)
-    terms = antenna._terms_of(los, sign, min_elevation)
-    below = np.zeros(times.shape, bool) if min_elevation is None else elevation < min_elevation
+    terms = antenna._terms_of(los, sign, limit)
+    # Visible: a finite elevation (not a masked epoch) at or above the limit.
+    lowest = -np.inf if limit is None else limit
+    visible = np.isfinite(elevation.rad) & (elevation.rad >= lowest)
     columns = {
         "azimuth": azimuth.to(u.deg),
         "elevation": elevation.to(u.deg),
         "parallactic_angle": antenna._parallactic_angle_of(los.s).to(u.deg),
         "transmitter": terms.transmitter.to(u.deg),
         "receiver": terms.receiver.to(u.deg),
-        "total": antenna._feed_rotation_of(los, sign, None, min_elevation).to(u.deg),
+        "total": antenna._feed_rotation_of(los, sign, None, limit).to(u.deg),
     }
-    columns["continuous"] = unwrap(columns["total"], mask=below, obstime=times,
+    columns["continuous"] = unwrap(columns["total"], mask=~visible, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
-    return {name: u.Quantity(value) for name, value in columns.items()}, ~below
+    return {name: u.Quantity(value) for name, value in columns.items()}, visible
 
 
 def _target_name(target):
@@ -81,7 +101,8 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
         One natural source or one satellite.
     obstime : `~astropy.time.Time`
-        Strictly increasing epochs (one-dimensional).
+        Strictly increasing epochs (one-dimensional); masked epochs are kept
+        as rows whose angles are NaN.
     polarization, min_elevation : optional
         As for `~astropy_feedrot.Antenna.feed_rotation`.
 
@@ -97,10 +118,14 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     Raises
     ------
     TypeError
-        If ``antenna`` is not an `~astropy_feedrot.Antenna`.
-    ValueError
-        If ``obstime`` is not a one-dimensional increasing series, or for the
+        If ``antenna`` is not an `~astropy_feedrot.Antenna`, and for the
         errors of `~astropy_feedrot.Antenna.feed_rotation`.
+    ValueError
+        If ``obstime`` is not a one-dimensional increasing series, ``target``
+        holds several sources, or for the errors of
+        `~astropy_feedrot.Antenna.feed_rotation`.
+    astropy.units.UnitsError
+        If ``min_elevation`` is not an angle.
 
     Examples
     --------
@@ -117,7 +142,9 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     <Quantity [-30.90395267,  24.10716885,  51.55021012] deg>
     """
     times = _check_times(obstime)
-    columns, _ = _antenna_columns(antenna, target, times, polarization, min_elevation)
+    target = _check_target(target)
+    limit = as_elevation_limit(min_elevation)
+    columns, _ = _antenna_columns(antenna, target, times, polarization, limit)
     table = Table({"time": times, **columns})
     table.meta.update(antenna=antenna.name or repr(antenna), target=_target_name(target),
                       polarization=str(polarization or getattr(target, "polarization", "RCP")),
@@ -136,9 +163,11 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
         What both observe.
     obstime : `~astropy.time.Time`
-        Strictly increasing epochs (one-dimensional).
+        Strictly increasing epochs (one-dimensional); masked epochs are kept
+        as rows whose angles and delay are NaN.
     frequency : `~astropy.units.Quantity`
-        Observing frequency of the rotation delay.
+        Observing frequency of the rotation delay (see
+        `~astropy_feedrot.rotation_delay`).
     polarization, min_elevation : optional
         As for `~astropy_feedrot.Antenna.feed_rotation`.
 
@@ -148,11 +177,13 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
         ``time``; for each antenna the columns of `feed_rotation_table`
         prefixed with the antenna's name and ``_``; ``rotation_delay`` (ps,
         continuous, NaN where the target is below the limit at either
-        antenna) and ``both_visible``. ``meta["ambiguity"]`` is the delay
-        ambiguity :math:`1/f`.
+        antenna) and ``both_visible`` (False at masked epochs too).
+        ``meta["ambiguity"]`` is the delay ambiguity :math:`1/f`.
 
     Raises
     ------
+    TypeError, astropy.units.UnitsError
+        As `feed_rotation_table` and `~astropy_feedrot.rotation_delay`.
     ValueError
         If the two antennas have the same name, or as `feed_rotation_table`
         and `~astropy_feedrot.rotation_delay`.
@@ -177,19 +208,21 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     prefixes = [name or f"antenna{i}" for i, name in enumerate(names, start=1)]
     if prefixes[0] == prefixes[1]:
         raise ValueError(f"the two antennas of a baseline must differ; both are {prefixes[0]!r}")
-    f_hz = _frequency_hz(frequency)
+    f_hz = frequency_hz(frequency)
+    target = _check_target(target)
+    limit = as_elevation_limit(min_elevation)
     table = Table({"time": times})
     visible = np.ones(times.shape, bool)
     totals = []
     for prefix, antenna in zip(prefixes, (antenna1, antenna2)):
-        columns, above = _antenna_columns(antenna, target, times, polarization, min_elevation)
+        columns, above = _antenna_columns(antenna, target, times, polarization, limit)
         visible &= above
         totals.append(columns["total"])
         for name, value in columns.items():
             table[f"{prefix}_{name}"] = value
     # The delay of `~astropy_feedrot.rotation_delay`, from the totals above.
-    result = _delay_of_difference(totals[1] - totals[0], f_hz, obstime=times,
-                                  max_gap=_max_gap(times))
+    result = delay_of_difference(totals[1] - totals[0], f_hz, axis=0, obstime=times,
+                                 max_gap=_max_gap(times))
     table["rotation_delay"] = result.delay
     table["both_visible"] = visible
     table.meta.update(antennas=prefixes, target=_target_name(target),
@@ -201,6 +234,26 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
 def _span(values):
     values = u.Quantity(values)
     return np.nanmin(values), np.nanmax(values)
+
+
+def _check_baseline_table(table):
+    """The two antenna prefixes of a `baseline_table`; ValueError if it is not one."""
+    if not isinstance(table, Table):
+        raise TypeError(f"table must be an astropy Table from baseline_table, got "
+                        f"{type(table).__name__}")
+    antennas = table.meta.get("antennas")
+    if not isinstance(antennas, (list, tuple)) or len(antennas) != 2:
+        raise ValueError("table is not from baseline_table: its meta has no 'antennas' "
+                         "pair; build it with astropy_feedrot.tables.baseline_table")
+    needed = ["time", "both_visible", "rotation_delay"] + [
+        f"{name}_{column}" for name in antennas
+        for column in ("receiver", "transmitter", "continuous")]
+    missing = [name for name in needed if name not in table.colnames]
+    missing += [key for key in ("min_elevation", "frequency", "ambiguity")
+                if key not in table.meta]
+    if missing:
+        raise ValueError(f"table is not from baseline_table: it lacks {', '.join(missing)}")
+    return antennas
 
 
 def baseline_summary(table):
@@ -221,8 +274,11 @@ def baseline_summary(table):
 
     Raises
     ------
+    TypeError
+        If ``table`` is not an `~astropy.table.Table`.
     ValueError
-        If the target is never visible from both antennas.
+        If ``table`` is not one from `baseline_table` (a column or ``meta``
+        entry is missing), or the target is never visible from both antennas.
 
     Examples
     --------
@@ -234,7 +290,7 @@ def baseline_summary(table):
       both above 10.0 deg: 42 epochs, 2023-01-25T08:10:00.000 to 2023-01-25T15:00:00.000
     ...
     """
-    first, second = table.meta["antennas"]
+    first, second = _check_baseline_table(table)
     visible = np.asarray(table["both_visible"])
     if not visible.any():
         raise ValueError("the target is never above the elevation limit at both antennas")

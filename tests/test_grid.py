@@ -217,7 +217,7 @@ def test_wind_up_arrays_against_the_kernel():
     # antennas and the vector forms for tracking ones equal the kernel's.
     rng = np.random.default_rng(5)
     n_t, n_a, n_s = 7, 6, 5
-    xyz = rng.normal(size=(n_a, 3)) * 6.4e6
+    xyz = k.unit(rng.normal(size=(n_a, 3))) * 6.371e6  # on the Earth's surface
     enu = np.stack([np.stack(local_frame_of(x)) for x in xyz])
     stationary = np.array([True, False, True, False, True, False])
     axis = k.unit(rng.normal(size=(n_a, 3)))
@@ -304,11 +304,14 @@ def test_degenerate_geometry_nan_and_one_warning(antennas):
     assert len(record) == 1
     assert np.all(np.isnan(phi[:, 1, 1]))
     assert np.all(np.isfinite(phi[:, [0, 2], :])) and np.all(np.isfinite(phi[:, 1, 0]))
-    # No warning below the elevation limit, or on dask.
-    lazy = feed_rotation_grid_dask(antennas, [zenith], TIMES, min_elevation=95 * u.deg)
+    # No warning below the elevation limit, or on dask: a satellite at the nadir
+    # of FD-VLBA (on its fixed axis too) is below every antenna's horizon.
+    nadir = Satellite(SkyCoord(ITRS(*((above - 4e7 * fd.local_frame.up) * u.m),
+                                    representation_type="cartesian")))
+    lazy = feed_rotation_grid_dask(antennas, [nadir], TIMES, min_elevation=0 * u.deg)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        feed_rotation_grid(antennas, [zenith], TIMES, min_elevation=95 * u.deg)
+        feed_rotation_grid(antennas, [nadir], TIMES, min_elevation=0 * u.deg)
         assert np.all(np.isnan(lazy.compute()))
 
 
