@@ -1,7 +1,6 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """An antenna: a site, a mount and a focus, and its feed rotation."""
 
-import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -9,7 +8,8 @@ from astropy import units as u
 from astropy.coordinates import Angle
 
 from . import kernel
-from .exceptions import DegenerateGeometryWarning
+from .eop import iers_context
+from .exceptions import DegenerateGeometryWarning, warn_caller
 from .focus import CassegrainFocus, Focus
 from .frames import (
     VERTICALS,
@@ -221,17 +221,17 @@ class Antenna:
         phase = np.where(below, np.nan, phase)
         count = int(np.count_nonzero(degenerate))
         if count:
-            warnings.warn(
+            warn_caller(
                 f"{what} is undefined at {count} of {degenerate.size} epochs, where the "
                 f"line of sight is within 0.2 mas of a singular direction of {self.mount!r} "
                 f"with {self.focus!r} (a fixed axis such as the zenith of an alt-az "
                 "mount) or of the celestial pole, or where a transmitter is seen edge-on; "
                 "NaN is returned there",
                 DegenerateGeometryWarning,
-                stacklevel=4,
             )
         return _to_angle(phase)
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def feed_rotation(self, target, obstime, polarization=None, form=None,
                       min_elevation=None):
         """Feed rotation of the antenna observing a target.
@@ -331,6 +331,7 @@ class Antenna:
         below = self._below(los.s, limit)
         return self._finish(sign * self._phase(los, form), los.s, below=below)
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def feed_rotation_terms(self, target, obstime, polarization=None, min_elevation=None):
         """The feed rotation split into a transmitter and a receiver term (Eqs 20-22).
 
@@ -395,6 +396,7 @@ class Antenna:
         total = kernel.wrap_phase(transmitter.rad + receiver.rad)
         return FeedRotationTerms(transmitter, receiver, _to_angle(total))
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def parallactic_angle(self, target, obstime):
         """Parallactic angle of a target at the antenna's site (Eq 15).
 
@@ -432,6 +434,7 @@ class Antenna:
     def _parallactic_angle_of(self, s):
         return self._finish(kernel.receiver_term(s, self._local.up), s, "parallactic angle")
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def altaz(self, target, obstime):
         """Azimuth and elevation of a target above the antenna's horizon.
 

@@ -7,7 +7,6 @@ attitude quaternions, such as those of IGS ORBEX files (Eqs 24-25).
 """
 
 import os
-import warnings
 
 import numpy as np
 from astropy import units as u
@@ -21,7 +20,7 @@ from astropy.coordinates import (
 
 from . import kernel
 from .eop import iers_context
-from .exceptions import DegenerateGeometryWarning
+from .exceptions import DegenerateGeometryWarning, warn_caller
 from .frames import as_time
 from .io import read_orbex
 
@@ -182,16 +181,15 @@ def nominal_dipoles(position, sun):
     return aligned, transverse
 
 
-def _warn_nominal_undefined(transverse, position, stacklevel):
+def _warn_nominal_undefined(transverse, position):
     """One warning for the epochs where `nominal_dipoles` is NaN for a finite position."""
     bad = np.isnan(transverse[..., 0]) & np.all(np.isfinite(position), axis=-1)
     if np.any(bad):
-        warnings.warn(
+        warn_caller(
             f"nominal attitude undefined at {np.count_nonzero(bad)} of {bad.size} epochs, "
             "where the Sun, the satellite and the Earth's centre are aligned; NaN is "
             "returned there",
             DegenerateGeometryWarning,
-            stacklevel=stacklevel + 1,
         )
 
 
@@ -226,7 +224,7 @@ class NominalAttitude(Attitude):
     def dipoles(self, obstime, position):
         position = np.asarray(position, dtype=float)
         aligned, transverse = nominal_dipoles(position, sun_position(obstime))
-        _warn_nominal_undefined(transverse, position, stacklevel=3)
+        _warn_nominal_undefined(transverse, position)
         return aligned, transverse
 
 

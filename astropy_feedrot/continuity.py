@@ -2,7 +2,6 @@
 """Cycle continuity of feed-rotation series (Eq 9) and the rotation delay of a baseline."""
 
 import operator
-import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -13,6 +12,8 @@ from astropy.utils.masked import Masked
 
 from . import kernel
 from .antenna import Antenna
+from .eop import iers_context
+from .exceptions import warn_caller
 from .frames import as_time, broadcast_shape, fill_masked, time_axis
 
 __all__ = ["ContinuityWarning", "unwrap", "RotationDelay", "rotation_delay", "frequency_hz",
@@ -216,12 +217,11 @@ def unwrap(angle, axis=-1, obstime=None, max_gap=None, mask=None):
     within = np.diff(segment, axis=-1) == 0
     ambiguous = (np.abs(np.diff(out, axis=-1)) > AMBIGUOUS_STEP) & within
     if np.any(ambiguous):
-        warnings.warn(
+        warn_caller(
             f"{np.count_nonzero(ambiguous)} consecutive steps exceed "
             f"{np.degrees(AMBIGUOUS_STEP):.0f} deg: the cycle count there is ambiguous; "
             "sample more densely or split the series with max_gap or mask",
             ContinuityWarning,
-            stacklevel=2,
         )
     out = np.moveaxis(out, -1, axis).reshape(shape)
     if np.ndim(angle) == 0:
@@ -252,6 +252,7 @@ class RotationDelay(NamedTuple):
     ambiguity: u.Quantity
 
 
+@iers_context()  # one check of the Earth-orientation tables per call
 def rotation_delay(antenna1, antenna2, target, obstime, frequency, polarization=None,
                    min_elevation=None, max_gap=None):
     """Delay caused by the difference of two antennas' feed rotations (Sec. 4.1).

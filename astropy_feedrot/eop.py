@@ -25,8 +25,6 @@ large the UT1 error may be and what that does to hour and parallactic angles
 
 import contextlib
 import contextvars
-import os
-import sys
 import warnings
 from typing import NamedTuple
 
@@ -38,7 +36,7 @@ from astropy.utils import iers
 from astropy.utils.exceptions import AstropyWarning
 
 from .config import conf
-from .exceptions import StaleEarthOrientationWarning
+from .exceptions import StaleEarthOrientationWarning, warn_caller
 
 __all__ = [
     "EarthOrientationStatus",
@@ -63,8 +61,6 @@ _QUOTED_ELEVATION = 80 * u.deg
 # the last measured value: S_t = 0.00025 d**0.75 s (Bulletin A, "the
 # predictions' accuracy may be estimated from the expressions").
 _BULLETIN_A_UT1 = 0.00025
-
-_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
 
 class EarthOrientationStatus(NamedTuple):
@@ -290,15 +286,6 @@ class _Scope:
 _SCOPE = contextvars.ContextVar("astropy_feedrot_eop_scope", default=None)
 
 
-def _caller_stacklevel():
-    """The stacklevel of the first frame outside the package and contextlib."""
-    frame, level = sys._getframe(1), 1
-    while frame is not None and (frame.f_code.co_filename.startswith(_PACKAGE_DIR)
-                                 or frame.f_code.co_filename == contextlib.__file__):
-        frame, level = frame.f_back, level + 1
-    return level
-
-
 @contextlib.contextmanager
 def iers_context(obstime=None):
     """Context (or decorator) in which Earth orientation is offline and checked.
@@ -350,7 +337,7 @@ def iers_context(obstime=None):
     if outermost:
         message = earth_orientation_status(scope.epochs()).message
         if message is not None:
-            warnings.warn(message, StaleEarthOrientationWarning, stacklevel=_caller_stacklevel())
+            warn_caller(message, StaleEarthOrientationWarning)
 
 
 @contextlib.contextmanager

@@ -1,9 +1,47 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Warnings and errors of astropy_feedrot."""
 
+import contextlib
+import os
+import sys
+import warnings
+
 from astropy.utils.exceptions import AstropyUserWarning
 
-__all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning"]
+__all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning",
+           "warn_caller"]
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def warn_caller(message, category):
+    """Warn, pointing at the first line outside this package.
+
+    The package's warnings name the user's line that called it, however deep
+    in the package they arise and whatever decorators or contexts lie between.
+
+    Parameters
+    ----------
+    message : str
+        The text of the warning.
+    category : type
+        A subclass of `Warning`.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from astropy_feedrot.exceptions import DegenerateGeometryWarning, warn_caller
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_caller("2 of 10 epochs undefined", DegenerateGeometryWarning)
+    >>> "exceptions.py" in caught[0].filename
+    False
+    """
+    frame, level = sys._getframe(1), 2
+    while frame is not None and (frame.f_code.co_filename.startswith(_PACKAGE_DIR)
+                                 or frame.f_code.co_filename == contextlib.__file__):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 class DegenerateGeometryWarning(AstropyUserWarning):

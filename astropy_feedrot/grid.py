@@ -24,7 +24,6 @@ Three layers, as in the rest of the package:
   cluster.
 """
 
-import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -42,7 +41,8 @@ from .attitude import (
 )
 from .config import conf
 from .continuity import delay_of_difference, frequency_hz
-from .exceptions import DegenerateGeometryWarning
+from .eop import iers_context
+from .exceptions import DegenerateGeometryWarning, warn_caller
 from .focus import BeamWaveguideFocus, Focus, NasmythFocus
 from .frames import (
     LocalFrame,
@@ -712,7 +712,7 @@ def _earth_orientation(obstime):
 
 def _propagate_tle(orbits, obstime, orientation):
     """ITRS positions (S, T, 3) in metres of TLE orbits, propagated together."""
-    r = propagate_tles(orbits, obstime, stacklevel=6)  # NaN and a warning where SGP4 fails
+    r = propagate_tles(orbits, obstime)  # NaN and a warning where SGP4 fails
     if orientation is not None:
         return orientation.teme_to_itrs(r)
     return np.stack([teme_to_itrs(one, obstime) for one in r])
@@ -757,7 +757,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
                else sun_position(obstime))
         where = position[:, nominal]
         a, t = nominal_dipoles(where, sun[:, np.newaxis])
-        _warn_nominal_undefined(t, where, stacklevel=4)
+        _warn_nominal_undefined(t, where)
         aligned[:, nominal], transverse[:, nominal] = a, t
     for i in sorted(others):
         a, t = satellites[i].attitude.dipoles(obstime, position[:, i])
@@ -868,6 +868,7 @@ def _block_arguments(grid):
                 form=grid.form, sign=grid.sign, min_sine=grid.min_sine)
 
 
+@iers_context()  # one check of the Earth-orientation tables per call
 def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=None,
                        min_elevation=None):
     """Feed rotation of every antenna observing every target at every epoch.
@@ -957,13 +958,12 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, count=True,
                                   **_block_arguments(grid))
     if degenerate:
-        warnings.warn(
+        warn_caller(
             f"feed rotation is undefined at {degenerate} of {out.size} grid points, where a "
             "line of sight is within 0.2 mas of a singular direction of a mount (a fixed "
             "axis such as the zenith of an alt-az mount) or of the celestial pole, or where "
             "a transmitter is seen edge-on; NaN is returned there",
             DegenerateGeometryWarning,
-            stacklevel=2,
         )
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
@@ -979,6 +979,7 @@ def _dask_array():
     return dask.array
 
 
+@iers_context()  # one check of the Earth-orientation tables per call
 def feed_rotation_grid_dask(antennas, targets, obstime, *, polarization=None, form=None,
                             min_elevation=None, chunks=None):
     """`feed_rotation_grid` as a `dask.array`, chunked over time.

@@ -18,7 +18,7 @@ from astropy.time import Time
 
 from .config import conf
 from .eop import iers_context
-from .exceptions import OrbitWarning
+from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
 from .io import read_sp3
 from .io.tle import check_tle_pair
@@ -333,7 +333,7 @@ class TLEOrbit(Orbit):
 
     def position(self, obstime):
         obstime = as_time(obstime)
-        r = propagate_tles([self], obstime, stacklevel=3)[0]
+        r = propagate_tles([self], obstime)[0]
         return teme_to_itrs(r, obstime)
 
 
@@ -352,7 +352,7 @@ def _sgp4_error(code):
     return _sgp4().SGP4_ERRORS.get(int(code), f"error {int(code)}")
 
 
-def propagate_tles(orbits, obstime, stacklevel=2):
+def propagate_tles(orbits, obstime):
     """TEME positions of several element sets at the same epochs, with one SGP4 call.
 
     Parameters
@@ -361,8 +361,6 @@ def propagate_tles(orbits, obstime, stacklevel=2):
         The element sets.
     obstime : `~astropy.time.Time`
         Epochs, any shape.
-    stacklevel : int, optional
-        Passed on to `warnings.warn`, for callers that wrap this function.
 
     Returns
     -------
@@ -411,10 +409,9 @@ def propagate_tles(orbits, obstime, stacklevel=2):
             for code in np.unique(codes[codes != 0]):
                 parts.append(f"{orbit.label}: {np.count_nonzero(codes == code)} epochs, "
                              f"{_sgp4_error(code)}")
-        warnings.warn(
+        warn_caller(
             f"SGP4 fails at {np.count_nonzero(error)} of {error.size} epochs "
-            f"({'; '.join(parts)}); their positions are NaN", OrbitWarning,
-            stacklevel=stacklevel)
+            f"({'; '.join(parts)}); their positions are NaN", OrbitWarning)
     epochs = np.array([[o._satrec.jdsatepoch, o._satrec.jdsatepochF] for o in orbits])
     age = np.abs((jd1 - epochs[:, :1]) + (jd2 - epochs[:, 1:]))  # days, (S, T)
     limits = np.array([u.Quantity(o.max_age).to_value(u.day) for o in orbits])[:, np.newaxis]
@@ -422,12 +419,11 @@ def propagate_tles(orbits, obstime, stacklevel=2):
     if np.any(stale):
         worst = [f"{o.label} (epoch {o.epoch.iso[:10]}) up to {a.max():.1f} days away"
                  for o, a, s in zip(orbits, age, stale) if s.any()]
-        warnings.warn(
+        warn_caller(
             f"{np.count_nonzero(stale)} of {stale.size} epochs lie more than "
             f"{limits.min():g} days from the epoch of their element set "
             f"({'; '.join(worst)}); SGP4 positions degrade away from the epoch (kilometres "
-            "within weeks): use an element set closer to the observation", OrbitWarning,
-            stacklevel=stacklevel)
+            "within weeks): use an element set closer to the observation", OrbitWarning)
     return r.reshape((len(orbits),) + obstime.shape + (3,))
 
 
@@ -577,7 +573,7 @@ class SP3Orbit(Orbit):
         if not np.all(ok):
             bad = np.flatnonzero(~ok)
             first_bad = (self._t0 + x[bad[0]] * u.s).isot
-            warnings.warn(
+            warn_caller(
                 f"{bad.size} of {x.size} times fall in holes of the SP3 orbit of "
                 f"{self.satellite} (the first at {first_bad} {self.epochs.scale.upper()}), "
                 f"where no {self.points} consecutive epochs at the {self.interval.value:g} s "
@@ -585,7 +581,6 @@ class SP3Orbit(Orbit):
                 "marked bad; NaN is returned there (SP3Orbit.spans lists where positions are "
                 "interpolated)",
                 OrbitWarning,
-                stacklevel=2,
             )
         return out.reshape(obstime.shape + (3,))
 

@@ -5,6 +5,7 @@ import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
+from .eop import iers_context
 from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit
 from .polarization import polarization_sign
@@ -124,6 +125,7 @@ class Satellite:
             )
         return sign
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def position(self, obstime):
         """Geocentric ITRS position in metres (see `Orbit.position`).
 
@@ -155,6 +157,7 @@ class Satellite:
             position = np.where(masked[..., np.newaxis], np.nan, position)
         return position
 
+    @iers_context()  # one check of the Earth-orientation tables per call
     def line_of_sight(self, location, obstime):
         """Source vector and transmitter dipoles seen from a site.
 

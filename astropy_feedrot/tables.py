@@ -14,6 +14,7 @@ from astropy.table import Table
 
 from .antenna import Antenna
 from .continuity import delay_of_difference, frequency_hz, unwrap
+from .eop import iers_context
 from .frames import as_elevation_limit, as_skycoord, fill_masked
 from .satellite import Satellite
 
@@ -91,6 +92,7 @@ def _target_name(target):
         return repr(target)
 
 
+@iers_context()  # one check of the Earth-orientation tables per call
 def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevation=None):
     """Feed rotation of one antenna over a series of epochs.
 
@@ -152,6 +154,7 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     return table
 
 
+@iers_context()  # one check of the Earth-orientation tables per call
 def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=None,
                    min_elevation=None):
     """Feed rotation at both ends of a baseline and the rotation delay between them.

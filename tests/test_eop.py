@@ -240,3 +240,42 @@ def test_command_line_start_now_works_offline(stale_tables, capsys):
     out, err = capsys.readouterr()
     assert "# %ECSV" in out
     assert err.count("\n") == 1 and "days past the predictions" in err
+
+
+def _front_ends():
+    from astropy_feedrot import Satellite, TLEOrbit, rotation_delay
+    from astropy_feedrot.grid import feed_rotation_grid, feed_rotation_grid_dask
+    from astropy_feedrot.stations import get_antenna
+    from astropy_feedrot.tables import baseline_table, feed_rotation_table
+
+    first, second = get_antenna("FD-VLBA"), get_antenna("DBR205")
+    satellite = Satellite(TLEOrbit.from_elements(LATER, inclination=55 * u.deg,
+                                                 raan=10 * u.deg, altitude=20200 * u.km))
+    for name, target in (("natural source", SOURCE), ("satellite", satellite)):
+        many = target if target is SOURCE else [target]
+        yield name, "feed_rotation", lambda t, x=target: first.feed_rotation(x, t)
+        yield name, "feed_rotation_terms", lambda t, x=target: first.feed_rotation_terms(x, t)
+        yield name, "parallactic_angle", lambda t, x=target: first.parallactic_angle(x, t)
+        yield name, "altaz", lambda t, x=target: first.altaz(x, t)
+        yield name, "rotation_delay", lambda t, x=target: rotation_delay(
+            first, second, x, t, 1.5 * u.GHz)
+        yield name, "feed_rotation_grid", lambda t, x=many: feed_rotation_grid(
+            [first, second], x, t)
+        yield name, "feed_rotation_grid_dask", lambda t, x=many: feed_rotation_grid_dask(
+            [first, second], x, t).compute(scheduler="synchronous")
+        yield name, "feed_rotation_table", lambda t, x=target: feed_rotation_table(first, x, t)
+        yield name, "baseline_table", lambda t, x=target: baseline_table(
+            first, second, x, t, 1.5 * u.GHz)
+    yield "satellite", "Satellite.line_of_sight", lambda t: satellite.line_of_sight(
+        first.location, t)
+
+
+@pytest.mark.parametrize("n_epochs", [3, 40])
+def test_every_front_end_warns_once(stale_tables, n_epochs):
+    """However many transformations a call makes, it warns once, at the caller."""
+    times = LATER + np.arange(n_epochs) * 15 * u.min
+    for target, name, call in _front_ends():
+        _, caught = _caught(call, times)
+        stale = [w for w in caught if w.category is StaleEarthOrientationWarning]
+        assert len(stale) == 1, (target, name, len(stale))
+        assert stale[0].filename == __file__, (target, name)
