@@ -2,38 +2,76 @@
 """The ``feedrot`` command line.
 
 ``feedrot natural``, ``feedrot satellite`` and ``feedrot baseline`` tabulate
-feed rotation over a span of time (ECSV on standard output or to a file, and
-optionally a figure); ``feedrot demo`` runs the paper's Section 4.1 simulation
-on embedded data; ``feedrot stations`` lists the station catalogue. Errors are
-one line on standard error and a non-zero exit status.
+feed rotation over a span of time (ECSV on standard output, or a file whose
+format follows its extension, and optionally a figure); ``feedrot demo`` runs
+the paper's Section 4.1 simulation on embedded data; ``feedrot stations``
+lists the station catalogue.
+
+Every error is one line on standard error and a non-zero exit status. No file
+is lost: every output is checked before any work is done (format, directory,
+an existing file needs ``--overwrite``, never one of the inputs, never the
+table and the figure in one file), written to a temporary file beside its
+target and renamed into place once everything has been written.
 """
 
 import argparse
+import contextlib
+import importlib.util
+import math
 import os
 import re
+import stat
 import sys
+import tempfile
 import warnings
 from pathlib import Path
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import EarthLocation, SkyCoord
+from astropy.coordinates import EarthLocation, SkyCoord, frame_transform_graph
+from astropy.io.fits.verify import VerifyWarning
 from astropy.time import Time
 
+from . import plotting
 from .antenna import Antenna
 from .attitude import NominalAttitude, QuaternionAttitude
+from .data import sample_file
 from .eop import iers_context
 from .io import FileFormatError, read_tle
 from .labels import mount_from_label
 from .orbits import SP3Orbit, TLEOrbit
 from .satellite import Satellite
+from .simulations import gps_short_baseline
 from .stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
-from .tables import baseline_table, feed_rotation_table
+from .tables import baseline_summary, baseline_table, feed_rotation_table
 
-__all__ = ["main", "CommandError"]
+__all__ = ["main", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS", "CELESTIAL_FRAMES"]
 
-#: Most epochs one command may compute.
-MAX_EPOCHS = 10_000_000
+#: Most epochs one command may compute (about 1.6 GB and half a minute for
+#: a natural source; a satellite with the nominal attitude is ten times slower).
+MAX_EPOCHS = 1_000_000
+
+#: Formats of ``-o/--output`` by file extension: the format `astropy.table.Table.write`
+#: itself identifies from each extension. ECSV, FITS and HDF5 keep units, the
+#: time scale and the header; CSV and HTML keep the values only (degrees, ps, UTC).
+TABLE_FORMATS = {
+    ".ecsv": "ascii.ecsv",
+    ".csv": "ascii.csv",
+    ".fits": "fits",
+    ".fit": "fits",
+    ".fts": "fits",
+    ".hdf5": "hdf5",
+    ".h5": "hdf5",
+    ".html": "ascii.html",
+}
+
+#: The modules each table format needs beyond astropy.
+_FORMAT_NEEDS = {"hdf5": "h5py"}
+
+#: Frames accepted by ``--frame``: celestial frames, whose coordinates need
+#: no observing time or place (unlike altaz or hadec).
+CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalactic",
+                    "barycentricmeanecliptic", "barycentrictrueecliptic")
 
 _EXAMPLES = {
     "natural": """examples:
@@ -46,7 +84,7 @@ _EXAMPLES = {
     "satellite": """examples:
   feedrot satellite DBR205 --tle gps.tle --sat 41328 \\
       --start 2023-01-25T06:00 --stop 2023-01-25T17:00 --step 30s --min-elevation 10
-  feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G05 --orbex igs.obx -o g05.ecsv""",
+  feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G05 --orbex igs.obx -o g05.fits""",
     "baseline": """examples:
   feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 \\
       --stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10
@@ -60,97 +98,178 @@ _ANTENNA_HELP = (
     "--mount and --focus"
 )
 
-_SITE = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?),\s*([-+]?\d+(?:\.\d*)?),\s*([-+]?\d+(?:\.\d*)?)\s*$")
+_SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
 
 
 class CommandError(Exception):
     """A problem with the command's input, reported on one line."""
 
 
+class _UsageError(Exception):
+    """A command line that argparse cannot read."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line (no usage block)."""
+
+    def error(self, message):
+        if "expected one argument" in message:
+            message += " (write --option=VALUE for a value that starts with '-')"
+        raise _UsageError(f"{message}; see '{self.prog} --help'")
+
+
+def _one_line(text):
+    """``text`` on one line: its lines joined with '; '."""
+    return "; ".join(" ".join(line.split()) for line in str(text).splitlines() if line.strip())
+
+
+# Values ------------------------------------------------------------------------------------
+
+
 def _quantity(text, unit, what):
-    """A positive quantity from text like '30s', '10 min' or '1575.42MHz'."""
+    """A positive, finite quantity from text like '30s', '10 min' or '1575.42MHz'."""
     try:
         value = u.Quantity(text)
     except (TypeError, ValueError):
         raise CommandError(f"{what}: cannot read {text!r} as a number with a unit "
-                           f"(e.g. 30s, 10min)") from None
+                           f"(e.g. {'30s, 10min' if unit == u.s else '1575.42MHz, 8.4GHz'})"
+                           ) from None
     if value.unit == u.dimensionless_unscaled:
         value = value.value * unit
     try:
         value = value.to(unit)
     except u.UnitConversionError:
         raise CommandError(f"{what}: {text!r} is not in a unit of {unit.physical_type}") from None
+    if not value.isscalar:
+        raise CommandError(f"{what}: give one value, got {text!r}")
     if not np.isfinite(value) or value <= 0:
-        raise CommandError(f"{what} must be positive, got {text!r}")
+        raise CommandError(f"{what} must be positive and finite, got {text!r}")
     return value
 
 
-def _time(text, what):
-    if text.strip().lower() == "now":
-        return Time.now()
+def _min_elevation(args):
+    if args.min_elevation is None:
+        return None
     try:
-        return Time(text.strip(), scale="utc")
+        value = u.Quantity(args.min_elevation)
+    except (TypeError, ValueError):
+        raise CommandError(f"--min-elevation: cannot read {args.min_elevation!r} as an angle "
+                           "(e.g. 10, 10deg)") from None
+    value = value.value * u.deg if value.unit == u.dimensionless_unscaled else value
+    try:
+        value = value.to(u.deg)
+    except u.UnitConversionError:
+        raise CommandError(f"--min-elevation: {args.min_elevation!r} is not an angle") from None
+    if not value.isscalar or not -90 <= value.value <= 90:
+        raise CommandError(f"--min-elevation must be one angle within [-90, 90] deg, got "
+                           f"{args.min_elevation!r}")
+    return value
+
+
+def _time(text, what, now):
+    if text.strip().lower() == "now":
+        return now
+    try:
+        time = Time(text.strip(), scale="utc")
     except (ValueError, TypeError):
         raise CommandError(f"{what}: cannot read {text!r} as a time; use ISO format, e.g. "
-                           "2023-01-25T18:00 (UTC)") from None
+                           "2023-01-25T18:00 (UTC), or 'now'") from None
+    if not time.isscalar:
+        raise CommandError(f"{what}: give one time, got {text!r}")
+    time.format = "isot"
+    return time
 
 
 def _times(args, default=None):
-    start = _time(args.start, "--start") if args.start else None
-    stop = _time(args.stop, "--stop") if args.stop else None
-    if (start is None or stop is None) and default is not None:
+    """The epochs from --start to --stop at --step, at most `MAX_EPOCHS`."""
+    now = Time.now()  # one 'now' for both ends: --start now --stop now is one epoch
+    now.format = "isot"
+    start = _time(args.start, "--start", now) if args.start else None
+    stop = _time(args.stop, "--stop", now) if args.stop else None
+    if default is not None:
         start = default[0] if start is None else start
         stop = default[1] if stop is None else stop
     if start is None or stop is None:
         raise CommandError("give the span of time with --start and --stop")
     step = _quantity(args.step, u.s, "--step")
     if stop < start:
-        raise CommandError(f"--stop ({stop.isot}) is before --start ({start.isot})")
-    count = int(np.floor(((stop - start).to(u.s) / step).decompose().value * (1 + 1e-12))) + 1
-    if count > MAX_EPOCHS:
-        raise CommandError(f"{count} epochs from --start to --stop at --step {args.step}; "
-                           f"at most {MAX_EPOCHS} per run")
-    return start + np.arange(count) * step
+        raise CommandError(f"--stop ({stop.utc.isot}) is before --start ({start.utc.isot})")
+    steps = (stop - start).to_value(u.s) / step.to_value(u.s)
+    if not steps < MAX_EPOCHS:
+        raise CommandError(f"--step {args.step} gives {steps + 1:.3g} epochs from --start to "
+                           f"--stop, more than the {MAX_EPOCHS} of one run; use a larger "
+                           "--step or a shorter span")
+    count = math.floor(steps * (1 + 1e-12)) + 1
+    times = start + np.arange(count) * step
+    times.format = "isot"
+    return times
 
 
-def _catalogue(args):
-    if getattr(args, "catalogue", None):
-        try:
-            return read_catalogue(args.catalogue)
-        except FileNotFoundError:
-            raise CommandError(f"--catalogue: no such file {args.catalogue!r}") from None
-    return default_catalogue()
+def _site(text):
+    """(lat, lon, height) of a site 'LAT,LON,HEIGHT', or None for a station name."""
+    if "," not in text:
+        return None
+    parts = text.split(",")
+    try:
+        values = [float(part) for part in parts]
+    except ValueError:
+        values = []
+    if len(values) != 3:
+        raise CommandError(f"site {text.strip()!r}: expected {_SITE_FORMAT}")
+    lat, lon, height = values
+    if not all(math.isfinite(value) for value in values):
+        raise CommandError(f"site {text.strip()!r}: LAT, LON and HEIGHT must be finite "
+                           "numbers")
+    if not -90 <= lat <= 90:
+        raise CommandError(f"latitude {lat:g} of site {text.strip()!r} is not in [-90, 90] deg; "
+                           "the order is LAT,LON,HEIGHT")
+    if not -180 <= lon <= 360:
+        raise CommandError(f"longitude {lon:g} of site {text.strip()!r} is not in [-180, 360] "
+                           "deg; the order is LAT,LON,HEIGHT")
+    return lat, lon, height
 
 
-def _antenna(text, args):
-    site = _SITE.match(text)
-    catalogue = _catalogue(args)
+def _antenna(text, args, catalogue):
+    site = _site(text)
     if site is None:
         if args.mount or args.focus:
             raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
                                f"catalogue station {text!r}")
         return catalogue.get_antenna(text.strip())
-    lat, lon, height = (float(v) for v in site.groups())
-    if not -90 <= lat <= 90:
-        raise CommandError(f"latitude {lat} of site {text.strip()!r} is not in [-90, 90] deg; "
-                           "the order is LAT,LON,HEIGHT")
+    lat, lon, height = site
     location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
-    mount, focus = mount_from_label(args.mount or "AZEL", "geodetic")
+    try:
+        mount, focus = mount_from_label(args.mount or "AZEL", "geodetic")
+    except ValueError as error:
+        raise CommandError(f"--mount: {error}") from None
     if args.focus:
         focus = focus_from_name(args.focus, "--focus")
-    return Antenna(location, mount, focus, name=f"site {text.strip()}")
+    # One name per place, however the numbers are written (40 and 40.0).
+    name = "site " + ",".join(format(value, ".15g") for value in site)
+    try:
+        return Antenna(location, mount, focus, name=name)
+    except ValueError as error:
+        raise CommandError(f"site {text.strip()!r}: {_one_line(error)}") from None
 
 
 def _natural_target(args):
-    frame = args.frame
+    frame = (args.frame or "icrs").strip().lower()
+    if frame not in CELESTIAL_FRAMES:
+        known = frame_transform_graph.lookup_name(frame) is not None
+        raise CommandError(
+            f"--frame {args.frame!r}: "
+            + ("a frame tied to an observing time or place; " if known else
+               "unknown frame; ")
+            + "give the coordinates in a celestial frame: " + ", ".join(CELESTIAL_FRAMES))
     if args.source is not None:
         if args.ra is not None or args.dec is not None:
             raise CommandError("give the source either with --source or with --ra and --dec")
         for kwargs in ({}, {"unit": (u.hourangle, u.deg)}):
             try:
-                return SkyCoord(args.source, frame=frame, **kwargs)
+                coord = SkyCoord(args.source, frame=frame, **kwargs)
             except (ValueError, TypeError, u.UnitsError):
                 continue
+            return _one_source(coord, "--source", args.source)
         raise CommandError(f"--source: cannot read {args.source!r} as coordinates (e.g. "
                            "'03h19m48.16s +41d30m42.1s' or '49.95d 41.51d'); looking up "
                            "names needs the internet, give the coordinates instead")
@@ -159,25 +278,75 @@ def _natural_target(args):
     plain = re.fullmatch(r"\s*[-+]?\d+(\.\d*)?\s*", args.ra) is not None
     ra_unit = u.deg if plain else u.hourangle
     try:
-        return SkyCoord(args.ra, args.dec, unit=(ra_unit, u.deg), frame=frame)
+        coord = SkyCoord(args.ra, args.dec, unit=(ra_unit, u.deg), frame=frame)
     except (ValueError, TypeError, u.UnitsError) as error:
         raise CommandError(f"--ra/--dec: cannot read {args.ra!r} {args.dec!r} as coordinates "
-                           f"({error}); e.g. --ra 03:19:48.16 --dec +41:30:42.1 (hours, "
-                           "degrees) or --ra 49.95 --dec 41.51 (degrees)") from None
+                           f"({_one_line(error)}); e.g. --ra 03:19:48.16 --dec +41:30:42.1 "
+                           "(hours, degrees) or --ra 49.95 --dec 41.51 (degrees)") from None
+    return _one_source(coord, "--ra/--dec", f"{args.ra} {args.dec}")
+
+
+def _one_source(coord, what, text):
+    if not coord.isscalar:
+        raise CommandError(f"{what}: give one source, got {text!r}")
+    spherical = coord.spherical
+    if not (np.isfinite(spherical.lon) and np.isfinite(spherical.lat)):
+        raise CommandError(f"{what}: the coordinates {text!r} are not finite")
+    return coord
 
 
 def _read_path(path, what):
-    if not Path(path).is_file():
+    """``path`` if it names a readable file."""
+    given = Path(path).expanduser()
+    if given.is_dir():
+        raise CommandError(f"{what}: {path!r} is a directory, not a file")
+    if not given.is_file():
         raise CommandError(f"{what}: no such file {path!r}")
-    return path
+    if not os.access(given, os.R_OK):
+        raise CommandError(f"{what}: cannot read {path!r}: permission denied")
+    return str(given)
+
+
+def _read(reader, path, what, *args, **kwargs):
+    """``reader(path, ...)``, naming the option in the errors of a file that does not read."""
+    try:
+        return reader(_read_path(path, what), *args, **kwargs)
+    except UnicodeDecodeError:
+        raise CommandError(f"{what}: {path!r} is not a text file") from None
+    except (FileFormatError, ValueError) as error:
+        message = _one_line(error)
+        raise CommandError(message if str(path) in message else f"{what}: {message}") from None
+
+
+def _catalogue(args):
+    if getattr(args, "catalogue", None):
+        return _read(read_catalogue, args.catalogue, "--catalogue")
+    return default_catalogue()
+
+
+_SATELLITE_OPTIONS = ("tle", "sp3", "sat", "orbex", "points", "satellite_polarization")
+_NATURAL_OPTIONS = ("source", "ra", "dec", "frame")
+
+
+def _given(args, names):
+    return ["--" + name.replace("_", "-") for name in names
+            if getattr(args, name, None) is not None]
 
 
 def _satellite(args):
-    polarization = args.polarization or "RCP"
+    hand = args.satellite_polarization or "RCP"
+    if args.polarization is not None and args.polarization != hand:
+        # The rule of Antenna.feed_rotation: a receiver hears its own hand only.
+        raise CommandError(
+            f"an {args.polarization} receiver (--polarization {args.polarization}) does not "
+            f"receive the {hand} signal of the satellite; leave --polarization unset or give "
+            f"--polarization {hand} (--satellite-polarization sets the satellite's hand, "
+            "RCP by default as for GNSS)")
     if args.tle is not None:
-        if args.sp3 is not None or args.orbex is not None:
-            raise CommandError("--tle goes alone; --sp3 (with --orbex) is the other orbit source")
-        records = read_tle(_read_path(args.tle, "--tle"))
+        for option in ("sp3", "orbex", "points"):
+            if getattr(args, option) is not None:
+                raise CommandError(f"--{option} goes with --sp3; --tle is the other orbit source")
+        records = _read(read_tle, args.tle, "--tle")
         if args.sat is not None:
             chosen = [r for r in records
                       if args.sat.strip().upper() in (r.name.upper(), r.catalog_number)]
@@ -191,95 +360,228 @@ def _satellite(args):
             chosen = records
         record = chosen[0]
         orbit = TLEOrbit(record.line1, record.line2, name=record.name)
-        return Satellite(orbit, polarization=polarization, name=record.name), None
+        return Satellite(orbit, polarization=hand, name=record.name), None
     if args.sp3 is None:
         raise CommandError("give the satellite's orbit with --tle FILE or --sp3 FILE --sat NAME")
     if args.sat is None:
         raise CommandError("--sp3 needs --sat, the satellite's SP3 name (e.g. G05)")
     name = args.sat.strip()
-    orbit = SP3Orbit(_read_path(args.sp3, "--sp3"), name, points=args.points)
+    points = 10 if args.points is None else args.points
+    if points < 2:
+        raise CommandError(f"--points must be at least 2 (epochs of the interpolation window), "
+                           f"got {points}")
+    orbit = _read(SP3Orbit, args.sp3, "--sp3", name, points=points)
     if args.orbex is not None:
-        attitude = QuaternionAttitude.from_orbex(_read_path(args.orbex, "--orbex"), name)
+        attitude = _read(QuaternionAttitude.from_orbex, args.orbex, "--orbex", name)
     else:
         attitude = NominalAttitude()
-    satellite = Satellite(orbit, attitude, polarization=polarization, name=name)
-    return satellite, (orbit.epochs[0], orbit.epochs[-1])
+    satellite = Satellite(orbit, attitude, polarization=hand, name=name)
+    return satellite, (orbit.epochs[0].utc, orbit.epochs[-1].utc)
 
 
 def _target(args):
-    if getattr(args, "tle", None) is not None or getattr(args, "sp3", None) is not None:
+    """The target (a SkyCoord or a Satellite) and the default span of time (or None)."""
+    satellite, natural = _given(args, _SATELLITE_OPTIONS), _given(args, _NATURAL_OPTIONS)
+    if satellite and natural:
+        raise CommandError(f"give one target: a natural source or a satellite, not both "
+                           f"({', '.join(natural)} and {', '.join(satellite)})")
+    if satellite:
         return _satellite(args)
     return _natural_target(args), None
 
 
-def _check_output(path, what):
-    if path is None:
-        return
-    parent = Path(path).expanduser().resolve().parent
-    if not parent.is_dir():
-        raise CommandError(f"{what}: cannot write {path!r}: directory {str(parent)!r} does "
-                           "not exist")
-    if Path(path).is_dir():
-        raise CommandError(f"{what}: {path!r} is a directory")
-    if not os.access(parent, os.W_OK) or (Path(path).exists() and not os.access(path, os.W_OK)):
-        raise CommandError(f"{what}: cannot write {path!r}: permission denied")
+# Output files -------------------------------------------------------------------------------
 
 
-def _check_plot(path):
-    if path is None:
-        return
-    _check_output(path, "--plot")
+def _inputs(args):
+    """(option, path) of every file the command reads."""
+    inputs = [(f"--{name}", getattr(args, name)) for name in ("tle", "sp3", "orbex", "catalogue")
+              if getattr(args, name, None) is not None]
+    if getattr(args, "catalogue", None) is None:
+        inputs.append(("embedded station catalogue", str(sample_file("stations.ecsv"))))
+    return inputs
+
+
+def _same_file(path, other):
+    if path == other:
+        return True
     try:
-        import matplotlib  # noqa: F401
+        return os.path.samefile(path, other)
+    except OSError:
+        return False
+
+
+def _figure_types():
+    try:
+        from matplotlib.figure import Figure
     except ImportError:
         raise CommandError('--plot needs matplotlib: pip install "astropy_feedrot[all]"') from None
+    return ["." + name for name in Figure().canvas.get_supported_filetypes()]
 
 
-def _min_elevation(args):
-    if args.min_elevation is None:
-        return None
+def _check_outputs(outputs, inputs, overwrite, hint="choose another name"):
+    """Resolved paths of the outputs, each checked before any work is done.
+
+    Parameters
+    ----------
+    outputs : list of (option, path, extensions)
+        The files to write (path None: not written) and the extensions each may have.
+    inputs : list of (option, path)
+        Files the command reads: never overwritten.
+    overwrite : bool
+        Whether an existing output may be replaced.
+    hint : str
+        What else to do about an existing output.
+    """
+    resolved = []
+    for what, text, extensions in outputs:
+        if text is None:
+            resolved.append(None)
+            continue
+        given = Path(text).expanduser()
+        if given.is_dir():
+            raise CommandError(f"{what}: {text!r} is a directory")
+        if given.suffix.lower() not in extensions:
+            raise CommandError(f"{what}: cannot tell a format from the extension of {text!r}; "
+                               f"use one of {', '.join(extensions)}")
+        # Through symbolic links: the file that would change.
+        path = given.resolve()
+        for option, source in inputs:
+            if _same_file(path, Path(source).expanduser().resolve()):
+                raise CommandError(f"{what}: {text!r} is the {option} input, which is never "
+                                   f"overwritten; {hint}")
+        for option, other in zip((o[0] for o in outputs), resolved):
+            if other is not None and _same_file(path, other):
+                raise CommandError(f"{what} and {option} name the same file {text!r}; each "
+                                   "needs its own")
+        if not path.parent.is_dir():
+            raise CommandError(f"{what}: cannot write {text!r}: directory "
+                               f"{str(path.parent)!r} does not exist")
+        if path.exists():
+            if not path.is_file():
+                raise CommandError(f"{what}: {text!r} is not a regular file")
+            if not overwrite:
+                raise CommandError(f"{what}: {text!r} exists; add --overwrite to replace it, or "
+                                   f"{hint}")
+            if not os.access(path, os.W_OK):
+                raise CommandError(f"{what}: cannot write {text!r}: permission denied")
+        if not os.access(path.parent, os.W_OK | os.X_OK):
+            raise CommandError(f"{what}: cannot write {text!r}: permission denied in "
+                               f"{str(path.parent)!r}")
+        resolved.append(path)
+    return resolved
+
+
+def _table_format(path):
+    """The astropy format of a table file, checking that its writer is installed."""
+    fmt = TABLE_FORMATS[path.suffix.lower()]
+    module = _FORMAT_NEEDS.get(fmt)
+    if module is not None and importlib.util.find_spec(module) is None:
+        raise CommandError(f"-o/--output: writing {path.suffix} files needs {module} "
+                           f"(pip install {module})")
+    return fmt
+
+
+def _write_table(table, fmt):
+    def write(name):
+        options = {"path": "feedrot", "serialize_meta": True} if fmt == "hdf5" else {}
+        with warnings.catch_warnings():
+            # Header keywords longer than 8 characters are written as HIERARCH cards.
+            warnings.filterwarnings("ignore", "Keyword name", VerifyWarning)
+            table.write(name, format=fmt, overwrite=True, **options)
+    return write
+
+
+def _draw(table, kind, path):
+    def write(name):
+        import matplotlib.pyplot as plt  # optional: checked by _figure_types
+
+        try:
+            plt.close(getattr(plotting, f"plot_{kind}")(table, name))
+        except (RuntimeError, ValueError, OSError) as error:
+            # e.g. a .pgf figure without LaTeX
+            raise CommandError(f"--plot: cannot draw {str(path)!r}: {_one_line(error)}") from None
+    return write
+
+
+def _new_file_mode(path):
+    if path.exists():
+        return stat.S_IMODE(path.stat().st_mode)
+    umask = os.umask(0o022)
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
+def _write_files(files, then=None):
+    """Write files safely: each to a temporary file beside it, all renamed at the end.
+
+    Parameters
+    ----------
+    files : list of (Path, callable)
+        Each target and a function writing its content to a given file name.
+    then : callable, optional
+        Called once every file is written, before any is renamed.
+
+    A failure anywhere leaves every existing file as it was and no temporary
+    file behind.
+    """
+    temporaries = []
     try:
-        value = u.Quantity(args.min_elevation)
-    except (TypeError, ValueError):
-        raise CommandError(f"--min-elevation: cannot read {args.min_elevation!r}") from None
-    value = value.value * u.deg if value.unit == u.dimensionless_unscaled else value
-    try:
-        value = value.to(u.deg)
-    except u.UnitConversionError:
-        raise CommandError(f"--min-elevation: {args.min_elevation!r} is not an angle") from None
-    if not -90 <= value.value <= 90:
-        raise CommandError(f"--min-elevation must be within [-90, 90] deg, got "
-                           f"{args.min_elevation!r}")
-    return value
+        for path, write in files:
+            handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.",
+                                            suffix=f".tmp{path.suffix}")
+            os.close(handle)
+            temporaries.append(name)
+            write(name)
+            os.chmod(name, _new_file_mode(path))
+        if then is not None:
+            then()
+        for name, (path, _) in zip(temporaries, files):
+            os.replace(name, path)
+    finally:
+        for name in temporaries:
+            with contextlib.suppress(FileNotFoundError):
+                os.remove(name)
 
 
-def _write(table, args, kind):
-    if args.output:
-        table.write(args.output, format="ascii.ecsv", overwrite=True)
-    else:
-        table.write(sys.stdout, format="ascii.ecsv")
-    if args.plot:
-        import matplotlib.pyplot as plt
+def _outputs(args):
+    """The checked output and figure paths of a table command."""
+    figure_types = _figure_types() if args.plot is not None else ()
+    return _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
+                           ("--plot", args.plot, figure_types)],
+                          _inputs(args), args.overwrite)
 
-        from . import plotting
 
-        plt.close(getattr(plotting, f"plot_{kind}")(table, args.plot))
+def _write(table, paths, kind):
+    output, figure = paths
+    files = []
+    if output is not None:
+        files.append((output, _write_table(table, _table_format(output))))
+    if figure is not None:
+        files.append((figure, _draw(table, kind, figure)))
+    then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
+    _write_files(files, then)
+
+
+# Commands -----------------------------------------------------------------------------------
 
 
 def _run_single(args):
-    _check_output(args.output, "-o/--output")
-    _check_plot(args.plot)
-    antenna = _antenna(args.antenna, args)
+    paths = _outputs(args)
+    if paths[0] is not None:
+        _table_format(paths[0])
+    catalogue = _catalogue(args)
+    antenna = _antenna(args.antenna, args, catalogue)
+    min_elevation = _min_elevation(args)
     target, span = _target(args)
-    table = feed_rotation_table(antenna, target, _times(args, default=span),
-                                polarization=args.polarization,
-                                min_elevation=_min_elevation(args))
-    _write(table, args, "feed_rotation")
+    times = _times(args, default=span)
+    table = feed_rotation_table(antenna, target, times, polarization=args.polarization,
+                                min_elevation=min_elevation)
+    _write(table, paths, "feed_rotation")
     return 0
 
 
 def _run_natural(args):
-    args.tle = args.sp3 = None
     return _run_single(args)
 
 
@@ -290,14 +592,18 @@ def _run_satellite(args):
 
 
 def _run_baseline(args):
-    _check_output(args.output, "-o/--output")
-    _check_plot(args.plot)
+    paths = _outputs(args)
+    if paths[0] is not None:
+        _table_format(paths[0])
     frequency = _quantity(args.frequency, u.MHz, "--frequency")
-    first, second = (_antenna(name, args) for name in args.antennas)
+    catalogue = _catalogue(args)
+    first, second = (_antenna(name, args, catalogue) for name in args.antennas)
+    min_elevation = _min_elevation(args)
     target, span = _target(args)
-    table = baseline_table(first, second, target, _times(args, default=span), frequency,
-                           polarization=args.polarization, min_elevation=_min_elevation(args))
-    _write(table, args, "baseline")
+    times = _times(args, default=span)
+    table = baseline_table(first, second, target, times, frequency,
+                           polarization=args.polarization, min_elevation=min_elevation)
+    _write(table, paths, "baseline")
     return 0
 
 
@@ -311,32 +617,42 @@ def _run_stations(args):
 
 
 def _run_demo(args):
-    from .simulations import gps_short_baseline
-    from .tables import baseline_summary
-
-    directory = Path(args.output_dir)
+    directory = Path(args.output_dir).expanduser()
     if not directory.is_dir():
         raise CommandError(f"--output-dir: {args.output_dir!r} is not a directory")
-    table_path = directory / "feedrot_demo.ecsv"
-    figure_path = directory / "feedrot_demo.png"
-    _check_output(table_path, "--output-dir")
     step = _quantity(args.step, u.s, "--step")
+    steps = (11 * u.hour / step).decompose().value
+    if not steps < MAX_EPOCHS:
+        raise CommandError(f"--step {args.step} gives {steps + 1:.3g} epochs over the 11 hours "
+                           f"of the demo, more than the {MAX_EPOCHS} of one run; use a larger "
+                           "--step")
+    try:
+        figure_types = _figure_types()
+    except CommandError:
+        figure_types = None
+    names = [("table", directory / "feedrot_demo.ecsv", (".ecsv",))]
+    if figure_types is not None:
+        names.append(("figure", directory / "feedrot_demo.png", figure_types))
+    paths = _check_outputs([("--output-dir", str(path), types) for _, path, types in names], [],
+                           args.overwrite, hint="choose another --output-dir")
     table = gps_short_baseline(step=step)
+    summary = baseline_summary(table)
+    files = [(paths[0], _write_table(table, "ascii.ecsv"))]
+    if figure_types is not None:
+        files.append((paths[1], _draw(table, "baseline", paths[1])))
+    _write_files(files)
     print("Section 4.1 of the paper: GPS SVN 76 over the GNSS antenna DBR205 and the")
     print("alt-az telescope FD-VLBA, 73 m apart, on 2023-01-25 (embedded element set, Table 2).")
-    print(baseline_summary(table))
-    table.write(table_path, format="ascii.ecsv", overwrite=True)
-    print(f"table:  {table_path}")
-    try:
-        from .plotting import plot_baseline
-
-        import matplotlib.pyplot as plt
-
-        plt.close(plot_baseline(table, figure_path))
-        print(f"figure: {figure_path}")
-    except ImportError:
+    print(summary)
+    print(f"table:  {names[0][1]}")
+    if figure_types is not None:
+        print(f"figure: {names[1][1]}")
+    else:
         print('figure: skipped (pip install "astropy_feedrot[all]" for matplotlib)')
     return 0
+
+
+# Parser -------------------------------------------------------------------------------------
 
 
 def _add_time_options(parser, required=True):
@@ -348,7 +664,7 @@ def _add_time_options(parser, required=True):
                        + ("" if required else "; default: end of the SP3 file"))
     group.add_argument("--step", metavar="DURATION", default="10min",
                        help="sampling interval with a unit (30s, 10min, 1h; default 10min; a "
-                       "plain number is seconds)")
+                       f"plain number is seconds); at most {MAX_EPOCHS} epochs per run")
 
 
 def _add_natural_options(parser):
@@ -358,8 +674,9 @@ def _add_natural_options(parser):
     group.add_argument("--ra", metavar="RA", help="right ascension: hours if sexagesimal "
                        "(03:19:48.16, 3h19m48s), degrees if a plain number")
     group.add_argument("--dec", metavar="DEC", help="declination in degrees (+41:30:42.1, 41.51)")
-    group.add_argument("--frame", default="icrs",
-                       help="celestial frame of the coordinates (default icrs; fk5, galactic...)")
+    group.add_argument("--frame", metavar="FRAME",
+                       help="celestial frame of the coordinates (default icrs): "
+                       + ", ".join(CELESTIAL_FRAMES))
 
 
 def _add_satellite_options(parser):
@@ -370,8 +687,10 @@ def _add_satellite_options(parser):
     group.add_argument("--sat", metavar="NAME", help="satellite: SP3 name (G05), or TLE name or "
                        "catalogue number when the file has several")
     group.add_argument("--orbex", metavar="FILE", help="ORBEX attitude quaternions (with --sp3)")
-    group.add_argument("--points", metavar="N", type=int, default=10,
+    group.add_argument("--points", metavar="N", type=int,
                        help="epochs of the SP3 interpolation window (default 10)")
+    group.add_argument("--satellite-polarization", choices=("RCP", "LCP"), type=str.upper,
+                       help="hand the satellite transmits (default RCP, as GNSS satellites)")
 
 
 def _add_common_options(parser):
@@ -384,20 +703,25 @@ def _add_common_options(parser):
     group.add_argument("--catalogue", metavar="FILE",
                        help="an ECSV station catalogue of one's own instead of the embedded one")
     group.add_argument("--polarization", choices=("RCP", "LCP"), type=str.upper,
-                       help="hand of the receiver (default RCP; a satellite's own hand)")
+                       help="hand of the receiver (default: the satellite's hand; RCP for a "
+                       "natural source); a satellite is heard by a receiver of its own hand only")
     group.add_argument("--min-elevation", metavar="ANGLE",
                        help="NaN below this elevation (degrees, or with a unit); the continuous "
                        "series restarts after such gaps")
-    group.add_argument("-o", "--output", metavar="FILE", help="write the ECSV table here "
-                       "instead of standard output")
-    group.add_argument("--plot", metavar="FILE.png", help="also draw the table (needs matplotlib)")
+    group.add_argument("-o", "--output", metavar="FILE",
+                       help="write the table here instead of standard output, in the format of "
+                       "its extension: " + ", ".join(TABLE_FORMATS))
+    group.add_argument("--plot", metavar="FILE.png", help="also draw the table (needs "
+                       "matplotlib; .png, .pdf, .svg...)")
+    group.add_argument("--overwrite", action="store_true",
+                       help="replace an existing output file (never an input)")
 
 
 def _parser():
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="feedrot",
         description="Feed rotation (parallactic angle, carrier-phase wind-up) of radio "
-        "telescopes and GNSS antennas, as ECSV tables: time, azimuth, elevation, parallactic "
+        "telescopes and GNSS antennas, as tables: time, azimuth, elevation, parallactic "
         "angle, transmitter and receiver terms, total and continuous total (degrees).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="examples:\n  feedrot demo\n  feedrot stations\n"
@@ -453,6 +777,8 @@ def _parser():
                       help="where to write the table and figure (default: here)")
     demo.add_argument("--step", default="60s", metavar="DURATION",
                       help="sampling interval (default 60s)")
+    demo.add_argument("--overwrite", action="store_true",
+                      help="replace feedrot_demo.ecsv and feedrot_demo.png if they exist")
     demo.set_defaults(run=_run_demo)
 
     stations = commands.add_parser(
@@ -468,11 +794,41 @@ def _parser():
 def _protect_sites(argv):
     # A southern or western site such as -33.0,148.26,415 would look like an
     # option to argparse; a leading space keeps it positional.
-    return [f" {arg}" if arg.startswith("-") and _SITE.match(arg) else arg for arg in argv]
+    return [f" {arg}" if arg.startswith("-") and not arg.startswith("--") and arg.count(",") == 2
+            else arg for arg in argv]
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"feedrot: warning: {message}", file=sys.stderr)
+    print(f"feedrot: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _run(args):
+    """Run a parsed command: its exit status, and any error as one line on stderr."""
+    try:
+        status = args.run(args)
+        sys.stdout.flush()
+        return status
+    except (CommandError, FileFormatError, ValueError, TypeError, KeyError, OSError,
+            u.UnitsError) as error:
+        if isinstance(error, BrokenPipeError):
+            # The reader of standard output has gone (feedrot ... | head): stop quietly.
+            with contextlib.suppress(OSError, ValueError):
+                os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            return 1
+        message = error.args[0] if isinstance(error, KeyError) and error.args else error
+        print(f"feedrot: error: {_one_line(message)}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("feedrot: error: out of memory; use fewer epochs (a larger --step or a shorter "
+              "span)", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("feedrot: interrupted", file=sys.stderr)
+        return 130
+    except Exception as error:
+        print(f"feedrot: error: internal error ({type(error).__name__}: {_one_line(error)}); "
+              "please report it with the command line", file=sys.stderr)
+        return 1
 
 
 def main(argv=None):
@@ -487,7 +843,8 @@ def main(argv=None):
     -------
     int
         The exit status: 0 on success, 1 for bad input or a failed
-        computation (one line on standard error), 2 for a usage error.
+        computation, 2 for a command line that does not parse, 130 when
+        interrupted. Every error is one line on standard error.
 
     Examples
     --------
@@ -501,7 +858,11 @@ def main(argv=None):
     """
     parser = _parser()
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = parser.parse_args(_protect_sites(argv))
+    try:
+        args = parser.parse_args(_protect_sites(argv))
+    except _UsageError as error:
+        print(f"feedrot: error: {_one_line(error)}", file=sys.stderr)
+        return 2
     if not hasattr(args, "run"):
         parser.print_help()
         return 2
@@ -511,13 +872,7 @@ def main(argv=None):
         warnings.simplefilter("default")
         warnings.showwarning = _show_warning
         with iers_context():
-            try:
-                return args.run(args)
-            except (CommandError, FileFormatError, ValueError, TypeError, KeyError, OSError,
-                    u.UnitsError) as error:
-                message = error.args[0] if isinstance(error, KeyError) and error.args else error
-                print(f"feedrot: error: {message}", file=sys.stderr)
-                return 1
+            return _run(args)
 
 
 if __name__ == "__main__":  # pragma: no cover
