@@ -1,7 +1,11 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """The ``feedrot`` command line."""
 
+import importlib.util
 import os
+import re
+import shutil
+import stat
 import subprocess
 import sys
 
@@ -225,7 +229,7 @@ def test_bad_input_is_one_line(capsys, argv, match):
     status, out, err = run(capsys, *argv)
     assert status == 1
     assert err.count("\n") == 1 and err.startswith("feedrot: error: ")
-    assert __import__("re").search(match, err), err
+    assert re.search(match, err), err
 
 
 def test_tle_file_choices(capsys, tmp_path):
@@ -283,3 +287,357 @@ def test_every_option_is_documented():
             for option in action.option_strings:
                 if option.startswith("--") and option != "--help":
                     assert f"``{option}" in text, f"{option} of feedrot {name} is not in cli.rst"
+
+
+# Output files: checked first, never lost ------------------------------------------------------
+
+
+NATURAL = ["natural", "EFLSBERG", "--source", SOURCE, *SPAN]
+
+
+def listing(directory):
+    """Names and bytes of every file in a directory (temporary files included)."""
+    return {path.name: path.read_bytes() for path in directory.iterdir() if path.is_file()}
+
+
+@pytest.mark.parametrize("option, name", [("-o", "out.ecsv"), ("--plot", "out.png")])
+def test_existing_output_needs_overwrite(capsys, tmp_path, option, name):
+    if option == "--plot":
+        pytest.importorskip("matplotlib")
+    path = tmp_path / name
+    path.write_bytes(b"precious")
+    status, out, err = run(capsys, *NATURAL, option, str(path))
+    assert status == 1 and out == ""
+    assert err == (f"feedrot: error: {'-o/--output' if option == '-o' else '--plot'}: "
+                   f"{str(path)!r} exists; add --overwrite to replace it, or choose another "
+                   "name\n")
+    assert listing(tmp_path) == {name: b"precious"}
+    status, _, err = run(capsys, *NATURAL, option, str(path), "--overwrite")
+    assert status == 0, err
+    assert set(listing(tmp_path)) == {name} and path.read_bytes() != b"precious"
+
+
+def test_replaced_file_keeps_its_mode_new_file_follows_umask(capsys, tmp_path):
+    old = tmp_path / "old.ecsv"
+    old.write_text("x")
+    old.chmod(0o640)
+    assert run(capsys, *NATURAL, "-o", str(old), "--overwrite")[0] == 0
+    assert stat.S_IMODE(old.stat().st_mode) == 0o640
+    umask = os.umask(0o027)
+    try:
+        assert run(capsys, *NATURAL, "-o", str(tmp_path / "new.ecsv"))[0] == 0
+    finally:
+        os.umask(umask)
+    assert stat.S_IMODE((tmp_path / "new.ecsv").stat().st_mode) == 0o640
+
+
+def test_symbolic_link_output_is_written_through(capsys, tmp_path):
+    target = tmp_path / "target.ecsv"
+    target.write_text("old")
+    link = tmp_path / "link.ecsv"
+    link.symlink_to(target)
+    assert run(capsys, *NATURAL, "-o", str(link), "--overwrite")[0] == 0
+    assert link.is_symlink() and len(Table.read(target)) == 5
+
+
+@pytest.fixture
+def catalogue_file(tmp_path):
+    from astropy_feedrot.data import sample_file
+
+    path = tmp_path / "mine.ecsv"
+    path.write_bytes(sample_file("stations.ecsv").read_bytes())
+    return path
+
+
+@pytest.mark.parametrize("how", ["same path", "other spelling", "symbolic link", "hard link"])
+def test_never_writes_over_an_input(capsys, tmp_path, catalogue_file, how):
+    before = catalogue_file.read_bytes()
+    output = {"same path": catalogue_file,
+              "other spelling": tmp_path / "sub" / ".." / "mine.ecsv",
+              "symbolic link": tmp_path / "link.ecsv",
+              "hard link": tmp_path / "hard.ecsv"}[how]
+    (tmp_path / "sub").mkdir()
+    if how == "symbolic link":
+        output.symlink_to(catalogue_file)
+    elif how == "hard link":
+        os.link(catalogue_file, output)
+    status, _, err = run(capsys, *NATURAL, "--catalogue", str(catalogue_file), "-o", str(output),
+                         "--overwrite")
+    assert status == 1
+    assert err == (f"feedrot: error: -o/--output: {str(output)!r} is the --catalogue input, "
+                   "which is never overwritten; choose another name\n")
+    assert catalogue_file.read_bytes() == before
+
+
+def test_never_writes_over_the_embedded_catalogue(capsys):
+    from astropy_feedrot.data import sample_file
+
+    path = sample_file("stations.ecsv")
+    before = path.read_bytes()
+    status, _, err = run(capsys, *NATURAL, "-o", str(path), "--overwrite")
+    assert status == 1 and "is the embedded station catalogue input" in err
+    assert path.read_bytes() == before
+
+
+def test_orbit_input_is_never_an_output(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    sp3 = tmp_path / "orbit.sp3"
+    from astropy_feedrot.data import sample_file
+
+    sp3.write_bytes(sample_file("sample.sp3").read_bytes())
+    alias = tmp_path / "orbit.png"
+    alias.symlink_to(sp3)
+    status, _, err = run(capsys, "satellite", "FD-VLBA", "--sp3", str(sp3), "--sat", "G01",
+                         "--points", "4", "--plot", str(alias), "--overwrite")
+    assert status == 1 and f"--plot: {str(alias)!r} is the --sp3 input" in err
+    assert sp3.read_bytes() == sample_file("sample.sp3").read_bytes()
+
+
+def test_table_and_figure_never_share_a_file(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    table = tmp_path / "t.ecsv"
+    table.write_text("old")
+    figure = tmp_path / "t.png"
+    os.link(table, figure)
+    status, _, err = run(capsys, *NATURAL, "-o", str(table), "--plot", str(figure), "--overwrite")
+    assert status == 1
+    assert err == (f"feedrot: error: --plot and -o/--output name the same file {str(figure)!r}; "
+                   "each needs its own\n")
+    assert table.read_text() == "old"
+
+
+@pytest.mark.parametrize("argv, match", [
+    # Computation fails after every check: the SP3 file does not cover the span.
+    (["satellite", "FD-VLBA", "--sp3", "SP3", "--sat", "G01", "--points", "4",
+      "--start", "2023-01-26", "--stop", "2023-01-26T01:00"],
+     r"times outside the coverage of the SP3 orbit of G01"),
+    # A value refused after the outputs were checked.
+    (["baseline", "DBR205", "FD-VLBA", "--source", SOURCE, *SPAN, "--frequency", "0"],
+     r"--frequency must be positive"),
+    (["baseline", "DBR205", "FD-VLBA", "--source", SOURCE, *SPAN, "--frequency", "1GHz",
+      "--polarization", "LCP", "--min-elevation", "91"], r"--min-elevation"),
+])
+def test_failed_run_leaves_files_as_they_were(capsys, tmp_path, argv, match):
+    pytest.importorskip("matplotlib")
+    from astropy_feedrot.data import sample_file
+
+    argv = [str(sample_file("sample.sp3")) if arg == "SP3" else arg for arg in argv]
+    (tmp_path / "out.ecsv").write_bytes(b"old table")
+    (tmp_path / "out.png").write_bytes(b"old figure")
+    status, out, err = run(capsys, *argv, "-o", str(tmp_path / "out.ecsv"), "--plot",
+                           str(tmp_path / "out.png"), "--overwrite")
+    assert status == 1 and out == "" and re.search(match, err), err
+    assert listing(tmp_path) == {"out.ecsv": b"old table", "out.png": b"old figure"}
+
+
+@pytest.mark.skipif(shutil.which("xelatex") is not None, reason="xelatex draws .pgf figures")
+def test_failed_figure_leaves_the_table_as_it_was(capsys, tmp_path):
+    # A .pgf figure needs LaTeX: drawing fails after the table was written
+    # to its temporary file; neither file changes and nothing is left behind.
+    pytest.importorskip("matplotlib")
+    (tmp_path / "out.ecsv").write_bytes(b"old table")
+    status, out, err = run(capsys, *NATURAL, "-o", str(tmp_path / "out.ecsv"), "--plot",
+                           str(tmp_path / "out.pgf"), "--overwrite")
+    assert status == 1 and out == ""
+    assert err.startswith(f"feedrot: error: --plot: cannot draw {str(tmp_path / 'out.pgf')!r}: ")
+    assert "xelatex" in err and err.count("\n") == 1
+    assert listing(tmp_path) == {"out.ecsv": b"old table"}
+
+
+def test_failed_figure_writes_nothing_to_standard_output(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    if shutil.which("xelatex") is not None:
+        pytest.skip("xelatex draws .pgf figures")
+    status, out, _ = run(capsys, *NATURAL, "--plot", str(tmp_path / "out.pgf"))
+    assert status == 1 and out == "" and listing(tmp_path) == {}
+
+
+def test_demo_twice_asks_for_overwrite(capsys, tmp_path):
+    pytest.importorskip("matplotlib")
+    assert run(capsys, "demo", "--output-dir", str(tmp_path), "--step", "30min")[0] == 0
+    before = listing(tmp_path)
+    assert set(before) == {"feedrot_demo.ecsv", "feedrot_demo.png"}
+    status, out, err = run(capsys, "demo", "--output-dir", str(tmp_path), "--step", "30min")
+    assert status == 1 and out == ""
+    assert err == (f"feedrot: error: --output-dir: {str(tmp_path / 'feedrot_demo.ecsv')!r} "
+                   "exists; add --overwrite to replace it, or choose another --output-dir\n")
+    assert listing(tmp_path) == before
+    status, _, err = run(capsys, "demo", "--output-dir", str(tmp_path), "--step", "20min",
+                         "--overwrite")
+    assert status == 0, err
+    assert len(Table.read(tmp_path / "feedrot_demo.ecsv")) == 34  # 06:00-17:00 every 20 min
+
+
+def test_demo_epochs_are_capped(capsys, tmp_path):
+    status, _, err = run(capsys, "demo", "--output-dir", str(tmp_path), "--step", "1ms")
+    assert status == 1
+    assert err == ("feedrot: error: --step 1ms gives 3.96e+07 epochs over the 11 hours of the "
+                   "demo, more than the 1000000 of one run; use a larger --step\n")
+    assert listing(tmp_path) == {}
+
+
+@pytest.mark.parametrize("argv, match", [
+    ([*NATURAL, "-o", "out.txt"], r"-o/--output: cannot tell a format from the extension of "
+     r"'.*out.txt'; use one of .ecsv, .csv, .fits, .fit, .fts, .hdf5, .h5, .html$"),
+    ([*NATURAL, "-o", "out"], r"-o/--output: cannot tell a format from the extension"),
+    ([*NATURAL, "-o", "out.ecsv.gz"], r"-o/--output: cannot tell a format from the extension"),
+    ([*NATURAL, "--plot", "figure.ecsv"], r"--plot: cannot tell a format from the extension of "
+     r"'.*figure.ecsv'; use one of .*\.pdf.*\.png.*\.svg"),
+    ([*NATURAL, "--plot", "figure"], r"--plot: cannot tell a format"),
+])
+def test_output_format_follows_the_extension(capsys, tmp_path, argv, match):
+    pytest.importorskip("matplotlib")
+    argv = [str(tmp_path / arg) if arg.startswith(("out", "figure")) else arg for arg in argv]
+    status, out, err = run(capsys, *argv)
+    assert status == 1 and out == "" and err.count("\n") == 1
+    assert re.search(match, err.strip()), err
+    assert listing(tmp_path) == {}
+
+
+def test_output_that_is_not_a_regular_file(capsys, tmp_path):
+    fifo = tmp_path / "pipe.ecsv"
+    os.mkfifo(fifo)
+    status, _, err = run(capsys, *NATURAL, "-o", str(fifo), "--overwrite")
+    assert status == 1
+    assert err == f"feedrot: error: -o/--output: {str(fifo)!r} is not a regular file\n"
+
+
+def test_table_formats_are_those_astropy_identifies():
+    from astropy.io import registry
+
+    from astropy_feedrot.cli import TABLE_FORMATS
+
+    for extension, fmt in TABLE_FORMATS.items():
+        assert registry.identify_format("write", Table, "x" + extension, None, [], {}) == [fmt]
+
+
+def test_hdf5_needs_h5py(capsys, tmp_path):
+    if importlib.util.find_spec("h5py") is not None:
+        pytest.skip("h5py is installed")
+    status, _, err = run(capsys, *NATURAL, "-o", str(tmp_path / "t.h5"))
+    assert status == 1
+    assert err == "feedrot: error: -o/--output: writing .h5 files needs h5py (pip install h5py)\n"
+
+
+def _read_back(path, extension):
+    """A written table read with astropy, its time column as Time and units attached."""
+    if extension in (".fits", ".fit", ".fts"):
+        return Table.read(path, astropy_native=True)
+    if extension in (".hdf5", ".h5"):
+        return Table.read(path, path="feedrot")
+    if extension == ".html":
+        pytest.importorskip("bs4")
+    table = Table.read(path, format={".csv": "ascii.csv", ".html": "ascii.html",
+                                     ".ecsv": "ascii.ecsv"}[extension])
+    if extension in (".csv", ".html"):
+        # Values only: ISO UTC times and plain numbers.
+        table["time"] = Time(list(table["time"]), scale="utc")
+    return table
+
+
+@pytest.mark.parametrize("extension", [".ecsv", ".csv", ".fits", ".fit", ".fts", ".hdf5", ".h5",
+                                       ".html"])
+@pytest.mark.parametrize("kind", ["natural", "baseline"])
+def test_every_format_reads_back_to_the_ecsv_values(capsys, tmp_path, extension, kind):
+    if extension in (".hdf5", ".h5"):
+        pytest.importorskip("h5py")
+    argv = (NATURAL if kind == "natural" else
+            ["baseline", "DBR205", "FD-VLBA", "--source", SOURCE, *SPAN, "--frequency", "8.4GHz",
+             "--min-elevation", "30"])
+    status, out, err = run(capsys, *argv)
+    assert status == 0, err
+    reference = read(out)
+    path = tmp_path / f"table{extension}"
+    status, _, err = run(capsys, *argv, "-o", str(path))
+    assert status == 0 and err == "", err
+    assert set(listing(tmp_path)) == {path.name}
+    table = _read_back(path, extension)
+    assert table.colnames == reference.colnames
+    assert np.all(np.abs((Time(table["time"]) - reference["time"]).to_value(u.s)) < 1e-3)
+    for name in reference.colnames[1:]:
+        expected = reference[name]
+        if expected.dtype == bool:
+            assert [str(v) for v in table[name]] == [str(v) for v in expected], name
+            continue
+        values = np.asarray(table[name], dtype=float)
+        assert np.array_equal(np.isnan(values), np.isnan(expected)), name
+        assert np.allclose(values, expected, rtol=1e-12, atol=0, equal_nan=True), name
+        if extension in (".ecsv", ".fits", ".fit", ".fts", ".hdf5", ".h5"):
+            assert table[name].unit == expected.unit, name
+    if extension in (".fits", ".fit", ".fts", ".hdf5", ".h5"):
+        assert table["time"].scale == "utc"
+        assert table.meta.get("antenna", table.meta.get("ANTENNA")) == reference.meta.get(
+            "antenna")
+
+
+# The satellite's hand is its own -------------------------------------------------------------
+
+
+SATELLITE_SPAN = ["--start", "2023-01-25T09:00", "--stop", "2023-01-25T11:00", "--step", "30min"]
+
+
+def test_receiver_of_the_other_hand_is_refused(capsys, tle_file):
+    for argv in (["satellite", "DBR205", "--tle", str(tle_file)],
+                 ["baseline", "DBR205", "FD-VLBA", "--tle", str(tle_file), "--frequency", "1GHz"]):
+        status, out, err = run(capsys, *argv, *SATELLITE_SPAN, "--polarization", "LCP")
+        assert status == 1 and out == ""
+        assert err == ("feedrot: error: an LCP receiver (--polarization LCP) does not receive "
+                       "the RCP signal of the satellite; leave --polarization unset or give "
+                       "--polarization RCP (--satellite-polarization sets the satellite's hand, "
+                       "RCP by default as for GNSS)\n")
+        status, _, err = run(capsys, *argv, *SATELLITE_SPAN, "--polarization", "RCP",
+                             "--satellite-polarization", "LCP")
+        assert status == 1
+        assert "an RCP receiver (--polarization RCP) does not receive the LCP" in err
+
+
+def test_lcp_satellite_and_receiver(capsys, tle_file):
+    argv = ["satellite", "DBR205", "--tle", str(tle_file), *SATELLITE_SPAN]
+    rcp = read(run(capsys, *argv)[1])
+    assert rcp.meta["polarization"] == "RCP"
+    for extra in (["--satellite-polarization", "LCP"],
+                  ["--satellite-polarization", "lcp", "--polarization", "LCP"]):
+        status, out, err = run(capsys, *argv, *extra)
+        assert status == 0, err
+        lcp = read(out)
+        assert lcp.meta["polarization"] == "LCP"
+        # Appendix D: the LCP feed rotation is the RCP one with the opposite sign.
+        for name in ("transmitter", "receiver", "total"):
+            assert np.allclose(lcp[name], -rcp[name], atol=1e-9), name
+
+
+@pytest.mark.parametrize("extra, match", [
+    (["--satellite-polarization", "LCP"], r"give one target: a natural source or a satellite, "
+     r"not both \(--source and --satellite-polarization\)"),
+    (["--tle", "gps.tle"], r"not both \(--source and --tle\)"),
+    (["--sat", "G01"], r"not both \(--source and --sat\)"),
+])
+def test_baseline_target_is_natural_or_a_satellite(capsys, extra, match):
+    status, _, err = run(capsys, "baseline", "DBR205", "FD-VLBA", "--source", SOURCE, *SPAN,
+                         "--frequency", "1GHz", *extra)
+    assert status == 1 and re.search(match, err), err
+
+
+def test_sp3_span_defaults_to_the_file_in_utc(capsys):
+    from astropy_feedrot.data import sample_file
+
+    status, out, err = run(capsys, "satellite", "FD-VLBA", "--sp3",
+                           str(sample_file("sample.sp3")), "--sat", "G01", "--points", "4",
+                           "--step", "15min")
+    assert status == 0, err
+    times = read(out)["time"]
+    assert times.scale == "utc" and len(times) == 4
+    # The file starts at 2023-01-25 00:00:00 GPS time = TAI - 19 s = UTC + 18 s.
+    assert times[0].isot == "2023-01-24T23:59:42.000"
+
+
+def test_start_now(capsys):
+    status, out, err = run(capsys, "natural", "EFLSBERG", "--source", SOURCE, "--start", "now",
+                           "--stop", "now")
+    assert status == 0, err
+    # The bundled Earth-orientation tables may be old: at most one warning line.
+    assert err == "" or (err.startswith("feedrot: warning: computed anyway") and
+                         err.count("\n") == 1)
+    table = read(out)
+    assert len(table) == 1
+    assert abs((Time(table["time"][0]) - Time.now()).to_value(u.s)) < 600
