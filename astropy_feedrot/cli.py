@@ -110,7 +110,15 @@ class _UsageError(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line (no usage block)."""
+    """An argument parser whose usage errors are one line (no usage block).
+
+    Options are never abbreviated: ``demo --output x`` is an unknown option,
+    not ``--output-dir x``.
+    """
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message):
         if "expected one argument" in message:
@@ -232,14 +240,15 @@ def _site(text):
 def _antenna(text, args, catalogue):
     site = _site(text)
     if site is None:
-        if args.mount or args.focus:
+        if args.mount is not None or args.focus is not None:
             raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
                                f"catalogue station {text!r}")
         return catalogue.get_antenna(text.strip())
     lat, lon, height = site
     location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
     try:
-        mount, focus = mount_from_label(args.mount or "AZEL", "geodetic")
+        mount, focus = mount_from_label("AZEL" if args.mount is None else args.mount,
+                                        "geodetic")
     except ValueError as error:
         raise CommandError(f"--mount: {error}") from None
     if args.focus:
@@ -253,7 +262,7 @@ def _antenna(text, args, catalogue):
 
 
 def _natural_target(args):
-    frame = (args.frame or "icrs").strip().lower()
+    frame = "icrs" if args.frame is None else args.frame.strip().lower()
     if frame not in CELESTIAL_FRAMES:
         known = frame_transform_graph.lookup_name(frame) is not None
         raise CommandError(
@@ -267,12 +276,13 @@ def _natural_target(args):
         for kwargs in ({}, {"unit": (u.hourangle, u.deg)}):
             try:
                 coord = SkyCoord(args.source, frame=frame, **kwargs)
-            except (ValueError, TypeError, u.UnitsError):
+            except (ValueError, TypeError, u.UnitsError) as error:
+                reason = _one_line(error)
                 continue
             return _one_source(coord, "--source", args.source)
-        raise CommandError(f"--source: cannot read {args.source!r} as coordinates (e.g. "
-                           "'03h19m48.16s +41d30m42.1s' or '49.95d 41.51d'); looking up "
-                           "names needs the internet, give the coordinates instead")
+        raise CommandError(f"--source: cannot read {args.source!r} as coordinates ({reason}); "
+                           "write e.g. '03h19m48.16s +41d30m42.1s' or '49.95d 41.51d'; looking "
+                           "up names needs the internet, give the coordinates instead")
     if args.ra is None or args.dec is None:
         raise CommandError("give the source with --source, or with both --ra and --dec")
     plain = re.fullmatch(r"\s*[-+]?\d+(\.\d*)?\s*", args.ra) is not None
