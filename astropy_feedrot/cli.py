@@ -538,7 +538,7 @@ def _write_files(files, then=None):
     temporaries = []
     try:
         for path, write in files:
-            handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.",
+            handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem[:64]}.",
                                             suffix=f".tmp{path.suffix}")
             os.close(handle)
             temporaries.append(name)
@@ -555,11 +555,14 @@ def _write_files(files, then=None):
 
 
 def _outputs(args):
-    """The checked output and figure paths of a table command."""
+    """The checked table and figure paths of a table command (None: not written)."""
     figure_types = _figure_types() if args.plot is not None else ()
-    return _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
-                           ("--plot", args.plot, figure_types)],
-                          _inputs(args), args.overwrite)
+    paths = _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
+                            ("--plot", args.plot, figure_types)],
+                           _inputs(args), args.overwrite)
+    if paths[0] is not None:
+        _table_format(paths[0])
+    return paths
 
 
 def _write(table, paths, kind):
@@ -578,8 +581,6 @@ def _write(table, paths, kind):
 
 def _run_single(args):
     paths = _outputs(args)
-    if paths[0] is not None:
-        _table_format(paths[0])
     catalogue = _catalogue(args)
     antenna = _antenna(args.antenna, args, catalogue)
     min_elevation = _min_elevation(args)
@@ -603,8 +604,6 @@ def _run_satellite(args):
 
 def _run_baseline(args):
     paths = _outputs(args)
-    if paths[0] is not None:
-        _table_format(paths[0])
     frequency = _quantity(args.frequency, u.MHz, "--frequency")
     catalogue = _catalogue(args)
     first, second = (_antenna(name, args, catalogue) for name in args.antennas)
