@@ -83,13 +83,11 @@ def _antenna_columns(antenna, target, times, polarization, limit):
 
 
 def _target_name(target):
-    name = getattr(target, "name", None)
-    if name:
-        return str(name)
-    try:
-        return target.to_string("hmsdms")
-    except Exception:
-        return repr(target)
+    """A satellite's name, or a natural source's coordinates and frame."""
+    if isinstance(target, Satellite):
+        return str(target.name) if target.name else repr(target)
+    # A SkyCoord's ``name`` is the name of its frame, not of the source.
+    return f"{target.to_string('hmsdms')} ({target.frame.name})"
 
 
 @iers_context()  # one check of the Earth-orientation tables per call

@@ -641,3 +641,12 @@ def test_start_now(capsys):
     table = read(out)
     assert len(table) == 1
     assert abs((Time(table["time"][0]) - Time.now()).to_value(u.s)) < 600
+
+
+def test_table_metadata_names_the_source_not_its_frame(capsys):
+    # A SkyCoord's .name is the name of its frame ('icrs'), not of the source.
+    status = main(["natural", "EFLSBERG", "--source", "03h19m48.16s +41d30m42.1s",
+                   "--start", "2023-01-25T18:00", "--stop", "2023-01-25T19:00", "--step", "1h"])
+    assert status == 0
+    table = Table.read(capsys.readouterr().out, format="ascii.ecsv")
+    assert table.meta["target"] == "03h19m48.16s +41d30m42.1s (icrs)"
