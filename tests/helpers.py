@@ -78,3 +78,14 @@ def read_as(kind, reader, path, tmp_path):
     with gzip.open(compressed, "wt") as fh:
         fh.write(path.read_text())
     return reader(compressed)
+
+
+#: The %c, %f and %i lines of an SP3-c/d header (GPS time, default bases).
+SP3_DESCRIPTORS = [
+    "%c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
+    "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
+    "%f  1.2500000  1.025000000  0.00000000000  0.000000000000000",
+    "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000",
+    "%i    0    0    0    0      0      0      0      0         0",
+    "%i    0    0    0    0      0      0      0      0         0",
+]

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import astropy_feedrot.data
-from helpers import SOURCE_KINDS, read_as
+from helpers import SOURCE_KINDS, SP3_DESCRIPTORS, read_as
 from astropy import units as u
 from astropy.time import Time
 
@@ -173,15 +173,7 @@ def make_sp3d(nsat, nepoch, interval=300.0):
         lines.append(head + "".join(ids[17 * k:17 * (k + 1)]))
     for k in range(nlines):
         lines.append("++       " + "  5" * 17)
-    lines += [
-        "%c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%f  1.2500000  1.025000000  0.00000000000  0.000000000000000",
-        "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000",
-        "%i    0    0    0    0      0      0      0      0         0",
-        "%i    0    0    0    0      0      0      0      0         0",
-        "/* SYNTHETIC",
-    ]
+    lines += SP3_DESCRIPTORS + ["/* SYNTHETIC"]
     angle = np.arange(nepoch)[:, None] * 1e-3 + np.arange(nsat)[None, :] * 0.05
     x = 26560.0 * np.cos(angle)
     y = 26560.0 * np.sin(angle)

@@ -16,7 +16,7 @@ from astropy import units as u
 from astropy.coordinates import GCRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
 from astropy.tests.helper import assert_quantity_allclose
 from astropy.time import Time
-from helpers import SITES, angle_spread, max_angle_difference
+from helpers import SITES, SP3_DESCRIPTORS, angle_spread, max_angle_difference
 from numpy.testing import assert_allclose
 
 from astropy_feedrot import (
@@ -536,13 +536,7 @@ def write_sp3(path, satellite, times, positions_m):
         "ORBIT IGS20 HLM  IGS",
         "## 2246 259200.00000000   900.00000000 59969 0.0000000000000",
         f"+    1   {satellite}" + "  0" * 16,
-    ] + ["+          " + "  0" * 17] * 4 + ["++         " + "  0" * 17] * 5 + [
-        "%c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%f  1.2500000  1.025000000  0.00000000000  0.000000000000000",
-        "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000",
-        "%i    0    0    0    0      0      0      0      0         0",
-        "%i    0    0    0    0      0      0      0      0         0",
+    ] + ["+          " + "  0" * 17] * 4 + ["++         " + "  0" * 17] * 5 + SP3_DESCRIPTORS + [
         "/* WRITTEN BY THE TESTS FROM SGP4 POSITIONS",
     ]
     lines = list(header)

@@ -20,6 +20,7 @@ from astropy import units as u
 from astropy.time import Time
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from helpers import SP3_DESCRIPTORS
 
 import astropy_feedrot.data
 from astropy_feedrot import OrbitWarning, QuaternionAttitude, SP3Orbit, TLEOrbit
@@ -331,13 +332,7 @@ def sp3_with_holes(holes):
         f"#dP2023  1 25  0  0  0.00000000 {len(present):7d} ORBIT IGS20 FIT  XYZ",
         f"## 2246 259200.00000000 {INTERVAL:14.8f} 59969 0.0000000000000",
         "+    2   G01G02" + "  0" * 15,
-    ] + ["+        " + "  0" * 17] * 4 + ["++       " + "  5" * 17] * 5 + [
-        "%c M  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
-        "%f  1.2500000  1.025000000  0.00000000000  0.000000000000000",
-        "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000",
-        "%i    0    0    0    0      0      0      0      0         0",
-        "%i    0    0    0    0      0      0      0      0         0",
+    ] + ["+        " + "  0" * 17] * 4 + ["++       " + "  5" * 17] * 5 + SP3_DESCRIPTORS + [
         "/* SYNTHETIC, WITH HOLES",
     ]
     for e in present:
