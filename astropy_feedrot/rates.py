@@ -64,7 +64,7 @@ DIFFERENCE_STEP = 0.01
 
 #: Default step of `directional_rate`, in radians along the line of sight's
 #: motion (see its Notes).
-DIRECTIONAL_STEP = 1e-6
+DIRECTIONAL_STEP = 3e-7
 
 _C = constants.c.to_value(u.m / u.s)
 _GM_SUN = constants.GM_sun.to_value(u.m**3 / u.s**2)
@@ -229,24 +229,29 @@ def source_direction_rate(s, pole=NORTH_POLE, site=None, sun=None):
 
     The sizes of the terms, i.e. the error in :math:`\\dot{\\hat{s}}` when
     one is left out (measured against a centred difference of astropy's
-    transformation):
+    transformation over 2023 and in 2030):
 
-    ========================================  ====================
-    term                                      :math:`|\\delta\\dot{\\hat{s}}|` (rad/s)
-    ========================================  ====================
-    CIP instead of :math:`z` (polar motion)   :math:`\\omega` x 0.2-0.5 arcsec:
-                                              0.8-1.8e-10
-    diurnal aberration (``site``)             1.1e-10 cos(latitude)
-    annual aberration (``sun``)               2.0e-11
-    precession-nutation (always left out)     about 3e-12
-    ========================================  ====================
+    ==========================================  ================================
+    term left out                               :math:`|\\delta\\dot{\\hat{s}}|` (rad/s)
+    ==========================================  ================================
+    polar motion (ITRS :math:`z` for the CIP)   :math:`\\omega` x 0.2-0.5 arcsec,
+                                                0.8-1.8e-10
+    diurnal aberration (``site``)               1.1e-10 cos(latitude)
+    annual aberration (``sun``)                 2.0e-11
+    precession-nutation (always left out)       2.5-6.6e-12
+    ==========================================  ================================
+
+    The last is the motion of the CIP on the sky (precession 3e-12 rad/s,
+    the fortnightly and semi-annual nutation up to 3e-12 rad/s each), whose
+    rate would need the precession-nutation matrix at two epochs.
 
     A feed rotation divides these by the sine of the angle between the line
     of sight and the nearest singular direction (a fixed axis, the celestial
-    pole): with all three arguments the rates of `fixed_axis_rate` agree with
-    a centred difference of astropy's transformation to 2e-10 rad/s at 1 deg
-    from the zenith of an alt-az mount; with the ITRS :math:`z` alone, to about
-    1e-8 rad/s there, and 5e-10 rad/s beyond 20 deg.
+    pole). With all three arguments the rates of `fixed_axis_rate` for an
+    alt-az mount agree with a centred difference of astropy's
+    transformation to 4e-10 rad/s at 1 deg from the zenith, 8e-11 rad/s at
+    5 deg and 2e-11 rad/s at 20 deg; with the ITRS :math:`z` alone, to
+    1e-8, 2e-9 and 6e-10 rad/s.
 
     Examples
     --------
@@ -620,13 +625,15 @@ def directional_rate(phase, s, s_rate, step=DIRECTIONAL_STEP):
     Notes
     -----
     The truncation error is :math:`\\mathrm{step}^2\\,|\\Phi'''|/6` and the
-    rounding error about :math:`\\epsilon_\\Phi/\\mathrm{step}`, in units of
-    :math:`|\\dot{\\hat{s}}|`, with :math:`\\Phi'''` the third derivative along
-    the motion (about :math:`1/\\sin^3\\theta` at an angle :math:`\\theta`
-    from a singular direction) and :math:`\\epsilon_\\Phi \\approx
-    10^{-16}/\\sin\\theta` the rounding of the angle. At the default step of
-    1e-6 rad both stay below 1e-12 rad/s for a natural source down to
-    :math:`\\theta` = 1 deg (and below 1e-13 rad/s beyond 10 deg).
+    rounding error about :math:`\\epsilon_\\Phi/\\mathrm{step}`, both in units
+    of :math:`|\\dot{\\hat{s}}|`, with :math:`\\Phi'''` the third derivative
+    along the motion (about :math:`1/\\sin^3\\theta` at an angle
+    :math:`\\theta` from a singular direction) and :math:`\\epsilon_\\Phi
+    \\approx 3 \\times 10^{-16}` rad the rounding of the angle. For a natural
+    source (:math:`|\\dot{\\hat{s}}| \\le \\omega`) at the default step of
+    3e-7 rad they add up to 1e-13 rad/s beyond 5 deg from a singular
+    direction, 8e-13 rad/s at 1 deg and 3e-12 rad/s at 0.5 deg (measured on
+    the mirror trains of Appendix C against the closed forms they trace to).
 
     Examples
     --------
