@@ -716,20 +716,22 @@ def difference_rate(phase, obstime, step=DIFFERENCE_STEP):
     about :math:`\\epsilon_\\Phi/h`. For a natural source or a GNSS satellite
     the angle changes on a time scale :math:`\\sin\\theta/\\omega`, with
     :math:`\\theta` the angle from the nearest singular direction, so
-    :math:`|\\Phi'''| \\approx (\\omega/\\sin\\theta)^3`: 7e-8 rad/s^3 at
-    1 deg from the zenith of an alt-az mount, and :math:`h^2|\\Phi'''|/6 =`
-    1e-12 rad/s at the default :math:`h` = 0.01 s. The angle is rounded to
-    :math:`\\epsilon_\\Phi \\approx 10^{-11}\\,\\mathrm{s} \\times \\dot{\\Phi}`
-    (astropy's two-part dates through the time scales and ERFA) plus
-    :math:`10^{-16}/\\sin\\theta`: about 4e-14 rad at 1 deg, 4e-12 rad/s over
-    :math:`h`. Both stay far below 1e-9 rad/s. Satellites in low orbits turn
-    faster (up to 0.02 rad/s overhead at 400 km, a time scale of 1 s at
-    1 deg from an axis) and want a step of about 1e-3 s there.
+    :math:`|\\Phi'''| \\approx |\\dot\\Phi|\\,(\\omega/\\sin\\theta)^2`:
+    7e-8 rad/s^3 at 1 deg from the zenith of an alt-az mount, where
+    :math:`h^2|\\Phi'''|/6` is 1e-12 rad/s at the default :math:`h` = 0.01 s.
+    The angles of astropy's transformation scatter as if the epochs were
+    rounded to about 2e-10 s, :math:`\\epsilon_\\Phi \\approx 2 \\times
+    10^{-10}\\,\\mathrm{s} \\times |\\dot\\Phi|`: 5e-13 rad at 1 deg from the
+    zenith, 5e-11 rad/s over :math:`h`. (Measured there against the analytic
+    rate: 5e-10 rad/s at :math:`h` = 1 ms, 1e-10 rad/s from 3 to 30 ms,
+    where the analytic model's own error dominates, 7e-10 rad/s at 0.3 s.)
+    Satellites in low orbits turn faster (up to 0.02 rad/s overhead at
+    400 km, a time scale of 1 s at 1 deg from an axis) and want a step of
+    about 1 ms there.
 
-    The two evaluations must come from one smooth function of time: the
-    rigorous path (``astropy_feedrot.conf.fast_path = False``), or a fast path
-    whose interpolation error (0.0002 mas) does not jump between
-    :math:`t - h` and :math:`t + h`.
+    The two evaluations must come from one smooth function of time. The
+    fast path's interpolated Earth orientation is (it gives the rates of the
+    rigorous path to 3e-13 rad/s for natural sources, 2e-12 rad/s for GPS).
 
     Examples
     --------
