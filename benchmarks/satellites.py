@@ -24,7 +24,7 @@ from astropy import units as u
 from astropy.time import Time
 
 from astropy_feedrot import Satellite, TLEOrbit
-from astropy_feedrot.config import iers_context
+from astropy_feedrot.eop import iers_context
 from astropy_feedrot.grid import feed_rotation_grid, rotation_delay_grid
 from astropy_feedrot.stations import get_antenna
 
