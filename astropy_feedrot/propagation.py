@@ -4,22 +4,26 @@
 SGP4 costs about a microsecond per satellite and epoch. An orbit is smooth on
 the scale of a minute, so for dense epochs (a day at 1 s) `propagate` evaluates
 SGP4 at nodes a fixed spacing apart, only around the epochs, and interpolates
-the positions with a sliding eight-point Lagrange polynomial (degree 7). The
+the positions with a sliding eight-point Lagrange polynomial (degree 7, each
+epoch in the central interval of its window, evaluated by Horner's rule). The
 velocities SGP4 gives are not the derivative of its positions (they differ by
 millimetres per second), so they are not used: a cubic Hermite interpolation
 through them would be centimetres off.
 
-The node spacing of each satellite is a power of two seconds chosen so that
-the interpolation error stays below `TOLERANCE` (0.1 mm):
+The interpolation error is kept below `TOLERANCE` (0.1 mm) in two steps:
 
-* first from its elements, by the bound of the Lagrange remainder,
+* the node spacing of each satellite is a power of two seconds (1 s to
+  1024 s) from its elements, by the bound of the Lagrange remainder,
   ``h^8 |r^(8)| 6.5625^2 / 8!``, with ``|r^(8)| ~ r_p w_p^8`` at perigee
   (radius ``r_p``, angular rate ``w_p``);
-* then checked on the nodes themselves: the eighth differences of the node
-  positions estimate ``h^8 r^(8)`` in every window used; where the estimate
-  exceeds the tolerance the spacing is halved and the satellite done again.
+* every window is checked on the nodes themselves: the eighth difference of
+  nine nodes around it estimates ``h^8 r^(8)``. The epochs of windows whose
+  estimate exceeds the tolerance (SGP4 is not smooth everywhere: it clamps
+  the eccentricity of drag-decaying orbits, for instance) are computed with
+  SGP4 directly; if they are more than a quarter of a satellite's epochs, its
+  spacing is halved and the satellite done again.
 
-Epochs are computed with SGP4 directly where interpolation would not pay
+Epochs are also computed with SGP4 directly where interpolation would not pay
 (fewer than two epochs per node) and where it could hide a failure: an epoch
 whose window holds a node where SGP4 fails, or whose interpolated position is
 within 1 km of SGP4's Earth radius (SGP4 reports a decayed satellite there).
@@ -40,8 +44,16 @@ POINTS = 8
 # over 8!: the remainder of the Lagrange polynomial is this times h^8 r^(8).
 _REMAINDER = 6.5625**2 / 40320
 
+# Monomial coefficients, in the fraction of the cell [0, 1), of the polynomial
+# through the nodes at -3 ... 4 (the cell's Lagrange window): c = _MONOMIAL @ y.
+_MONOMIAL = np.linalg.inv(np.arange(-3.0, 5.0)[:, np.newaxis] ** np.arange(POINTS))
+
 # Coefficients of the eighth difference: sum_j c_j y_j = h^8 y^(8) + O(h^10).
 _EIGHTH = np.array([1.0, -8.0, 28.0, -56.0, 70.0, -56.0, 28.0, -8.0, 1.0])
+
+# Largest fraction of the epochs in windows that fail the check with which a
+# spacing is kept (SGP4 directly there); beyond it the spacing is halved.
+_ROUGH = 0.25
 
 # Offsets of the nodes kept for an epoch in the cell [k, k + 1): k - 4 to k + 4
 # (the Lagrange window k - 3 to k + 4, and one more node for the check).
@@ -93,56 +105,38 @@ def node_spacing(satrec):
     return float(2.0 ** np.clip(np.floor(np.log2(h)), np.log2(_SHORTEST), np.log2(_LONGEST)))
 
 
-def lagrange_weights(u):
-    """Weights of the eight-point Lagrange polynomial through nodes 0 to 7.
-
-    Parameters
-    ----------
-    u : ndarray, shape (N,)
-        Where to evaluate, in units of the node spacing.
-
-    Returns
-    -------
-    ndarray, shape (N, 8)
-        ``w[:, j]``: the weight of node ``j``; each row sums to 1.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from astropy_feedrot.propagation import lagrange_weights
-    >>> w = lagrange_weights(np.array([3.0, 3.5]))
-    >>> w[0]  # at a node: that node only  # doctest: +FLOAT_CMP
-    array([0., 0., 0., 1., 0., 0., 0., 0.])
-    >>> float(w[1] @ np.arange(8.0) ** 7)  # a degree-7 polynomial exactly: 3.5 ** 7
-    6433.9296875
-    """
-    u = np.asarray(u, dtype=float)
-    j = np.arange(POINTS)
-    diff = u[:, np.newaxis] - j
-    left = np.ones_like(diff)
-    right = np.ones_like(diff)
-    left[:, 1:] = np.cumprod(diff[:, :-1], axis=1)
-    right[:, :-1] = np.cumprod(diff[:, :0:-1], axis=1)[:, ::-1]
-    # prod_{m != j} (j - m) = (-1)^(7 - j) j! (7 - j)!
-    factorial = np.cumprod(np.r_[1.0, np.arange(1.0, POINTS)])
-    denominator = (-1.0) ** (POINTS - 1 - j) * factorial * factorial[::-1]
-    return left * right / denominator
-
-
 def _direct(satrecs, jd1, jd2):
     error, r, _ = _sgp4_array()(list(satrecs)).sgp4(jd1, jd2)
     return np.asarray(error), np.asarray(r, dtype=float) * 1e3
 
 
-def _interpolate(node_r, first, u, chunk=2048):
-    """Lagrange interpolation, (T, S, 3), of node positions (K, S, 3) in windows from first."""
-    nodes = node_r.reshape(node_r.shape[0], -1)
-    out = np.empty((first.size, nodes.shape[1]))
-    window = np.arange(POINTS)
+def _interpolate(node_r, first, fraction, chunk=16384):
+    """Interpolated positions (T, S, 3) from node positions (K, S, 3).
+
+    The epoch in the cell between nodes ``first + 3`` and ``first + 4`` (in
+    the fraction ``fraction`` of it) takes the polynomial through nodes
+    ``first`` to ``first + 7``, evaluated by Horner's rule from its monomial
+    coefficients.
+    """
+    nodes = node_r.reshape(node_r.shape[0], -1)  # (K, C)
+    starts = np.arange(max(nodes.shape[0] - POINTS + 1, 0))
+    windows = nodes[starts[:, np.newaxis] + np.arange(POINTS)]  # (W, 8, C)
+    rows = nodes.shape[1] >= 48  # many satellites: gather rows; few: gather columns
+    coefficients = np.einsum("kj,wjc->kwc" if rows else "kj,wjc->kcw", _MONOMIAL, windows)
+    coefficients = np.ascontiguousarray(coefficients)
+    out = np.empty((first.size, nodes.shape[1]) if rows else (nodes.shape[1], first.size))
     for a in range(0, first.size, chunk):  # blocks that stay in the cache
         b = min(a + chunk, first.size)
-        values = nodes[first[a:b, np.newaxis] + window]
-        out[a:b] = np.einsum("tj,tjc->tc", lagrange_weights(u[a:b]), values)
+        index = first[a:b]
+        f = fraction[a:b, np.newaxis] if rows else fraction[a:b]
+        block = out[a:b] if rows else out[:, a:b]
+        axis = 0 if rows else 1
+        np.take(coefficients[-1], index, axis=axis, out=block)
+        for k in range(POINTS - 2, -1, -1):
+            block *= f
+            block += np.take(coefficients[k], index, axis=axis)
+    if not rows:
+        out = out.T
     return out.reshape((first.size,) + node_r.shape[1:])
 
 
@@ -150,15 +144,17 @@ def _at_nodes(satrecs, jd1, jd2, spacing):
     """SGP4 interpolated from nodes ``spacing`` seconds apart.
 
     Returns None if that does not pay (fewer than two epochs per node), else
-    ``(accurate, error, position)``: which satellites pass the check of the
-    eighth differences, and for those SGP4's error codes (S, T) and positions
-    (T, S, 3) in metres (the others' values are meaningless).
+    ``(accurate, error, position)``: which satellites have at most a fraction
+    `_ROUGH` of their epochs in windows that fail the check of the eighth
+    differences, and for those SGP4's error codes (S, T) and positions
+    (T, S, 3) in metres, from SGP4 directly in the windows that fail (the
+    other satellites' values are meaningless).
     """
     n = jd1.size
     start = np.floor(np.min(jd1 + jd2) - 0.5) + 0.5  # a midnight before the first epoch
     x = ((jd1 - start) + jd2) * (_DAY / spacing)
     cell = np.floor(x)
-    u = x - cell + 3.0  # position in the window of nodes cell - 3 ... cell + 4
+    fraction = x - cell
     cell = cell.astype(np.int64)
     cells = np.unique(cell)
     if (cells.size + 8) * 2 > n:
@@ -169,18 +165,20 @@ def _at_nodes(satrecs, jd1, jd2, spacing):
     first = np.searchsorted(nodes, cell + _OFFSETS[0])  # index of node cell - 4
     node_error, node_r = _direct(satrecs, np.full(nodes.size, start),
                                  nodes * (spacing / _DAY))
+    node_r[node_error != 0] = np.nan  # SGP4 leaves its last numbers there
     node_r = np.ascontiguousarray(np.moveaxis(node_r, 0, 1))  # (K, S, 3)
-    # Check: the eighth difference of each window used (nodes first ... first + 8).
-    windows = np.unique(first)
-    eighth = sum(c * node_r[windows + j] for j, c in enumerate(_EIGHTH))
-    with np.errstate(invalid="ignore"):
-        estimate = np.linalg.norm(eighth, axis=-1) * _REMAINDER  # (W, S)
-        accurate = ~np.any(estimate > TOLERANCE, axis=0)  # NaN: a failure, done directly
-    position = _interpolate(node_r, first + 1, u)
+    # Check: the eighth difference of the nodes first ... first + 8 of each window.
+    count = nodes.size - _OFFSETS.size + 1
+    eighth = sum(c * node_r[j:j + count] for j, c in enumerate(_EIGHTH))
+    with np.errstate(invalid="ignore"):  # NaN at failed nodes: done directly below
+        rough = np.einsum("wsc,wsc->ws", eighth, eighth) > (TOLERANCE / _REMAINDER) ** 2
+    direct = rough[first]  # (T, S)
+    accurate = np.mean(direct, axis=0) <= _ROUGH
+    position = _interpolate(node_r, first + 1, fraction)
     # SGP4 directly wherever a window holds a failed node, or near the Earth's surface.
     failed = np.zeros((nodes.size + 1, len(satrecs)), dtype=np.int64)
     np.cumsum(node_error.T != 0, axis=0, out=failed[1:])
-    direct = failed[first + _OFFSETS.size] > failed[first]  # (T, S)
+    direct |= failed[first + _OFFSETS.size] > failed[first]
     low = (np.array([s.radiusearthkm for s in satrecs]) * 1e3 + 1e3) ** 2
     with np.errstate(invalid="ignore"):
         direct |= ~(np.einsum("tsc,tsc->ts", position, position) > low)
