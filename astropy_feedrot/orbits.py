@@ -566,11 +566,12 @@ def propagate_tles(orbits, obstime):
 
     Notes
     -----
-    For dense epochs (two or more per node) SGP4 is evaluated at nodes a
-    power of two seconds apart (1 s to 17 min, from each orbit's mean motion
-    and eccentricity) and interpolated, within 0.1 mm of SGP4 at every epoch
-    (`astropy_feedrot.propagation`); sparse epochs, and epochs near a failure
-    of SGP4, are computed directly.
+    With ``conf.fast_path`` (the default) and dense epochs (two or more per
+    node), SGP4 is evaluated at nodes a power of two seconds apart (1 s to
+    17 min, from each orbit's mean motion and eccentricity) and interpolated,
+    within 0.1 mm of SGP4 at every epoch (``astropy_feedrot.propagation``);
+    sparse epochs, epochs near a failure of SGP4, and every epoch with
+    ``conf.fast_path = False``, are computed directly.
 
     Warns
     -----
@@ -603,7 +604,8 @@ def propagate_tles(orbits, obstime):
     utc = obstime.utc
     jd1 = np.ascontiguousarray(utc.jd1, dtype=float).ravel()  # sgp4 needs C order
     jd2 = np.ascontiguousarray(utc.jd2, dtype=float).ravel()
-    error, r = propagate([orbit._satrec for orbit in orbits], jd1, jd2)
+    error, r = propagate([orbit._satrec for orbit in orbits], jd1, jd2,
+                         interpolate=conf.fast_path)
     r[error != 0] = np.nan
     if np.any(error != 0):
         parts = []

@@ -190,7 +190,7 @@ def _at_nodes(satrecs, jd1, jd2, spacing):
     return accurate, error, position
 
 
-def propagate(satrecs, jd1, jd2):
+def propagate(satrecs, jd1, jd2, interpolate=True):
     """SGP4 positions of several element sets at the same epochs.
 
     Parameters
@@ -200,6 +200,9 @@ def propagate(satrecs, jd1, jd2):
     jd1, jd2 : ndarray, shape (T,)
         The epochs as two-part Julian dates in UTC (C-contiguous float64), as
         SGP4 takes them.
+    interpolate : bool, optional
+        Whether dense epochs may be interpolated from nodes (default); False
+        evaluates SGP4 at every epoch.
 
     Returns
     -------
@@ -232,7 +235,7 @@ def propagate(satrecs, jd1, jd2):
     satrecs = list(satrecs)
     jd1 = np.ascontiguousarray(jd1, dtype=float)
     jd2 = np.ascontiguousarray(jd2, dtype=float)
-    if not np.all(np.isfinite(jd1 + jd2)):
+    if not interpolate or not np.all(np.isfinite(jd1 + jd2)):
         return _direct(satrecs, jd1, jd2)
     error = np.zeros((len(satrecs), jd1.size), dtype=np.int64)
     position = np.empty((jd1.size, len(satrecs), 3))  # epochs first: faster to fill
