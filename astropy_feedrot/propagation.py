@@ -235,7 +235,7 @@ def propagate(satrecs, jd1, jd2, interpolate=True):
     satrecs = list(satrecs)
     jd1 = np.ascontiguousarray(jd1, dtype=float)
     jd2 = np.ascontiguousarray(jd2, dtype=float)
-    if not interpolate or not np.all(np.isfinite(jd1 + jd2)):
+    if not interpolate or jd1.size < 2 * POINTS or not np.all(np.isfinite(jd1 + jd2)):
         return _direct(satrecs, jd1, jd2)
     error = np.zeros((len(satrecs), jd1.size), dtype=np.int64)
     position = np.empty((jd1.size, len(satrecs), 3))  # epochs first: faster to fill
