@@ -30,7 +30,8 @@ from .io import read_sp3
 from .io.tle import check_tle_pair
 from .propagation import propagate
 
-__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles"]
+__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles",
+           "check_orientation"]
 
 # WGS72 constants used by SGP4 (Vallado and Crawford 2008).
 _WGS72_MU = 398600.8  # km^3 / s^2
