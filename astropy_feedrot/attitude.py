@@ -181,22 +181,40 @@ class Attitude:
                              f"({len(attitudes)}, ..., 3), got {positions.shape}")
         aligned = np.empty_like(positions)
         transverse = np.empty_like(positions)
-        sun = None
-        undefined = 0
-        epochs = 0
+        sunny = [i for i, attitude in enumerate(attitudes) if attitude.needs_sun]
         for i, attitude in enumerate(attitudes):
-            if attitude.needs_sun:
-                if sun is None:
-                    sun = _sun(obstime, orientation)
-                a, t = attitude.sun_dipoles(positions[i], sun)
-                bad = _undefined(t, positions[i])
-                undefined += np.count_nonzero(bad)
-                epochs += bad.size
-            else:
-                a, t = attitude.dipoles(obstime, positions[i])
-            aligned[i], transverse[i] = a, t
-        _warn_undefined_count(undefined, epochs)
+            if not attitude.needs_sun:
+                aligned[i], transverse[i] = attitude.dipoles(obstime, positions[i])
+        if not sunny:
+            return aligned, transverse
+        sun = _sun(obstime, orientation)
+        if positions.shape[1:] == sun.shape:
+            # Blocks of epochs, all satellites in each: the positions, the Sun and
+            # the dipoles of a block stay in the cache whatever the memory layout.
+            sun = sun.reshape(-1, 3)
+            flat = [a.reshape(len(attitudes), -1, 3) for a in (positions, aligned, transverse)]
+            blocks = [slice(a, a + _EPOCHS) for a in range(0, len(sun), _EPOCHS)]
+        else:  # positions[i] broadcast with the epochs: one call per satellite
+            flat = (positions, aligned, transverse)
+            blocks = [Ellipsis]
+        where, a_out, t_out = flat
+        for block in blocks:
+            for i in sunny:
+                a_out[i, block], t_out[i, block] = attitudes[i].sun_dipoles(where[i, block],
+                                                                            sun[block])
+        if len(sunny) < len(attitudes):
+            transverse_sunny, positions = transverse[sunny], positions[sunny]
+        else:
+            transverse_sunny = transverse
+        nan = np.isnan(transverse_sunny[..., 0])
+        finite = np.all(np.isfinite(positions), axis=-1) if np.any(nan) else False
+        count = np.count_nonzero(nan & finite)
+        _warn_undefined_count(count, nan.size)
         return aligned, transverse
+
+
+#: Epochs per block of `Attitude.dipoles_many`.
+_EPOCHS = 4096
 
 
 def _sun(obstime, orientation):

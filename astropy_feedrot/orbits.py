@@ -173,7 +173,16 @@ class Orbit:
             if not isinstance(orbit, Orbit):
                 raise TypeError(f"orbits[{i}] must be an Orbit, got {type(orbit).__name__}")
             kinds.setdefault(type(orbit), []).append(i)
-        out = np.empty((len(orbits),) + obstime.shape + (3,))
+        shape = (len(orbits),) + obstime.shape + (3,)
+        if len(kinds) == 1:  # one class: its batch is the answer, without a copy
+            (kind,) = kinds
+            out = np.asarray(kind.batch_positions(orbits, obstime, orientation), dtype=float)
+            if out.shape != shape:
+                raise ValueError(f"{kind.__name__}.batch_positions gives shape {out.shape} "
+                                 f"for {len(orbits)} orbits at epochs of shape "
+                                 f"{obstime.shape}; it must give {shape}")
+            return out
+        out = np.empty(shape)
         for kind, members in kinds.items():
             out[members] = kind.batch_positions([orbits[i] for i in members], obstime,
                                                 orientation)
