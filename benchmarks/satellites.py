@@ -39,6 +39,7 @@ import time
 import numpy as np
 from astropy import units as u
 from astropy.time import Time
+from sgp4.api import Satrec
 
 from astropy_feedrot import Satellite, TLEOrbit
 from astropy_feedrot.eop import iers_context
@@ -146,7 +147,7 @@ def main(argv=None):
     results = []
 
     # --- SGP4: every epoch against nodes ----------------------------------------
-    satrecs = [sat.orbit._satrec for sat in satellites]
+    satrecs = [Satrec.twoline2rv(sat.orbit.line1, sat.orbit.line2) for sat in satellites]
     jd1 = np.ascontiguousarray(times.utc.jd1, dtype=float)
     jd2 = np.ascontiguousarray(times.utc.jd2, dtype=float)
     direct_s, (_, exact) = best_of(1, lambda: propagate(satrecs, jd1, jd2, interpolate=False))
