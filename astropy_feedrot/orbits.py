@@ -45,7 +45,17 @@ class Orbit:
     together (element sets: one SGP4 call) also implement the class method
     `batch_positions`, which `positions` calls once per class with all the
     orbits of that class.
+
+    Attributes
+    ----------
+    uses_orientation : bool
+        Whether `position` uses an `~astropy_feedrot.earth.EarthOrientation`
+        when given one (class attribute: False here, True for `TLEOrbit`).
+        Callers build one for their epochs only when some orbit (or attitude)
+        will use it.
     """
+
+    uses_orientation = False
 
     def position(self, obstime, orientation=None):
         """Geocentric ITRS position(s), in metres.
@@ -349,6 +359,7 @@ class TLEOrbit(Orbit):
     """
 
     max_age = 30 * u.day
+    uses_orientation = True  # TEME to ITRS
 
     def __init__(self, line1, line2, name=None):
         self.line1, self.line2 = check_tle_pair(line1, line2)

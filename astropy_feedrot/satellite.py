@@ -189,8 +189,9 @@ class Satellite:
         -----
         With the fast path (``conf.fast_path``, 16 epochs or more) one
         `~astropy_feedrot.earth.EarthOrientation` of the epochs serves the
-        orbit (TEME to ITRS) and the attitude (the Sun, interpolated from its
-        nodes), as in `~astropy_feedrot.grid.feed_rotation_grid`.
+        orbit (TEME to ITRS, for orbits with ``uses_orientation``) and the
+        attitude (the Sun, interpolated from its nodes, for models with
+        ``needs_sun``); it is built only if one of them uses it.
 
         Examples
         --------
@@ -209,7 +210,9 @@ class Satellite:
         if masked is not None and masked.all():
             s = np.full(filled.shape + (3,), np.nan)
             return LineOfSight(s, s, s)
-        orientation = _earth_orientation(filled)
+        orientation = None
+        if self.orbit.uses_orientation or self.attitude.needs_sun:
+            orientation = _earth_orientation(filled)
         position = self._position(filled, masked, orientation)
         s = kernel.unit(position - location_xyz(location))
         aligned, transverse = (v[0] for v in Attitude.dipoles_many(

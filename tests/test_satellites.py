@@ -41,6 +41,7 @@ from astropy_feedrot import (
     QuaternionAttitude,
     Satellite,
     SP3Orbit,
+    StaleEarthOrientationWarning,
     StationaryMount,
     TLEOrbit,
     XYMount,
@@ -779,3 +780,29 @@ def test_dipoles_many_errors():
     with pytest.raises(NotImplementedError, match="QuaternionAttitude does not take its dipoles "
                                                   r"from the Sun \(needs_sun is False\)"):
         QuaternionAttitude(t[:1], [[1, 0, 0, 0]]).sun_dipoles([1, 0, 0], [0, 1, 0])
+
+
+def test_no_earth_orientation_unless_used():
+    # An ITRS position and ITRS quaternions need no Earth orientation: a year
+    # after the end of (faked) tables there is nothing to warn about. A TLE
+    # orbit (TEME -> ITRS) or the nominal attitude (the Sun) use it, and warn once.
+    from astropy.utils import iers
+
+    table = iers.IERS_Auto.open()
+    fake = table[table["MJD"].to_value(u.day) <= 59215.0]  # to 2021-01-01
+    fake.meta["predictive_mjd"] = 58850.0
+    fake.meta["predictive_index"] = int(np.searchsorted(fake["MJD"].to_value(u.day), 58850.0))
+    times = Time("2022-01-01T00:00") + np.arange(20) * u.min
+    fixed = CoordinateOrbit(SkyCoord(ITRS(x=2e7 * u.m, y=1e7 * u.m, z=1e7 * u.m,
+                                          representation_type="cartesian")))
+    tabulated = QuaternionAttitude(times[[0, -1]], [[1, 0, 0, 0], [1, 0, 0, 0]])
+    antenna = paper_antenna("FD-VLBA")
+    with iers.earth_orientation_table.set(fake):
+        phi = antenna.feed_rotation(Satellite(fixed, tabulated), times)  # no warning
+        assert np.all(np.isfinite(phi))
+        elements = TLEOrbit.from_elements(times[0], inclination=55 * u.deg, raan=0 * u.deg,
+                                          altitude=20200 * u.km)
+        for satellite in (Satellite(fixed), Satellite(elements, tabulated)):
+            with pytest.warns(StaleEarthOrientationWarning, match="past the predictions") as w:
+                antenna.feed_rotation(satellite, times)
+            assert len(w) == 1
