@@ -5,6 +5,11 @@ Three sources of positions: a two-line element set propagated with SGP4
 (`TLEOrbit`), an IGS SP3 precise-orbit file interpolated with sliding-window
 Lagrange polynomials (`SP3Orbit`), and positions the user already has as a
 `~astropy.coordinates.SkyCoord` (`CoordinateOrbit`).
+
+Every orbit gives its positions one orbit at a time (`Orbit.position`) or many
+orbits together (`Orbit.positions`: one SGP4 call for all element sets); both
+take an optional `~astropy_feedrot.earth.EarthOrientation` of the epochs, so
+that several consumers of the same epochs share one.
 """
 
 import datetime
@@ -17,13 +22,16 @@ from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
 from .config import conf
+from .earth import EarthOrientation
 from .eop import iers_context
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
 from .io import read_sp3
 from .io.tle import check_tle_pair
+from .propagation import propagate
 
-__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles"]
+__all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles",
+           "check_orientation"]
 
 # WGS72 constants used by SGP4 (Vallado and Crawford 2008).
 _WGS72_MU = 398600.8  # km^3 / s^2
@@ -31,15 +39,36 @@ _WGS72_RADIUS = 6378.135  # km
 
 
 class Orbit:
-    """Base class of orbits: Earth-fixed positions as a function of time."""
+    """Base class of orbits: Earth-fixed positions as a function of time.
 
-    def position(self, obstime):
+    A subclass implements `position`. Orbits that are cheaper computed
+    together (element sets: one SGP4 call) also implement the class method
+    `batch_positions`, which `positions` calls once per class with all the
+    orbits of that class.
+
+    Attributes
+    ----------
+    uses_orientation : bool
+        Whether `position` uses an `~astropy_feedrot.earth.EarthOrientation`
+        when given one (class attribute: False here, True for `TLEOrbit`).
+        Callers build one for their epochs only when some orbit (or attitude)
+        will use it.
+    """
+
+    uses_orientation = False
+
+    def position(self, obstime, orientation=None):
         """Geocentric ITRS position(s), in metres.
 
         Parameters
         ----------
         obstime : `~astropy.time.Time`
             Epoch(s).
+        orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+            Earth orientation at exactly these epochs (same shape), shared
+            with other computations at the same epochs; orbits that need no
+            Earth rotation ignore it. By default the orbit makes its own when
+            it needs one.
 
         Returns
         -------
@@ -48,6 +77,162 @@ class Orbit:
             give a position.
         """
         raise NotImplementedError  # pragma: no cover
+
+    @classmethod
+    def batch_positions(cls, orbits, obstime, orientation=None):
+        """Positions of several orbits of this class at the same epochs.
+
+        The default calls `position` for each orbit; a class whose orbits are
+        cheaper together overrides it.
+
+        Parameters
+        ----------
+        orbits : list of `Orbit`
+            Orbits of this class.
+        obstime : `~astropy.time.Time`
+            Epochs, any shape.
+        orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+            As for `position`.
+
+        Returns
+        -------
+        ndarray, shape (len(orbits),) + obstime.shape + (3,)
+            ITRS metres.
+
+        Raises
+        ------
+        ValueError
+            If an orbit does not give one position per epoch.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import ITRS, SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import CoordinateOrbit
+        >>> here = CoordinateOrbit(SkyCoord(ITRS(x=2.6e7 * u.m, y=0 * u.m, z=0 * u.m,
+        ...                                      representation_type="cartesian")))
+        >>> times = Time("2023-01-25") + [0, 1] * u.hour
+        >>> CoordinateOrbit.batch_positions([here, here], times).shape
+        (2, 2, 3)
+        """
+        out = np.empty((len(orbits),) + obstime.shape + (3,))
+        for i, orbit in enumerate(orbits):
+            xyz = np.asarray(orbit.position(obstime, orientation), dtype=float)
+            if xyz.shape != obstime.shape + (3,):
+                raise ValueError(
+                    f"{orbit!r} gives positions of shape {xyz.shape} for obstime of shape "
+                    f"{obstime.shape}; a batch of orbits needs one position per epoch")
+            out[i] = xyz
+        return out
+
+    @staticmethod
+    def positions(orbits, obstime, orientation=None):
+        """Positions of many orbits at the same epochs, each class in one batch.
+
+        Parameters
+        ----------
+        orbits : sequence of `Orbit`
+            Orbits of any classes: element sets are propagated together (one
+            SGP4 call), the others one by one.
+        obstime : `~astropy.time.Time`
+            Epochs, any shape.
+        orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+            Earth orientation at exactly these epochs, shared by every orbit
+            that needs one (element sets: the rotation from TEME to ITRS). By
+            default each class makes its own when it needs one.
+
+        Returns
+        -------
+        ndarray, shape (len(orbits),) + obstime.shape + (3,)
+            Geocentric ITRS positions in metres; NaN where an orbit cannot
+            give one (with that orbit's warning, once per class).
+
+        Raises
+        ------
+        TypeError
+            If an item is not an `Orbit`.
+        ValueError
+            If ``orientation`` is not for these epochs, or an orbit does not
+            give one position per epoch (a `CoordinateOrbit` of several
+            positions at one time, for instance).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import astropy.units as u
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import TLEOrbit
+        >>> from astropy_feedrot.orbits import Orbit
+        >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+        >>> gps = TLEOrbit(*GPS_SVN76_TLE)
+        >>> genesis = TLEOrbit.from_elements(Time("2023-01-25"), inclination=97 * u.deg,
+        ...                                  raan=30 * u.deg, altitude=6000 * u.km)
+        >>> times = Time("2023-01-25") + np.arange(0, 3600, 60) * u.s
+        >>> xyz = Orbit.positions([gps, genesis], times)
+        >>> xyz.shape
+        (2, 60, 3)
+        >>> np.round(np.linalg.norm(xyz[:, 0], axis=-1) / 1e6, 1)  # thousands of km
+        array([26.7, 12.4])
+        """
+        orbits = list(orbits)
+        obstime = as_time(obstime)
+        check_orientation(orientation, obstime)
+        kinds = {}
+        for i, orbit in enumerate(orbits):
+            if not isinstance(orbit, Orbit):
+                raise TypeError(f"orbits[{i}] must be an Orbit, got {type(orbit).__name__}")
+            kinds.setdefault(type(orbit), []).append(i)
+        shape = (len(orbits),) + obstime.shape + (3,)
+        if len(kinds) == 1:  # one class: its batch is the answer, without a copy
+            (kind,) = kinds
+            out = np.asarray(kind.batch_positions(orbits, obstime, orientation), dtype=float)
+            if out.shape != shape:
+                raise ValueError(f"{kind.__name__}.batch_positions gives shape {out.shape} "
+                                 f"for {len(orbits)} orbits at epochs of shape "
+                                 f"{obstime.shape}; it must give {shape}")
+            return out
+        out = np.empty(shape)
+        for kind, members in kinds.items():
+            out[members] = kind.batch_positions([orbits[i] for i in members], obstime,
+                                                orientation)
+        return out
+
+
+def check_orientation(orientation, obstime):
+    """Check that an Earth orientation is one for the given epochs.
+
+    Parameters
+    ----------
+    orientation : `~astropy_feedrot.earth.EarthOrientation` or None
+        None passes.
+    obstime : `~astropy.time.Time`
+        The epochs it must describe.
+
+    Raises
+    ------
+    TypeError
+        If ``orientation`` is neither None nor an
+        `~astropy_feedrot.earth.EarthOrientation`.
+    ValueError
+        If its epochs have another shape than ``obstime``.
+
+    Examples
+    --------
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.earth import EarthOrientation
+    >>> from astropy_feedrot.orbits import check_orientation
+    >>> times = Time(["2023-01-25T00:00", "2023-01-25T06:00"])
+    >>> check_orientation(EarthOrientation(times), times)
+    """
+    if orientation is None:
+        return
+    if not isinstance(orientation, EarthOrientation):
+        raise TypeError(f"orientation must be an EarthOrientation or None, got "
+                        f"{type(orientation).__name__}")
+    if orientation.shape != obstime.shape:
+        raise ValueError(f"orientation is for epochs of shape {orientation.shape}, obstime has "
+                         f"shape {obstime.shape}: build the EarthOrientation from these epochs")
 
 
 def _sgp4():
@@ -62,21 +247,23 @@ def _sgp4():
     return api
 
 
-def teme_to_itrs(position, obstime):
+def teme_to_itrs(position, obstime, orientation=None):
     """Rotate TEME positions (SGP4's frame) to geocentric ITRS.
 
-    With ``conf.fast_path`` (the default) and 16 or more epochs the rotation
-    is computed once per epoch from interpolated Earth orientation
-    (`~astropy_feedrot.earth.EarthOrientation`: GMST 1982 from UT1 and polar
-    motion, as astropy's ``TEME`` to ``ITRS`` transformation); otherwise
-    through astropy's frames.
+    With an ``orientation``, or with ``conf.fast_path`` (the default) and 16
+    or more epochs, the rotation is computed once per epoch from interpolated
+    Earth orientation (`~astropy_feedrot.earth.EarthOrientation`: GMST 1982
+    from UT1 and polar motion, as astropy's ``TEME`` to ``ITRS``
+    transformation); otherwise through astropy's frames.
 
     Parameters
     ----------
-    position : ndarray, shape obstime.shape + (3,)
-        TEME positions in metres.
+    position : ndarray, shape (...,) + obstime.shape + (3,)
+        TEME positions in metres (leading axes for several satellites).
     obstime : `~astropy.time.Time`
         Epochs.
+    orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+        Earth orientation at exactly these epochs, if one is at hand.
 
     Returns
     -------
@@ -93,11 +280,11 @@ def teme_to_itrs(position, obstime):
     True
     """
     position = np.asarray(position, dtype=float)
-    if conf.fast_path and obstime.size >= 16:
-        from .earth import EarthOrientation
-
-        flat = position.reshape(-1, 3)
+    check_orientation(orientation, obstime)
+    if orientation is None and conf.fast_path and obstime.size >= 16:
         orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    if orientation is not None:
+        flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
     with iers_context(obstime), np.errstate(invalid="ignore"):
@@ -172,6 +359,7 @@ class TLEOrbit(Orbit):
     """
 
     max_age = 30 * u.day
+    uses_orientation = True  # TEME to ITRS
 
     def __init__(self, line1, line2, name=None):
         self.line1, self.line2 = check_tle_pair(line1, line2)
@@ -331,10 +519,40 @@ class TLEOrbit(Orbit):
         line1, line2 = export_tle(satrec)
         return cls(line1, line2, name=name)
 
-    def position(self, obstime):
+    def position(self, obstime, orientation=None):
         obstime = as_time(obstime)
-        r = propagate_tles([self], obstime)[0]
-        return teme_to_itrs(r, obstime)
+        return self.batch_positions([self], obstime, orientation)[0]
+
+    @classmethod
+    def batch_positions(cls, orbits, obstime, orientation=None):
+        """Positions of several element sets: one SGP4 call (`propagate_tles`).
+
+        Parameters
+        ----------
+        orbits : list of `TLEOrbit`
+        obstime : `~astropy.time.Time`
+            Epochs, any shape.
+        orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+            Earth orientation at exactly these epochs for the rotation from
+            TEME to ITRS; by default `teme_to_itrs` makes its own.
+
+        Returns
+        -------
+        ndarray, shape (len(orbits),) + obstime.shape + (3,)
+            ITRS metres; NaN where SGP4 fails (one warning).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import TLEOrbit
+        >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+        >>> gps = TLEOrbit(*GPS_SVN76_TLE)
+        >>> TLEOrbit.batch_positions([gps, gps], Time(["2023-01-25", "2023-01-26"])).shape
+        (2, 2, 3)
+        """
+        obstime = as_time(obstime)
+        return teme_to_itrs(propagate_tles(orbits, obstime), obstime, orientation)
 
 
 # Largest mean motion an element set holds (99.99999999 rev/day), in rad/min;
@@ -367,6 +585,15 @@ def propagate_tles(orbits, obstime):
     ndarray, shape (len(orbits),) + obstime.shape + (3,)
         Positions in the TEME frame of SGP4, in metres; NaN where SGP4 fails.
 
+    Notes
+    -----
+    With ``conf.fast_path`` (the default) and dense epochs (two or more per
+    node), SGP4 is evaluated at nodes a power of two seconds apart (1 s to
+    17 min, from each orbit's mean motion and eccentricity) and interpolated,
+    within 0.1 mm of SGP4 at every epoch (``astropy_feedrot.propagation``);
+    sparse epochs, epochs near a failure of SGP4, and every epoch with
+    ``conf.fast_path = False``, are computed directly.
+
     Warns
     -----
     `~astropy_feedrot.OrbitWarning`
@@ -398,10 +625,8 @@ def propagate_tles(orbits, obstime):
     utc = obstime.utc
     jd1 = np.ascontiguousarray(utc.jd1, dtype=float).ravel()  # sgp4 needs C order
     jd2 = np.ascontiguousarray(utc.jd2, dtype=float).ravel()
-    satrecs = _sgp4().SatrecArray([orbit._satrec for orbit in orbits])
-    error, r, _ = satrecs.sgp4(jd1, jd2)
-    error = np.asarray(error)
-    r = np.asarray(r, dtype=float) * 1e3
+    error, r = propagate([orbit._satrec for orbit in orbits], jd1, jd2,
+                         interpolate=conf.fast_path)
     r[error != 0] = np.nan
     if np.any(error != 0):
         parts = []
@@ -550,8 +775,10 @@ class SP3Orbit(Orbit):
         end = self._run_end[self._usable]
         return self.epochs[np.stack([start, end], axis=-1)]
 
-    def position(self, obstime):
+    def position(self, obstime, orientation=None):
+        # The file's positions are Earth-fixed already: no Earth orientation needed.
         obstime = as_time(obstime)
+        check_orientation(orientation, obstime)
         x = np.atleast_1d((obstime - self._t0).to_value(u.s)).ravel()
         tol = 1e-6
         outside = (x < self._seconds[0] - tol) | (x > self._seconds[-1] + tol)
@@ -715,8 +942,11 @@ class CoordinateOrbit(Orbit):
     def __repr__(self):
         return f"<CoordinateOrbit shape={self.coord.shape} frame={self.coord.frame.name}>"
 
-    def position(self, obstime):
+    def position(self, obstime, orientation=None):
+        # Positions in celestial frames go through astropy's transformation at
+        # each epoch (exact, whatever the frame): no interpolated orientation.
         obstime = as_time(obstime)
+        check_orientation(orientation, obstime)
         coord = self.coord
         if not isinstance(coord.frame, ITRS):
             with iers_context(obstime):

@@ -2,12 +2,15 @@
 """A transmitting satellite: an orbit, an attitude and a circular polarization."""
 
 import numpy as np
+from astropy import units as u
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
+from .config import conf
+from .earth import EarthOrientation
 from .eop import iers_context
 from .frames import as_location, fill_masked, location_xyz
-from .orbits import as_orbit
+from .orbits import as_orbit, check_orientation
 from .polarization import polarization_sign
 
 __all__ = ["Satellite", "LineOfSight"]
@@ -126,13 +129,17 @@ class Satellite:
         return sign
 
     @iers_context()  # one check of the Earth-orientation tables per call
-    def position(self, obstime):
+    def position(self, obstime, orientation=None):
         """Geocentric ITRS position in metres (see `Orbit.position`).
 
         Parameters
         ----------
         obstime : `~astropy.time.Time`
             Epoch(s); masked epochs give NaN.
+        orientation : `~astropy_feedrot.earth.EarthOrientation`, optional
+            Earth orientation at exactly these epochs (built from the
+            epochs with masked ones filled as
+            `~astropy_feedrot.frames.fill_masked` does), if one is at hand.
 
         Returns
         -------
@@ -149,10 +156,15 @@ class Satellite:
         >>> sat.position(Time("2023-01-25"))  # doctest: +FLOAT_CMP
         array([26000000.,        0.,        0.])
         """
-        obstime, masked = fill_masked(obstime)
+        filled, masked = fill_masked(obstime)
+        check_orientation(orientation, filled)
+        return self._position(filled, masked, orientation)
+
+    def _position(self, filled, masked, orientation):
+        """Positions at the filled epochs, NaN at the masked ones."""
         if masked is not None and masked.all():
-            return np.full(obstime.shape + (3,), np.nan)
-        position = np.asarray(self.orbit.position(obstime), dtype=float)
+            return np.full(filled.shape + (3,), np.nan)
+        position = np.asarray(self.orbit.position(filled, orientation), dtype=float)
         if masked is not None:
             position = np.where(masked[..., np.newaxis], np.nan, position)
         return position
@@ -173,6 +185,14 @@ class Satellite:
         -------
         LineOfSight
 
+        Notes
+        -----
+        With the fast path (``conf.fast_path``, 16 epochs or more) one
+        `~astropy_feedrot.earth.EarthOrientation` of the epochs serves the
+        orbit (TEME to ITRS, for orbits with ``uses_orientation``) and the
+        attitude (the Sun, interpolated from its nodes, for models with
+        ``needs_sun``); it is built only if one of them uses it.
+
         Examples
         --------
         >>> import astropy.units as u
@@ -187,12 +207,24 @@ class Satellite:
         """
         location = as_location(location)
         filled, masked = fill_masked(obstime)
-        position = self.position(obstime)
-        s = kernel.unit(position - location_xyz(location))
         if masked is not None and masked.all():
+            s = np.full(filled.shape + (3,), np.nan)
             return LineOfSight(s, s, s)
-        aligned, transverse = self.attitude.dipoles(filled, position)
+        orientation = None
+        if self.orbit.uses_orientation or self.attitude.needs_sun:
+            orientation = _earth_orientation(filled)
+        position = self._position(filled, masked, orientation)
+        s = kernel.unit(position - location_xyz(location))
+        aligned, transverse = (v[0] for v in Attitude.dipoles_many(
+            [self.attitude], filled, position[np.newaxis], orientation))
         if masked is not None:
             aligned = np.where(masked[..., np.newaxis], np.nan, aligned)
             transverse = np.where(masked[..., np.newaxis], np.nan, transverse)
         return LineOfSight(s, aligned, transverse)
+
+
+def _earth_orientation(obstime):
+    """The Earth orientation shared by orbit and attitude, or None off the fast path."""
+    if conf.fast_path and obstime.size >= 16:
+        return EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    return None

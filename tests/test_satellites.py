@@ -13,11 +13,19 @@ import erfa
 import numpy as np
 import pytest
 from astropy import units as u
-from astropy.coordinates import GCRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
+from astropy.coordinates import (
+    GCRS,
+    ITRS,
+    TEME,
+    CartesianRepresentation,
+    EarthLocation,
+    SkyCoord,
+)
 from astropy.tests.helper import assert_quantity_allclose
 from astropy.time import Time
 from helpers import SITES, SP3_DESCRIPTORS, angle_spread, max_angle_difference
 from numpy.testing import assert_allclose
+from sgp4.api import Satrec
 
 from astropy_feedrot import (
     AltAzMount,
@@ -33,6 +41,7 @@ from astropy_feedrot import (
     QuaternionAttitude,
     Satellite,
     SP3Orbit,
+    StaleEarthOrientationWarning,
     StationaryMount,
     TLEOrbit,
     XYMount,
@@ -40,9 +49,11 @@ from astropy_feedrot import (
     unwrap,
 )
 from astropy_feedrot import kernel as k
-from astropy_feedrot.attitude import Attitude, slerp, sun_position
+from astropy_feedrot.attitude import Attitude, nominal_dipoles, slerp, sun_position
+from astropy_feedrot.earth import EarthOrientation
 from astropy_feedrot.frames import location_xyz
-from astropy_feedrot.orbits import lagrange_interpolate
+from astropy_feedrot.grid import feed_rotation_grid
+from astropy_feedrot.orbits import Orbit, lagrange_interpolate
 from astropy_feedrot.simulations import (
     GPS_SVN76_TLE,
     genesis,
@@ -607,3 +618,191 @@ def test_orbex_attitude_as_transmitter():
     with pytest.raises(ValueError, match="satellite 'G02' has no attitude in the ORBEX file; "
                                          "it has G01, G05, E11"):
         QuaternionAttitude.from_orbex(sample_file("sample.obx"), "G02")
+
+
+# --- the object API on many epochs: one Earth orientation, batch interfaces -----
+
+#: A GPS pass over the short baseline at 2 s (1500 epochs: the fast path).
+DENSE = Time("2023-01-25T08:30") + np.arange(0, 3000, 2) * u.s
+
+
+class ExactNominalAttitude(Attitude):
+    """Eqs 26-27 with the Sun computed exactly at every epoch (the path before nodes)."""
+
+    def dipoles(self, obstime, position):
+        return nominal_dipoles(position, sun_position(obstime))
+
+
+def exact_positions(tle, obstime):
+    """ITRS positions from SGP4 at every epoch, rotated by astropy's TEME -> ITRS."""
+    e, r, _ = Satrec.twoline2rv(tle.line1, tle.line2).sgp4_array(
+        np.ascontiguousarray(obstime.utc.jd1), np.ascontiguousarray(obstime.utc.jd2))
+    assert np.all(e == 0)
+    rep = CartesianRepresentation(np.moveaxis(np.asarray(r), -1, 0) * u.km)
+    return SkyCoord(TEME(rep, obstime=obstime)).transform_to(ITRS(obstime=obstime))
+
+
+@pytest.fixture(scope="module")
+def dense_pair():
+    """The object API and the exact path (SGP4 and the Sun at every epoch) on DENSE."""
+    tle = TLEOrbit(*GPS_SVN76_TLE)
+    exact = Satellite(CoordinateOrbit(exact_positions(tle, DENSE)), ExactNominalAttitude())
+    return Satellite(tle), exact
+
+
+@pytest.mark.parametrize("name", ["DBR205", "FD-VLBA", "WETTZ13S"])
+def test_object_api_matches_the_exact_path(dense_pair, name):
+    # Reference: SGP4 and the Sun at every epoch, astropy's TEME -> ITRS. The
+    # nodes (SGP4 within 0.1 mm, the Sun within 1e-10 rad) move angles by < 1e-6 deg.
+    fast, exact = dense_pair
+    antenna = paper_antenna(name) if name != "WETTZ13S" else Antenna(SITES[name], AltAzMount())
+    phi = antenna.feed_rotation(fast, DENSE)
+    reference = antenna.feed_rotation(exact, DENSE)
+    assert np.all(np.isfinite(phi))
+    assert max_angle_difference(phi.rad, reference.rad) < np.deg2rad(1e-6)
+
+
+def test_object_api_equals_the_grid():
+    # The same computation one antenna and one satellite at a time: equal to 1e-9 deg.
+    antennas = [paper_antenna("DBR205"), paper_antenna("FD-VLBA"),
+                Antenna(SITES["WETTZ13S"], AltAzMount(), NasmythFocus("right"))]
+    satellites = [gps_svn76(), genesis()]
+    phi = feed_rotation_grid(antennas, satellites, DENSE)
+    for i, antenna in enumerate(antennas):
+        for j, satellite in enumerate(satellites):
+            one = antenna.feed_rotation(satellite, DENSE)
+            assert max_angle_difference(phi[:, i, j].rad, one.rad) < np.deg2rad(1e-9)
+
+
+def test_masked_epochs_stay_nan_on_the_fast_path():
+    times = DENSE.copy()
+    times[[0, 7, 8, 1499]] = np.ma.masked
+    satellite = gps_svn76()
+    antenna = paper_antenna("FD-VLBA")
+    phi = antenna.feed_rotation(satellite, times)
+    reference = antenna.feed_rotation(satellite, DENSE)
+    masked = np.zeros(DENSE.shape, dtype=bool)
+    masked[[0, 7, 8, 1499]] = True
+    assert np.all(np.isnan(phi[masked])) and np.all(np.isfinite(phi[~masked]))
+    assert max_angle_difference(phi.rad[~masked], reference.rad[~masked]) < np.deg2rad(1e-9)
+    los = satellite.line_of_sight(SITES["FD-VLBA"], times)
+    for vector in (los.s, los.aligned, los.transverse):
+        assert np.all(np.isnan(vector[masked])) and np.all(np.isfinite(vector[~masked]))
+
+
+def test_orbit_positions_of_mixed_orbits():
+    # Reference: each orbit's own position(); element sets go together.
+    times = DENSE[:300]
+    itrs = TLEOrbit(*GPS_SVN76_TLE).position(times)
+    coordinate = CoordinateOrbit(SkyCoord(ITRS(*(itrs.T * u.m), representation_type="cartesian",
+                                               obstime=times)))
+    orbits = [TLEOrbit(*GPS_SVN76_TLE), coordinate, genesis().orbit]
+    orientation = EarthOrientation(times)
+    xyz = Orbit.positions(orbits, times, orientation)
+    assert xyz.shape == (3, 300, 3)
+    for i, o in enumerate(orbits):
+        assert_allclose(xyz[i], o.position(times), rtol=0, atol=1e-6)
+        assert_allclose(xyz[i], o.position(times, orientation), rtol=0, atol=1e-6)
+    assert_allclose(xyz[1], itrs, rtol=0, atol=1e-6)
+    assert_allclose(TLEOrbit.batch_positions(orbits[::2], times), xyz[::2], rtol=0, atol=1e-6)
+
+
+def test_orbit_positions_errors():
+    times = DENSE[:20]
+    gps = TLEOrbit(*GPS_SVN76_TLE)
+    with pytest.raises(TypeError, match=r"orbits\[1\] must be an Orbit, got str"):
+        Orbit.positions([gps, "ISS"], times)
+    x = np.full((3, 1), 2e7) * u.m
+    column = CoordinateOrbit(SkyCoord(ITRS(x=x, y=0 * x, z=x / 2,
+                                           representation_type="cartesian")))
+    with pytest.raises(ValueError, match=r"gives positions of shape \(3, 20, 3\) for obstime "
+                                         r"of shape \(20,\); a batch of orbits needs one "
+                                         "position per epoch"):
+        Orbit.positions([gps, column], times)
+    with pytest.raises(ValueError, match=r"orientation is for epochs of shape \(19,\), obstime "
+                                         r"has shape \(20,\)"):
+        Orbit.positions([gps], times, EarthOrientation(times[:19]))
+    with pytest.raises(ValueError, match=r"orientation is for epochs of shape \(19,\)"):
+        gps.position(times, EarthOrientation(times[:19]))
+    with pytest.raises(TypeError, match="orientation must be an EarthOrientation or None, "
+                                        "got str"):
+        gps.position(times, "fast")
+
+
+def test_nominal_attitude_with_earth_orientation():
+    # The Sun from the orientation's nodes (1e-10 rad) against the exact Sun.
+    times = DENSE[::10]
+    position = TLEOrbit(*GPS_SVN76_TLE).position(times)
+    exact = NominalAttitude().dipoles(times, position)
+    fast = NominalAttitude().dipoles(times, position, EarthOrientation(times))
+    for a, b in zip(exact, fast):
+        assert_allclose(a, b, rtol=0, atol=1e-9)
+
+
+def test_dipoles_many_equals_each_model():
+    # Reference: each model's own dipoles(); the nominal ones share one Sun.
+    times = DENSE[:300]
+    orbits = [TLEOrbit(*GPS_SVN76_TLE), genesis().orbit, TLEOrbit(*GPS_SVN76_TLE)]
+    positions = Orbit.positions(orbits, times)
+    quaternions = QuaternionAttitude(times[[0, -1]], [[1, 0, 0, 0], [0.8, 0, 0, 0.6]])
+    attitudes = [NominalAttitude(), FacingAttitude(SITES["DBR205"]), quaternions]
+    orientation = EarthOrientation(times)
+    aligned, transverse = Attitude.dipoles_many(attitudes, times, positions, orientation)
+    assert aligned.shape == transverse.shape == positions.shape
+    for i, attitude in enumerate(attitudes):
+        a, t = attitude.dipoles(times, positions[i])
+        assert_allclose(aligned[i], a, rtol=0, atol=1e-9)
+        assert_allclose(transverse[i], t, rtol=0, atol=1e-9)
+    assert NominalAttitude.needs_sun and not Attitude.needs_sun
+    assert not QuaternionAttitude.needs_sun
+
+
+def test_dipoles_many_warns_once_for_all_satellites():
+    t = Time("2023-01-25T12:00")
+    sun = k.unit(sun_position(t))
+    positions = np.array([26.6e6 * sun, -26.6e6 * sun, [26.6e6, 0, 0]])
+    with pytest.warns(DegenerateGeometryWarning, match="undefined at 2 of 3 epochs") as record:
+        aligned, transverse = Attitude.dipoles_many([NominalAttitude()] * 3, t, positions)
+    assert len(record) == 1
+    assert np.all(np.isnan(transverse[:2])) and np.all(np.isfinite(transverse[2]))
+
+
+def test_dipoles_many_errors():
+    t = DENSE[:3]
+    positions = np.zeros((2, 3, 3))
+    with pytest.raises(TypeError, match=r"attitudes\[1\] must be an Attitude, got type"):
+        Attitude.dipoles_many([NominalAttitude(), NominalAttitude], t, positions)
+    with pytest.raises(ValueError, match=r"positions must hold one array per attitude: shape "
+                                         r"\(3, \.\.\., 3\), got \(2, 3, 3\)"):
+        Attitude.dipoles_many([NominalAttitude()] * 3, t, positions)
+    with pytest.raises(ValueError, match=r"orientation is for epochs of shape \(2,\)"):
+        Attitude.dipoles_many([NominalAttitude()] * 2, t, positions, EarthOrientation(t[:2]))
+    with pytest.raises(NotImplementedError, match="QuaternionAttitude does not take its dipoles "
+                                                  r"from the Sun \(needs_sun is False\)"):
+        QuaternionAttitude(t[:1], [[1, 0, 0, 0]]).sun_dipoles([1, 0, 0], [0, 1, 0])
+
+
+def test_no_earth_orientation_unless_used():
+    # An ITRS position and ITRS quaternions need no Earth orientation: a year
+    # after the end of (faked) tables there is nothing to warn about. A TLE
+    # orbit (TEME -> ITRS) or the nominal attitude (the Sun) use it, and warn once.
+    from astropy.utils import iers
+
+    table = iers.IERS_Auto.open()
+    fake = table[table["MJD"].to_value(u.day) <= 59215.0]  # to 2021-01-01
+    fake.meta["predictive_mjd"] = 58850.0
+    fake.meta["predictive_index"] = int(np.searchsorted(fake["MJD"].to_value(u.day), 58850.0))
+    times = Time("2022-01-01T00:00") + np.arange(20) * u.min
+    fixed = CoordinateOrbit(SkyCoord(ITRS(x=2e7 * u.m, y=1e7 * u.m, z=1e7 * u.m,
+                                          representation_type="cartesian")))
+    tabulated = QuaternionAttitude(times[[0, -1]], [[1, 0, 0, 0], [1, 0, 0, 0]])
+    antenna = paper_antenna("FD-VLBA")
+    with iers.earth_orientation_table.set(fake):
+        phi = antenna.feed_rotation(Satellite(fixed, tabulated), times)  # no warning
+        assert np.all(np.isfinite(phi))
+        elements = TLEOrbit.from_elements(times[0], inclination=55 * u.deg, raan=0 * u.deg,
+                                          altitude=20200 * u.km)
+        for satellite in (Satellite(fixed), Satellite(elements, tabulated)):
+            with pytest.warns(StaleEarthOrientationWarning, match="past the predictions") as w:
+                antenna.feed_rotation(satellite, times)
+            assert len(w) == 1
