@@ -26,7 +26,7 @@ from .frames import (
     source_direction,
 )
 from .mounts import as_mount
-from .satellite import LineOfSight, Satellite
+from .satellite import Satellite
 
 __all__ = ["Antenna", "FeedRotationTerms", "AntennaAngles"]
 
@@ -96,6 +96,14 @@ class AntennaAngles(NamedTuple):
     transmitter: Angle
     receiver: Angle
     total: Angle
+
+
+class _Sight(NamedTuple):
+    """A line of sight: the direction, and the transmitter's dipoles or None."""
+
+    s: np.ndarray
+    aligned: np.ndarray
+    transverse: np.ndarray
 
 
 def _to_angle(radians):
@@ -196,9 +204,11 @@ class Antenna:
         return self._local
 
     def _line_of_sight(self, target, obstime):
+        """Direction and the transmitter's dipoles (None for a natural source)."""
         if isinstance(target, Satellite):
-            return target.line_of_sight(self.location, obstime)
-        return LineOfSight(source_direction(target, self.location, obstime))
+            los = target.line_of_sight(self.location, obstime)
+            return _Sight(los.s, los.aligned, los.transverse)
+        return _Sight(source_direction(target, self.location, obstime), None, None)
 
     def _wind_up(self, los, form="beyerle", limit=None, terms=False):
         """The engine on the line of sight: feed rotation (or its terms) and ``below``.

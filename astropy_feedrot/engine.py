@@ -180,8 +180,6 @@ class Receivers:
     traced : dict, optional
         ``{index: focus}`` for tracking receivers whose focus has no closed
         form: the engine calls ``focus.receiver_phase`` for them.
-    labels : sequence of str, optional
-        A description of each receiver for warnings (its mount and focus).
 
     Examples
     --------
@@ -197,7 +195,7 @@ class Receivers:
     """
 
     def __init__(self, station_xyz, station_axes, stationary, dipoles, fixed_axis, focus_terms,
-                 traced=None, labels=None):
+                 traced=None):
         self.station_xyz = np.asarray(station_xyz, dtype=float)
         self.station_axes = np.asarray(station_axes, dtype=float)
         self.stationary = np.asarray(stationary, dtype=bool)
@@ -205,7 +203,6 @@ class Receivers:
         self.fixed_axis = np.asarray(fixed_axis, dtype=float)
         self.focus_terms = np.asarray(focus_terms, dtype=float)
         self.traced = dict(traced or {})
-        self.labels = None if labels is None else tuple(labels)
         tracking = ~self.stationary
         tracking[list(self.traced)] = False
         terms = np.any(self.focus_terms != 0, axis=-1)
@@ -272,13 +269,11 @@ class Receivers:
         fixed_axis = np.full((n, 3), np.nan)
         terms = np.zeros((n, 2))
         traced = {}
-        labels = []
         for i, (mount, focus) in enumerate(zip(mounts, foci)):
             mount = as_mount(mount)
             focus = CassegrainFocus() if focus is None else as_focus(focus)
             local = LocalFrame(*axes[i])
             form = _closed_form(focus)
-            labels.append(f"{mount!r} with {focus!r}")
             if mount.tracks:
                 if not callable(getattr(mount, "fixed_axis", None)):
                     raise TypeError(f"{mount!r} tracks but has no fixed_axis(local): a tracking "
@@ -302,7 +297,7 @@ class Receivers:
             stationary[i] = True
             dipoles[i] = (_unit_vector(aligned, f"the aligned dipole of {mount!r}"),
                           _unit_vector(transverse, f"the transverse dipole of {mount!r}"))
-        return cls(xyz, axes, stationary, dipoles, fixed_axis, terms, traced, labels)
+        return cls(xyz, axes, stationary, dipoles, fixed_axis, terms, traced)
 
     @classmethod
     def from_arrays(cls, arrays):
@@ -601,47 +596,56 @@ def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions
 
 def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form, phase, sine):
     """Fill ``phase`` (and ``sine``) for the receivers ``rest``, from their lines of sight."""
-    n_a = len(rx)
+    n_a, n_rest = len(rx), rest.size
     if positions:
         s = kernel.unit(target[..., np.newaxis, :, :] - rx.station_xyz[rest][:, np.newaxis])
     else:
         s = _take(target, rest, n_a)
     satellite = aligned is not None
-    ta = tt = None
+    ta = tt = t = None
     if satellite:
         ta, tt = aligned[..., np.newaxis, :, :], transverse[..., np.newaxis, :, :]
-    t = transmitter_dipole(s, ta, tt)
+
+    def dipole(j):
+        """The transmitter's effective dipole (Eqs 8, 11) on the lines of sight ``j``."""
+        nonlocal t
+        if t is None:
+            t = transmitter_dipole(s, ta, tt)
+        return _take(t, j, n_rest)
+
     axes = rx.station_axes[rest][:, :, np.newaxis]  # (a, 3, 1, 3)
     if sine is not None:
         sine[..., rest, :] = kernel.dot(s, axes[:, 2])
     # Positions of each group within ``rest``.
     where = np.full(n_a, -1)
-    where[rest] = np.arange(rest.size)
+    where[rest] = np.arange(n_rest)
     for group in (rx.stationary_index, rx.plain_index, rx.focus_index):
         group = group[where[group] >= 0]
         if not group.size:
             continue
         j = where[group]
-        s_j, t_j = _take(s, j, rest.size), _take(t, j, rest.size)
+        s_j = _take(s, j, n_rest)
         if rx.stationary[group[0]]:
             ra, rt = rx.dipoles[group, 0, np.newaxis], rx.dipoles[group, 1, np.newaxis]
             if satellite and form == "beyerle":  # Eq 30
                 p = kernel.beyerle_phase(s_j, ra, rt, ta, tt)
             else:  # Eq 7 with the receiver's effective dipole (Eqs 31, 33)
-                p = kernel.wu_phase(s_j, kernel.receiver_effective_dipole(s_j, ra, rt), t_j)
+                p = kernel.wu_phase(s_j, kernel.receiver_effective_dipole(s_j, ra, rt),
+                                    dipole(j))
         else:  # Eq 13 with the fixed axis (Eq 35), and the focus terms (Eqs 38-41)
             local = LocalFrame(*np.moveaxis(axes[j], 1, 0))
             terms = rx.focus_terms[group, :, np.newaxis]  # (a, 2, 1)
-            p = closed_form_phase(s_j, t_j, rx.fixed_axis[group, np.newaxis], local,
-                                  terms[:, 0], terms[:, 1])
+            p = closed_form_phase(s_j, dipole(j) if satellite else None,
+                                  rx.fixed_axis[group, np.newaxis], local, terms[:, 0],
+                                  terms[:, 1])
         phase[..., group, :] = p
     for i in rx.traced_index:  # the mirrors traced (Eqs 42-45)
         if where[i] < 0:
             continue
-        k = [where[i]]
-        s_i, t_i = _take(s, k, rest.size)[..., 0, :, :], _take(t, k, rest.size)[..., 0, :, :]
+        j = [where[i]]
         phase[..., i, :] = rx.traced[i].receiver_phase(
-            s_i, t_i, rx.fixed_axis[i], LocalFrame(*rx.station_axes[i]))
+            _take(s, j, n_rest)[..., 0, :, :], dipole(j)[..., 0, :, :], rx.fixed_axis[i],
+            LocalFrame(*rx.station_axes[i]))
 
 
 def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine=None):

@@ -153,9 +153,9 @@ def closed_form_phase(s, t, axis, local, elevation_multiple=0, azimuth_multiple=
     ----------
     s : ndarray, shape (..., 3)
         Source unit vectors in ITRS.
-    t : ndarray, shape (..., 3)
-        Effective dipole of the arriving wave (Eq 8; :math:`P\\hat{z}` for a
-        natural source, Eq 11).
+    t : ndarray, shape (..., 3), or None
+        Effective dipole of the arriving wave (Eq 8); None for a natural
+        source, whose dipole is the projected pole :math:`P\\hat{z}` (Eq 11).
     axis : ndarray, shape (..., 3)
         Fixed-axis unit vector of the mount in ITRS.
     local : `~astropy_feedrot.frames.LocalFrame`
@@ -169,9 +169,9 @@ def closed_form_phase(s, t, axis, local, elevation_multiple=0, azimuth_multiple=
     ndarray, shape (...)
         :math:`\\Phi = \\mathrm{atan2}(\\hat{s}\\cdot(\\hat{a}\\times t),\\;
         \\hat{a}\\cdot t) + m_E E + m_A A` in radians (RCP), wrapped to
-        :math:`(-\\pi, \\pi]`: Eq 13 with the fixed axis :math:`\\hat{a}`
-        (Eq 7 with a satellite's dipole, Eq 35), plus the terms of the optics
-        (Eqs 38-41). NaN where undefined.
+        :math:`(-\\pi, \\pi]`: Eq 13 with the fixed axis :math:`\\hat{a}` (Eq 7
+        with a satellite's dipole, Eq 35), plus the terms of the optics (Eqs
+        38-41). NaN where undefined.
 
     Examples
     --------
@@ -187,7 +187,10 @@ def closed_form_phase(s, t, axis, local, elevation_multiple=0, azimuth_multiple=
     >>> float(np.degrees(closed_form_phase(s, t, enu.up, enu, 1, 0)))  # doctest: +FLOAT_CMP
     45.0
     """
-    phase = kernel.wu_phase(s, axis, t)
+    if t is None:
+        phase = kernel.receiver_term(s, axis)  # Eq 13
+    else:
+        phase = kernel.wu_phase(s, axis, t)  # Eqs 7, 35
     if np.any(elevation_multiple) or np.any(azimuth_multiple):
         azimuth, elevation = horizontal(s, local)
         phase = kernel.wrap_phase(phase + elevation_multiple * elevation

@@ -432,7 +432,19 @@ def receiver_term(s, r):
     -------
     ndarray, shape (...)
         :math:`\\Phi_\\mathrm{rx}` in radians, which for a fixed-axis
-        telescope is the feed rotation of a natural source (Eq 13).
+        telescope is the feed rotation of a natural source (Eq 13); NaN where
+        the projection of ``r`` or of the pole on the plane of the sky is
+        degenerate.
+
+    Notes
+    -----
+    With the pole :math:`\\hat{z}` written out, Eq 22 (Eq 13) is a closed form
+    in the components of :math:`\\hat{s}`: :math:`r^T S_\\times^T \\hat{z} =
+    s_x r_y - s_y r_x` and :math:`r^T P \\hat{z} = r_z (s_x^2 + s_y^2) - s_z
+    (r_x s_x + r_y s_y)`, using :math:`1 - s_z^2 = s_x^2 + s_y^2 =
+    |P\\hat{z}|^2`. Both keep their precision near the pole and near
+    ``r``, so the degenerate directions are those of `wu_phase`, found at a
+    fraction of its cost.
 
     Examples
     --------
@@ -443,7 +455,17 @@ def receiver_term(s, r):
     >>> float(receiver_term([0.6, 0.0, 0.8], NORTH_POLE))
     0.0
     """
-    return wu_phase(s, r, NORTH_POLE)
+    s = np.asarray(s, dtype=float)
+    r = np.asarray(r, dtype=float)
+    sx, sy, sz = s[..., 0], s[..., 1], s[..., 2]
+    rx, ry, rz = r[..., 0], r[..., 1], r[..., 2]
+    num = sx * ry - sy * rx
+    pole = sx * sx + sy * sy  # |P z|^2
+    den = rz * pole - sz * (rx * sx + ry * sy)
+    # hypot(num, den) = |P r| |P z|: NaN where either is degenerate.
+    defined = (pole >= DEGENERATE_NORM**2) & (num * num + den * den
+                                              >= DEGENERATE_NORM**2 * pole)
+    return _atan2_defined(num, den, defined)
 
 
 def wrap_phase(phase):
