@@ -44,7 +44,9 @@ class Focus:
     A focus turns the effective dipole :math:`t` of the arriving wave into the
     phase measured at the feed of a tracking antenna. A subclass says what it
     adds through `closed_form`; only a focus without a closed form (None)
-    overrides `receiver_phase`, to trace its optics.
+    overrides `receiver_phase`, to trace its optics. A subclass that defines
+    its own `receiver_phase` and no `closed_form` has none: its phase is
+    always computed by its `receiver_phase`.
 
     Examples
     --------
@@ -65,6 +67,12 @@ class Focus:
     #: a right/left beam waveguide. None for optics traced mirror by mirror
     #: (`MirrorTrain`), whose `receiver_phase` does the tracing.
     closed_form = (0, 0)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        # Its own receiver_phase and no closed form of its own: it computes its phase.
+        if "receiver_phase" in vars(cls) and "closed_form" not in vars(cls):
+            cls.closed_form = None
 
     def __eq__(self, other):
         return type(self) is type(other) and self._key() == other._key()
@@ -103,6 +111,10 @@ class Focus:
 
     def receiver_phase(self, s, t, axis, local):
         """Phase at the feed of the arriving effective dipole, in radians.
+
+        A focus with a `closed_form` evaluates it here
+        (`closed_form_phase`); one without overrides this method to trace its
+        optics, and `~astropy_feedrot.engine` calls it for that focus only.
 
         Parameters
         ----------

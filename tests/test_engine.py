@@ -68,6 +68,14 @@ class TracedNasmyth(Focus):
         return self.train.receiver_phase(s, t, axis, local)
 
 
+class OwnPhase(Focus):
+    """A focus written before closed forms were declared: it only computes its phase."""
+
+    def receiver_phase(self, s, t, axis, local):
+        return MirrorTrain([[0, -1, 0]], feed_aligned=[0, 0, 1],
+                           feed_transverse=[1, 0, 0]).receiver_phase(s, t, axis, local)
+
+
 class PolarAxis(Mount):
     """A user's tracking mount: the first axis along the celestial pole."""
 
@@ -87,7 +95,8 @@ def both_front_ends(antenna):
     (CoudeFocus(), lambda psi, e, a: psi + e - a),  # Eq 39, right-handed
     (NasmythFocus("left"), lambda psi, e, a: psi - e),  # Eq 38, left-handed
     (TracedNasmyth(), lambda psi, e, a: psi + e + np.pi),  # MirrorTrain's example
-], ids=["user closed form", "Nasmyth left", "user traced focus"])
+    (OwnPhase(), lambda psi, e, a: psi + e + np.pi),
+], ids=["user closed form", "Nasmyth left", "user traced focus", "user receiver_phase"])
 def test_a_new_focus_plugs_in_once(sky, focus, expected):
     # The same numbers from Antenna and from feed_rotation_grid, both equal to
     # ERFA's parallactic angle plus astropy's elevation and azimuth.
