@@ -1,5 +1,7 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Feed rotation on grids: agreement with Antenna one pair at a time, dask, errors."""
+"""Feed rotation on grids: every receiver against the paper's equations as printed (explicit
+matrices of Eqs 4 and 6) and the traced mirror trains of Appendix C; the grid's batched
+orbits, attitudes and Earth orientation against Antenna one pair at a time; dask; errors."""
 
 import sys
 import warnings
