@@ -5,12 +5,24 @@ A unified model of the phase rotation seen by radio telescopes of every mount
 and focus type and by GNSS antennas, observing natural radio sources and
 satellites (Skeens et al., "A unified model of feed rotation in radio
 telescopes and GNSS antennas").
+
+Everything a user calls is importable from here; the modules (``grid``,
+``stations``, ``tables``...) stay importable for those who want them.
 """
 
-from .antenna import Antenna, FeedRotationTerms
+from .antenna import Antenna, AntennaAngles, FeedRotationTerms
 from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
 from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
+from .correction import (
+    baseline_rr_ll,
+    correct_linear_visibilities,
+    correct_phase,
+    correct_visibilities,
+    rotation_matrix,
+    rr_minus_ll,
+)
+from .eop import earth_orientation_status
 from .exceptions import DegenerateGeometryWarning, OrbitWarning, StaleEarthOrientationWarning
 from .focus import (
     BeamWaveguideFocus,
@@ -21,8 +33,9 @@ from .focus import (
     NasmythFocus,
     PrimeFocus,
 )
-from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
-from .satellite import LineOfSight, Satellite
+from .grid import feed_rotation_grid, feed_rotation_grid_dask, rotation_delay_grid
+from .io import FileFormatError, read_orbex, read_sp3, read_tle
+from .labels import label_from_mount, mount_from_label
 from .mounts import (
     AltAzMount,
     EquatorialMount,
@@ -31,6 +44,11 @@ from .mounts import (
     StationaryMount,
     XYMount,
 )
+from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
+from .satellite import LineOfSight, Satellite
+from .stations import StationCatalogue, get_antenna, read_catalogue
+from .tables import baseline_summary, baseline_table, feed_rotation_table
 
 try:
     from ._version import version as __version__
@@ -38,15 +56,13 @@ except ImportError:  # pragma: no cover - running from a source tree without a b
     __version__ = "unknown"
 
 __all__ = [
+    # Antennas, their mounts and foci
     "Antenna",
     "FeedRotationTerms",
-    "Satellite",
-    "LineOfSight",
-    "TLEOrbit",
-    "SP3Orbit",
-    "CoordinateOrbit",
-    "NominalAttitude",
-    "QuaternionAttitude",
+    "AntennaAngles",
+    "get_antenna",
+    "read_catalogue",
+    "StationCatalogue",
     "Mount",
     "FixedAxisMount",
     "AltAzMount",
@@ -60,12 +76,44 @@ __all__ = [
     "NasmythFocus",
     "BeamWaveguideFocus",
     "MirrorTrain",
+    "mount_from_label",
+    "label_from_mount",
+    # Transmitters
+    "Satellite",
+    "LineOfSight",
+    "TLEOrbit",
+    "SP3Orbit",
+    "CoordinateOrbit",
+    "NominalAttitude",
+    "QuaternionAttitude",
+    "read_tle",
+    "read_sp3",
+    "read_orbex",
+    # Many antennas and targets
+    "feed_rotation_grid",
+    "feed_rotation_grid_dask",
+    "rotation_delay_grid",
+    # Continuity, corrections, tables and figures
     "unwrap",
     "rotation_delay",
     "RotationDelay",
+    "correct_phase",
+    "correct_visibilities",
+    "correct_linear_visibilities",
+    "rotation_matrix",
+    "rr_minus_ll",
+    "baseline_rr_ll",
+    "feed_rotation_table",
+    "baseline_table",
+    "baseline_summary",
+    "plot_feed_rotation",
+    "plot_baseline",
+    # Earth orientation, warnings and errors
+    "earth_orientation_status",
+    "conf",
     "DegenerateGeometryWarning",
     "StaleEarthOrientationWarning",
     "OrbitWarning",
     "ContinuityWarning",
-    "conf",
+    "FileFormatError",
 ]

@@ -1,5 +1,10 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""An antenna: a site, a mount and a focus, and its feed rotation."""
+"""An antenna: a site, a mount and a focus, and its feed rotation.
+
+`Antenna` is the wind-up engine (`~astropy_feedrot.engine`) for one antenna:
+it turns a target and epochs into lines of sight, lets the engine pick and
+evaluate the equation its mount and focus call for, and returns angles.
+"""
 
 from typing import NamedTuple
 
@@ -7,10 +12,9 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle
 
-from . import kernel
+from . import engine, kernel
 from .eop import iers_context
-from .exceptions import DegenerateGeometryWarning, warn_caller
-from .focus import CassegrainFocus, Focus
+from .focus import CassegrainFocus, as_focus
 from .frames import (
     VERTICALS,
     as_elevation_limit,
@@ -21,14 +25,10 @@ from .frames import (
     location_xyz,
     source_direction,
 )
-from .mounts import Mount, StationaryMount
-from .polarization import polarization_sign
-from .satellite import LineOfSight, Satellite
+from .mounts import as_mount
+from .satellite import Satellite
 
-__all__ = ["Antenna", "FeedRotationTerms"]
-
-#: Forms of the wind-up of a stationary crossed dipole seeing a satellite.
-FORMS = ("beyerle", "wu")
+__all__ = ["Antenna", "FeedRotationTerms", "AntennaAngles"]
 
 
 class FeedRotationTerms(NamedTuple):
@@ -65,15 +65,45 @@ class FeedRotationTerms(NamedTuple):
     total: Angle
 
 
-def _check_instance(value, cls, name):
-    if isinstance(value, type) and issubclass(value, cls):
-        raise TypeError(f"{name} must be an instance; did you mean {value.__name__}()?")
-    if not isinstance(value, cls):
-        raise TypeError(
-            f"{name} must be a {cls.__name__} instance (e.g. AltAzMount(), "
-            f"CassegrainFocus()), got {type(value).__name__}"
-        )
-    return value
+class AntennaAngles(NamedTuple):
+    """Every angle of an antenna observing a target, from one line of sight.
+
+    Attributes
+    ----------
+    azimuth, elevation : `~astropy.coordinates.Angle`
+        As `Antenna.altaz`.
+    parallactic_angle : `~astropy.coordinates.Angle`
+        As `Antenna.parallactic_angle` (Eq 15).
+    transmitter, receiver : `~astropy.coordinates.Angle`
+        The terms of `Antenna.feed_rotation_terms` (Eqs 21, 22).
+    total : `~astropy.coordinates.Angle`
+        As `Antenna.feed_rotation`.
+
+    Examples
+    --------
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> angles = get_antenna("WETTZ13S").angles(SkyCoord("03h19m48.16s +41d30m42.1s"),
+    ...                                         Time("2023-01-25T22:00"))
+    >>> angles._fields
+    ('azimuth', 'elevation', 'parallactic_angle', 'transmitter', 'receiver', 'total')
+    """
+
+    azimuth: Angle
+    elevation: Angle
+    parallactic_angle: Angle
+    transmitter: Angle
+    receiver: Angle
+    total: Angle
+
+
+class _Sight(NamedTuple):
+    """A line of sight: the direction, and the transmitter's dipoles or None."""
+
+    s: np.ndarray
+    aligned: np.ndarray
+    transverse: np.ndarray
 
 
 def _to_angle(radians):
@@ -140,24 +170,21 @@ class Antenna:
                 f"an Antenna has one location, got an array of shape {self.location.shape}; "
                 "make one Antenna per site"
             )
-        check_station_xyz(location_xyz(self.location), "location")
-        self.mount = _check_instance(mount, Mount, "mount")
-        if focus is None:
-            focus = CassegrainFocus()
-        self.focus = _check_instance(focus, Focus, "focus")
+        xyz = location_xyz(self.location)
+        check_station_xyz(xyz, "location")
+        self.mount = as_mount(mount)
+        self.focus = CassegrainFocus() if focus is None else as_focus(focus)
         if vertical not in VERTICALS:
             raise ValueError(f"vertical must be one of {VERTICALS}, got {vertical!r}")
         self.vertical = vertical
         self.name = name
         self._local = local_frame(self.location, vertical=vertical)
-        if isinstance(self.mount, StationaryMount):
-            if type(self.focus).receiver_phase is not Focus.receiver_phase:
-                raise ValueError(
-                    f"a StationaryMount has no optics to add terms; {self.focus!r} needs a "
-                    "steerable mount"
-                )
-        else:
+        if self.mount.tracks:
             self.focus.check_mount(self.mount, self._local)
+        # The engine's description of this one receiver (raises for optics on a
+        # mount that does not track).
+        self._receivers = engine.Receivers.from_mounts(
+            xyz[np.newaxis], np.stack(self._local)[np.newaxis], [self.mount], [self.focus])
 
     def __repr__(self):
         label = f"{self.name!r}, " if self.name else ""
@@ -176,59 +203,38 @@ class Antenna:
         """
         return self._local
 
-    def _direction(self, target, obstime):
-        return self._line_of_sight(target, obstime).s
-
     def _line_of_sight(self, target, obstime):
+        """Direction and the transmitter's dipoles (None for a natural source)."""
         if isinstance(target, Satellite):
-            return target.line_of_sight(self.location, obstime)
-        return LineOfSight(source_direction(target, self.location, obstime))
+            los = target.line_of_sight(self.location, obstime)
+            return _Sight(los.s, los.aligned, los.transverse)
+        return _Sight(source_direction(target, self.location, obstime), None, None)
 
-    def _sign(self, target, polarization):
-        """+1/-1 for the receiver's hand, checked against a satellite's."""
-        if isinstance(target, Satellite):
-            return target._receiver_sign(polarization)
-        return polarization_sign("RCP" if polarization is None else polarization)
+    def _wind_up(self, los, form="beyerle", limit=None, terms=False):
+        """The engine on the line of sight: feed rotation (or its terms) and ``below``.
 
-    def _below(self, s, limit):
-        """Where the line of sight is below ``limit`` (radians; all False for None)."""
-        if limit is None:
-            return np.zeros(s.shape[:-1], dtype=bool)
-        return horizontal(s, self._local)[1] < limit
+        One antenna and one target per epoch: the engine's (..., A, S) axes are
+        1 long and dropped again.
+        """
+        s = los.s[..., np.newaxis, np.newaxis, :]
+        aligned = transverse = None
+        if los.aligned is not None:
+            aligned = los.aligned[..., np.newaxis, :]
+            transverse = los.transverse[..., np.newaxis, :]
+        if terms:
+            *out, below = engine.feed_rotation_terms(self._receivers, s, aligned, transverse,
+                                                     min_sine=engine.min_sine(limit))
+        else:
+            *out, below = engine.feed_rotation(self._receivers, s, aligned, transverse,
+                                               form=form, min_sine=engine.min_sine(limit))
+        return [phase[..., 0, 0] for phase in out] + [None if below is None
+                                                      else below[..., 0, 0]]
 
-    def _receiver_phase(self, s, t):
-        """Feed rotation (radians, RCP) of an arriving effective dipole ``t`` (Eq 7)."""
-        if self.mount.tracks:
-            axis = self.mount.fixed_axis(self._local)
-            return self.focus.receiver_phase(s, t, axis, self._local)
-        east, north, _ = self.mount.dipoles(self._local)
-        return kernel.wu_phase(s, kernel.receiver_effective_dipole(s, east, north), t)
-
-    def _phase(self, los, form):
-        """Feed rotation (radians, RCP) for a line of sight, in the requested form."""
-        if form not in FORMS + (None,):
-            raise ValueError(f"form must be one of {FORMS}, got {form!r}")
-        if not self.mount.tracks and los.aligned is not None and form != "wu":
-            # A stationary crossed dipole and a crossed-dipole transmitter that
-            # need not face each other: Beyerle's form (Eq 30).
-            east, north, _ = self.mount.dipoles(self._local)
-            return kernel.beyerle_phase(los.s, east, north, los.aligned, los.transverse)
-        return self._receiver_phase(los.s, los.t)
-
-    def _finish(self, phase, s, what="feed rotation", below=False):
-        """NaN where ``below``; warn once about degenerate epochs; return an Angle."""
-        degenerate = np.isnan(phase) & np.all(np.isfinite(s), axis=-1) & ~below
-        phase = np.where(below, np.nan, phase)
-        count = int(np.count_nonzero(degenerate))
-        if count:
-            warn_caller(
-                f"{what} is undefined at {count} of {degenerate.size} epochs, where the "
-                f"line of sight is within 0.2 mas of a singular direction of {self.mount!r} "
-                f"with {self.focus!r} (a fixed axis such as the zenith of an alt-az "
-                "mount) or of the celestial pole, or where a transmitter is seen edge-on; "
-                "NaN is returned there",
-                DegenerateGeometryWarning,
-            )
+    def _finish(self, phase, s, below=None, what="feed rotation"):
+        """One warning about degenerate epochs; an Angle."""
+        count = int(np.count_nonzero(engine.degenerate(phase, s, below)))
+        engine.warn_degenerate(count, np.size(phase), what, "epochs",
+                               f"{self.mount!r} with {self.focus!r}")
         return _to_angle(phase)
 
     @iers_context()  # one check of the Earth-orientation tables per call
@@ -321,15 +327,12 @@ class Antenna:
         >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
-        sign = self._sign(target, polarization)
+        sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
-        if form not in FORMS + (None,):
-            raise ValueError(f"form must be one of {FORMS}, got {form!r}")
-        return self._feed_rotation_of(self._line_of_sight(target, obstime), sign, form, limit)
-
-    def _feed_rotation_of(self, los, sign, form=None, limit=None):
-        below = self._below(los.s, limit)
-        return self._finish(sign * self._phase(los, form), los.s, below=below)
+        form = engine.check_form(form)
+        los = self._line_of_sight(target, obstime)
+        phase, below = self._wind_up(los, form, limit)
+        return self._finish(sign * phase, los.s, below)
 
     @iers_context()  # one check of the Earth-orientation tables per call
     def feed_rotation_terms(self, target, obstime, polarization=None, min_elevation=None):
@@ -382,17 +385,14 @@ class Antenna:
         >>> (sum_of_terms - terms.total).wrap_at(180 * u.deg)  # doctest: +FLOAT_CMP
         <Angle 0. deg>
         """
-        sign = self._sign(target, polarization)
+        sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
-        return self._terms_of(self._line_of_sight(target, obstime), sign, limit)
+        return self._terms(self._line_of_sight(target, obstime), sign, limit)
 
-    def _terms_of(self, los, sign, limit=None):
-        below = self._below(los.s, limit)
-        transmitter = self._finish(sign * kernel.transmitter_term(los.s, los.t), los.s,
-                                   "transmitter term", below)
-        natural = kernel.project(kernel.NORTH_POLE, los.s)
-        receiver = self._finish(sign * self._receiver_phase(los.s, natural), los.s,
-                                "receiver term", below)
+    def _terms(self, los, sign, limit):
+        transmitter, receiver, below = self._wind_up(los, limit=limit, terms=True)
+        transmitter = self._finish(sign * transmitter, los.s, below, "transmitter term")
+        receiver = self._finish(sign * receiver, los.s, below, "receiver term")
         total = kernel.wrap_phase(transmitter.rad + receiver.rad)
         return FeedRotationTerms(transmitter, receiver, _to_angle(total))
 
@@ -429,10 +429,11 @@ class Antenna:
         >>> antenna.parallactic_angle(source, Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
         <Angle 77.88951063 deg>
         """
-        return self._parallactic_angle_of(self._direction(target, obstime))
+        return self._parallactic_angle(self._line_of_sight(target, obstime).s)
 
-    def _parallactic_angle_of(self, s):
-        return self._finish(kernel.receiver_term(s, self._local.up), s, "parallactic angle")
+    def _parallactic_angle(self, s):
+        return self._finish(engine.parallactic_angle(s, self._local.up), s,
+                            what="parallactic angle")
 
     @iers_context()  # one check of the Earth-orientation tables per call
     def altaz(self, target, obstime):
@@ -465,9 +466,70 @@ class Antenna:
         >>> round(float(el.deg), 3)
         58.973
         """
-        s = self._direction(target, obstime)
-        return self._altaz(s)
+        return self._altaz(self._line_of_sight(target, obstime).s)
 
     def _altaz(self, s):
         az, el = horizontal(s, self._local)
         return _to_angle(az), _to_angle(el)
+
+    @iers_context()  # one check of the Earth-orientation tables per call
+    def angles(self, target, obstime, polarization=None, form=None, min_elevation=None):
+        """Every angle of the antenna observing a target, from one line of sight.
+
+        The orbit is propagated (or the source's direction computed) once for
+        all of them: what `~astropy_feedrot.tables.feed_rotation_table`
+        tabulates.
+
+        Parameters
+        ----------
+        target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
+            Natural source(s) or a satellite, as for `feed_rotation`.
+        obstime : `~astropy.time.Time`
+            Epoch(s) of observation; masked epochs give NaN.
+        polarization, form, min_elevation : optional
+            As for `feed_rotation`; ``min_elevation`` masks the terms and the
+            total, not the azimuth, elevation and parallactic angle.
+
+        Returns
+        -------
+        AntennaAngles
+            Named tuple ``(azimuth, elevation, parallactic_angle, transmitter,
+            receiver, total)`` of `~astropy.coordinates.Angle` in degrees,
+            each equal to what `altaz`, `parallactic_angle`,
+            `feed_rotation_terms` and `feed_rotation` return.
+
+        Raises
+        ------
+        TypeError, ValueError, astropy.units.UnitsError
+            As for `feed_rotation`.
+
+        Warns
+        -----
+        DegenerateGeometryWarning
+            Once per angle that is undefined at some epochs.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import SkyCoord
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import NasmythFocus
+        >>> from astropy_feedrot.stations import get_antenna
+        >>> yebes = get_antenna("YEBES40M", focus=NasmythFocus("right"))
+        >>> times = Time("2023-01-25T20:00") + [0, 2] * u.hour
+        >>> angles = yebes.angles(SkyCoord("03h19m48.16s +41d30m42.1s"), times)
+        >>> difference = angles.total - angles.parallactic_angle - angles.elevation
+        >>> bool(np.abs(difference.wrap_at(180 * u.deg).deg).max() < 1e-9)  # Eq 38
+        True
+        """
+        sign = engine.receiver_sign(target, polarization)
+        limit = as_elevation_limit(min_elevation)
+        form = engine.check_form(form)
+        los = self._line_of_sight(target, obstime)
+        azimuth, elevation = self._altaz(los.s)
+        terms = self._terms(los, sign, limit)
+        phase, below = self._wind_up(los, form, limit)
+        return AntennaAngles(azimuth, elevation, self._parallactic_angle(los.s),
+                             terms.transmitter, terms.receiver,
+                             self._finish(sign * phase, los.s, below))

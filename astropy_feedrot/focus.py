@@ -6,6 +6,12 @@ Nasmyth focus adds the elevation (Eq 38) and a beam-waveguide focus the
 elevation and the azimuth (Eq 39), with a sign fixed by the handedness of the
 third mirror. A `MirrorTrain` traces the wave's effective dipole through any
 sequence of mirrors (Eqs 42-45) and reproduces those closed forms.
+
+A focus declares what it adds through `Focus.closed_form`: the multiples of
+the elevation and the azimuth, evaluated by `closed_form_phase`, or None for
+optics traced mirror by mirror in `Focus.receiver_phase`. The
+`~astropy_feedrot.engine` reads that declaration; a new focus type plugs in
+there once, and every front-end has it.
 """
 
 import numpy as np
@@ -22,6 +28,8 @@ __all__ = [
     "NasmythFocus",
     "BeamWaveguideFocus",
     "MirrorTrain",
+    "as_focus",
+    "closed_form_phase",
 ]
 
 HANDEDNESS = ("right", "left")
@@ -34,8 +42,37 @@ class Focus:
     """Base class of focus types.
 
     A focus turns the effective dipole :math:`t` of the arriving wave into the
-    phase measured at the feed of a tracking antenna.
+    phase measured at the feed of a tracking antenna. A subclass says what it
+    adds through `closed_form`; only a focus without a closed form (None)
+    overrides `receiver_phase`, to trace its optics. A subclass that defines
+    its own `receiver_phase` and no `closed_form` has none: its phase is
+    always computed by its `receiver_phase`.
+
+    Examples
+    --------
+    A focus whose beam leaves the telescope down its azimuth axis into a room
+    fixed to the ground (the beam-waveguide form, Eq 39, right-handed):
+
+    >>> from astropy_feedrot import Focus
+    >>> class CoudeFocus(Focus):
+    ...     closed_form = (1, -1)
+    >>> CoudeFocus().closed_form
+    (1, -1)
     """
+
+    #: Multiples :math:`(m_E, m_A)` of the elevation and the azimuth that the
+    #: focus adds to the feed rotation of its mount, :math:`\Phi = \Phi_{13}
+    #: + m_E E + m_A A` (Eqs 13, 38, 39): (0, 0) for a prime, Cassegrain or
+    #: Gregorian focus, (+-1, 0) for a right/left Nasmyth focus, (+-1, -+1) for
+    #: a right/left beam waveguide. None for optics traced mirror by mirror
+    #: (`MirrorTrain`), whose `receiver_phase` does the tracing.
+    closed_form = (0, 0)
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        # Its own receiver_phase and no closed form of its own: it computes its phase.
+        if "receiver_phase" in vars(cls) and "closed_form" not in vars(cls):
+            cls.closed_form = None
 
     def __eq__(self, other):
         return type(self) is type(other) and self._key() == other._key()
@@ -75,6 +112,10 @@ class Focus:
     def receiver_phase(self, s, t, axis, local):
         """Phase at the feed of the arriving effective dipole, in radians.
 
+        A focus with a `closed_form` evaluates it here
+        (`closed_form_phase`); one without overrides this method to trace its
+        optics, and `~astropy_feedrot.engine` calls it for that focus only.
+
         Parameters
         ----------
         s : ndarray, shape (..., 3)
@@ -108,7 +149,65 @@ class Focus:
         >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
         45.0
         """
-        return kernel.wu_phase(s, axis, t)
+        form = self.closed_form
+        if form is None:
+            raise NotImplementedError(
+                f"{self!r} has no closed form (closed_form is None), so it must trace its "
+                "optics: override receiver_phase(s, t, axis, local)"
+            )
+        return closed_form_phase(s, t, axis, local, *form)
+
+
+def closed_form_phase(s, t, axis, local, elevation_multiple=0, azimuth_multiple=0):
+    """Feed rotation of a tracking antenna whose focus has a closed form (Eqs 13, 38, 39).
+
+    Parameters
+    ----------
+    s : ndarray, shape (..., 3)
+        Source unit vectors in ITRS.
+    t : ndarray, shape (..., 3), or None
+        Effective dipole of the arriving wave (Eq 8); None for a natural
+        source, whose dipole is the projected pole :math:`P\\hat{z}` (Eq 11).
+    axis : ndarray, shape (..., 3)
+        Fixed-axis unit vector of the mount in ITRS.
+    local : `~astropy_feedrot.frames.LocalFrame`
+        East, north and up vectors of the site (of shape (..., 3)).
+    elevation_multiple, azimuth_multiple : float or ndarray, optional
+        The multiples :math:`(m_E, m_A)` of `Focus.closed_form`, broadcast
+        with the shape (...).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        :math:`\\Phi = \\mathrm{atan2}(\\hat{s}\\cdot(\\hat{a}\\times t),\\;
+        \\hat{a}\\cdot t) + m_E E + m_A A` in radians (RCP), wrapped to
+        :math:`(-\\pi, \\pi]`: Eq 13 with the fixed axis :math:`\\hat{a}` (Eq 7
+        with a satellite's dipole, Eq 35), plus the terms of the optics (Eqs
+        38-41). NaN where undefined.
+
+    Examples
+    --------
+    A right-handed Nasmyth focus adds the elevation (Eq 38): 45 deg here.
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.focus import closed_form_phase
+    >>> from astropy_feedrot.frames import LocalFrame
+    >>> from astropy_feedrot.kernel import project
+    >>> enu = LocalFrame(*np.eye(3))
+    >>> s = np.array([-1.0, 0.0, 1.0]) / np.sqrt(2)  # west, 45 deg high
+    >>> t = project([0.0, 0.0, 1.0], s)  # a pole at the zenith: Psi = 0
+    >>> float(np.degrees(closed_form_phase(s, t, enu.up, enu, 1, 0)))  # doctest: +FLOAT_CMP
+    45.0
+    """
+    if t is None:
+        phase = kernel.receiver_term(s, axis)  # Eq 13
+    else:
+        phase = kernel.wu_phase(s, axis, t)  # Eqs 7, 35
+    if np.any(elevation_multiple) or np.any(azimuth_multiple):
+        azimuth, elevation = horizontal(s, local)
+        phase = kernel.wrap_phase(phase + elevation_multiple * elevation
+                                  + azimuth_multiple * azimuth)
+    return phase
 
 
 class PrimeFocus(Focus):
@@ -205,9 +304,10 @@ class NasmythFocus(_HandedFocus):
     1
     """
 
-    def receiver_phase(self, s, t, axis, local):
-        _, elevation = horizontal(s, local)
-        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * elevation)
+    @property
+    def closed_form(self):
+        """``(sign, 0)``: plus or minus the elevation (Eq 38)."""
+        return (self.sign, 0)
 
 
 class BeamWaveguideFocus(_HandedFocus):
@@ -235,9 +335,10 @@ class BeamWaveguideFocus(_HandedFocus):
     BeamWaveguideFocus(handedness='left')
     """
 
-    def receiver_phase(self, s, t, axis, local):
-        azimuth, elevation = horizontal(s, local)
-        return kernel.wrap_phase(kernel.wu_phase(s, axis, t) + self.sign * (elevation - azimuth))
+    @property
+    def closed_form(self):
+        """``(sign, -sign)``: plus or minus elevation minus azimuth (Eq 39)."""
+        return (self.sign, -self.sign)
 
 
 def _as_vectors(values, name):
@@ -323,6 +424,9 @@ class MirrorTrain(Focus):
     >>> train
     MirrorTrain(<1 mirrors>, feed_rotates=True)
     """
+
+    #: No closed form: the mirrors are traced (`receiver_phase`).
+    closed_form = None
 
     def __init__(self, wave_vectors, feed_aligned, feed_transverse, feed_rotates=True, name=None):
         k = _as_vectors(wave_vectors, "wave_vectors")
@@ -423,6 +527,37 @@ class MirrorTrain(Focus):
                 )
 
     def receiver_phase(self, s, t, axis, local):
+        """Phase at the feed, traced mirror by mirror (Eqs 42-45).
+
+        Parameters
+        ----------
+        s, t, axis, local
+            As for `Focus.receiver_phase`.
+
+        Returns
+        -------
+        ndarray, shape (...)
+            The feed rotation (RCP) in radians; negated after an odd number
+            of mirrors (Sec. 3.2). NaN where undefined.
+
+        Examples
+        --------
+        The one-mirror Nasmyth train of the class example, for a source due
+        west at 45 deg elevation seen from a pole at the zenith: the
+        right-handed Nasmyth form (45 deg) plus 180 deg.
+
+        >>> import numpy as np
+        >>> from astropy_feedrot import MirrorTrain
+        >>> from astropy_feedrot.frames import LocalFrame
+        >>> from astropy_feedrot.kernel import project
+        >>> enu = LocalFrame(*np.eye(3))
+        >>> train = MirrorTrain([[0, -1, 0]], feed_aligned=[0, 0, 1],
+        ...                     feed_transverse=[1, 0, 0])
+        >>> s = np.array([-1.0, 0.0, 1.0]) / np.sqrt(2)
+        >>> phi = train.receiver_phase(s, project([0.0, 0, 1], s), enu.up, enu)
+        >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
+        -135.0
+        """
         s = np.asarray(s, dtype=float)
         eta = kernel.unit(np.cross(axis, s))
         xi = np.cross(eta, axis)
@@ -516,3 +651,40 @@ class MirrorTrain(Focus):
         """
         waves = [[0, -1, 0], [-2500, 0, -9500], [0, 1, 0], [0, 0, -1]]
         return cls(waves, [1, 0, 0], [0, 1, 0], feed_rotates=False, name="WARK30M")
+
+
+def as_focus(focus, name="focus"):
+    """Check that a value is a focus instance.
+
+    Parameters
+    ----------
+    focus : object
+        The value to check.
+    name : str, optional
+        How to call it in error messages.
+
+    Returns
+    -------
+    Focus
+        ``focus`` itself.
+
+    Raises
+    ------
+    TypeError
+        If ``focus`` is a focus class rather than an instance, or not a
+        `Focus` at all.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.focus import NasmythFocus, as_focus
+    >>> as_focus(NasmythFocus("right"))
+    NasmythFocus(handedness='right')
+    """
+    if isinstance(focus, type) and issubclass(focus, Focus):
+        raise TypeError(f"{name} must be an instance; did you mean {focus.__name__}()?")
+    if not isinstance(focus, Focus):
+        raise TypeError(
+            f"{name} must be a Focus instance (e.g. CassegrainFocus(), NasmythFocus('right')), "
+            f"got {type(focus).__name__}"
+        )
+    return focus

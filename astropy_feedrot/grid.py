@@ -6,8 +6,9 @@ antenna and one target at a time: every call propagates the orbit, rotates it
 to the Earth-fixed frame and finds the Sun again. For a network observing a
 constellation, those per-epoch quantities are shared: this module computes
 them once per epoch for all satellites (one SGP4 call for all element sets,
-one Earth orientation, one Sun), and evaluates the wind-up on the whole grid
-of epochs (T) x antennas (A) x targets (S) with broadcast array arithmetic.
+one Earth orientation, one Sun), and hands the whole grid of epochs (T) x
+antennas (A) x targets (S) to the wind-up engine (`~astropy_feedrot.engine`),
+the same one `~astropy_feedrot.Antenna` uses, block by block.
 
 Three layers, as in the rest of the package:
 
@@ -30,8 +31,8 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 
-from . import kernel
-from .antenna import FORMS, Antenna
+from . import engine
+from .antenna import Antenna
 from .attitude import (
     NominalAttitude,
     _warn_nominal_undefined,
@@ -41,25 +42,21 @@ from .attitude import (
 )
 from .config import conf
 from .continuity import delay_of_difference, frequency_hz
+from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
-from .exceptions import DegenerateGeometryWarning, warn_caller
-from .focus import BeamWaveguideFocus, Focus, NasmythFocus
 from .frames import (
-    LocalFrame,
     _fast_path_applies,
     as_elevation_limit,
     as_skycoord,
     as_time,
     check_station_xyz,
     fill_masked,
-    horizontal,
     location_xyz,
     source_direction,
 )
-from .mounts import FixedAxisMount, StationaryMount
 from .orbits import TLEOrbit, propagate_tles, teme_to_itrs
 from .polarization import polarization_sign
-from .satellite import LineOfSight, Satellite
+from .satellite import Satellite
 
 __all__ = [
     "UNIT_TOLERANCE",
@@ -86,57 +83,6 @@ _RAD_TO_DEG = u.rad.to(u.deg)
 __doctest_requires__ = {("feed_rotation_grid_dask",): ["dask"]}
 
 
-class ReceiverArrays(NamedTuple):
-    """The receiving antennas of a grid as plain arrays (the inputs of `wind_up`).
-
-    Attributes
-    ----------
-    station_xyz : ndarray, shape (A, 3)
-        Geocentric ITRS positions in metres.
-    station_axes : ndarray, shape (A, 3, 3)
-        East, north and up unit vectors of each site in ITRS (rows). A
-        stationary crossed dipole has its aligned dipole east and its
-        transverse dipole north (Eq 28).
-    stationary : ndarray of bool, shape (A,)
-        True for a crossed dipole fixed to the ground, False for a tracking
-        antenna.
-    fixed_axis : ndarray, shape (A, 3)
-        The fixed axis of each tracking mount in ITRS (Eq 10; ignored for a
-        stationary one).
-    focus_terms : ndarray, shape (A, 2)
-        Multiples of the elevation and the azimuth a focus adds: (0, 0) for a
-        prime, Cassegrain or Gregorian focus, (+-1, 0) for a right/left
-        Nasmyth focus (Eq 38), (+-1, -+1) for a right/left beam waveguide
-        (Eq 39).
-
-    Examples
-    --------
-    >>> from astropy_feedrot.grid import receiver_arrays
-    >>> from astropy_feedrot.stations import get_antenna
-    >>> arrays = receiver_arrays([get_antenna("DBR205"), get_antenna("FD-VLBA")])
-    >>> arrays.stationary.tolist()
-    [True, False]
-    """
-
-    station_xyz: np.ndarray
-    station_axes: np.ndarray
-    stationary: np.ndarray
-    fixed_axis: np.ndarray
-    focus_terms: np.ndarray
-
-
-def _focus_terms(focus):
-    """Elevation and azimuth multiples of a closed-form focus; None if it needs tracing."""
-    phase = type(focus).receiver_phase
-    if phase is Focus.receiver_phase:
-        return (0.0, 0.0)
-    if phase is NasmythFocus.receiver_phase:
-        return (float(focus.sign), 0.0)
-    if phase is BeamWaveguideFocus.receiver_phase:
-        return (float(focus.sign), -float(focus.sign))
-    return None
-
-
 def _check_antennas(antennas):
     if isinstance(antennas, Antenna):
         raise TypeError("antennas must be a sequence of Antenna objects; wrap a single "
@@ -155,30 +101,11 @@ def _check_antennas(antennas):
 
 
 def _receivers(antennas):
-    """ReceiverArrays of all antennas and the (index, antenna) pairs that need tracing."""
-    n = len(antennas)
-    xyz = np.empty((n, 3))
-    axes = np.empty((n, 3, 3))
-    stationary = np.zeros(n, dtype=bool)
-    fixed_axis = np.empty((n, 3))
-    terms = np.zeros((n, 2))
-    traced = []
-    for i, antenna in enumerate(antennas):
-        local = antenna.local_frame
-        xyz[i] = location_xyz(antenna.location)
-        axes[i] = np.stack(local)
-        fixed_axis[i] = local.up
-        mount = antenna.mount
-        focus = _focus_terms(antenna.focus)
-        if (isinstance(mount, StationaryMount) and not mount.tracks
-                and type(mount).dipoles is StationaryMount.dipoles):
-            stationary[i] = True
-        elif isinstance(mount, FixedAxisMount) and mount.tracks and focus is not None:
-            fixed_axis[i] = mount.fixed_axis(local)
-            terms[i] = focus
-        else:
-            traced.append((i, antenna))
-    return ReceiverArrays(xyz, axes, stationary, fixed_axis, terms), traced
+    """The engine's description of the antennas."""
+    return Receivers.from_mounts(
+        np.stack([location_xyz(antenna.location) for antenna in antennas]),
+        np.stack([np.stack(antenna.local_frame) for antenna in antennas]),
+        [antenna.mount for antenna in antennas], [antenna.focus for antenna in antennas])
 
 
 def receiver_arrays(antennas):
@@ -202,8 +129,8 @@ def receiver_arrays(antennas):
         If an element is not an `~astropy_feedrot.Antenna`.
     ValueError
         For an antenna without a closed form (a `~astropy_feedrot.MirrorTrain`
-        focus or a user-defined mount or focus); `feed_rotation_grid` handles
-        those antenna by antenna.
+        focus, or a stationary mount whose dipoles are not east and north);
+        `feed_rotation_grid` evaluates those too.
 
     Examples
     --------
@@ -216,13 +143,15 @@ def receiver_arrays(antennas):
     (2, 3, 3)
     """
     antennas = _check_antennas(antennas)
-    arrays, traced = _receivers(antennas)
-    if traced:
-        i, antenna = traced[0]
+    receivers = _receivers(antennas)
+    arrays = receivers.as_arrays()
+    if arrays is None:
+        i = int(receivers.unrepresentable()[0])
+        antenna = antennas[i]
         raise ValueError(
             f"antennas[{i}] ({antenna!r}) has no closed form for wind_up (mount "
-            f"{antenna.mount!r}, focus {antenna.focus!r}); feed_rotation_grid traces such "
-            "antennas one by one"
+            f"{antenna.mount!r}, focus {antenna.focus!r}); feed_rotation_grid evaluates "
+            "such antennas"
         )
     return arrays
 
@@ -330,14 +259,6 @@ def _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_te
     return ReceiverArrays(xyz, axes, station, axis, terms)
 
 
-def _check_form(form):
-    if form is None:
-        return "beyerle"
-    if form not in FORMS:
-        raise ValueError(f"form must be one of {FORMS}, got {form!r}")
-    return form
-
-
 def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shape):
     if not isinstance(directions, (bool, np.bool_)):
         raise TypeError(f"directions must be True or False, got {directions!r}")
@@ -389,109 +310,6 @@ def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shap
             raise ValueError(f"aligned[{where}] and transverse[{where}] must be orthogonal "
                              "(a crossed dipole)")
     return target, aligned, transverse
-
-
-def _beyerle_by_contraction(xyz, axes, target, aligned, transverse, need_sine):
-    """Eq 30 for stationary crossed dipoles, from scalar products (t, a, S).
-
-    The same quantity as `kernel.beyerle_phase` with the line of sight
-    ``s = (target - xyz) / |target - xyz|``, written with the scalar products
-    of the per-epoch transmitter vectors (target, dipoles) and the per-site
-    receiver vectors (position, east, north, up), all from one contraction;
-    no (t, a, S, 3) array is formed.
-    """
-    t, n_s = target.shape[:2]
-    n_a = len(xyz)
-    east, north, up = axes[:, 0], axes[:, 1], axes[:, 2]
-    receivers = np.ascontiguousarray(np.concatenate([xyz, east, north, up]).T)  # (3, 4a)
-    # All scalar products [g, ta, tt] . [x, e, n, u] at once. einsum's own loops
-    # rather than a BLAS matrix product: the same arithmetic whatever the block
-    # size, and no BLAS threads competing with the workers of a parallel scheduler.
-    products = np.einsum("ktsi,ij->ktsj", np.stack([target, aligned, transverse]), receivers)
-    products = products.reshape(3, t, n_s, 4, n_a)
-    x_e, x_n, x_u, x_x = (kernel.dot(v, xyz)[np.newaxis, np.newaxis]
-                          for v in (east, north, up, xyz))
-    g_g, g_a, g_t = (kernel.dot(target, v)[..., np.newaxis]
-                     for v in (target, aligned, transverse))
-    inverse = g_g + x_x
-    inverse -= 2 * products[0, :, :, 0]
-    np.sqrt(inverse, out=inverse)
-    np.divide(1.0, inverse, out=inverse)  # 1 / |target - xyz|
-    s_a = (g_a - products[1, :, :, 0]) * inverse  # s . t_a
-    s_t = (g_t - products[2, :, :, 0]) * inverse  # s . t_t
-    e_s = (products[0, :, :, 1] - x_e) * inverse  # e . s
-    n_s_ = (products[0, :, :, 2] - x_n) * inverse  # n . s
-    # Eq 5 with r_a = e, r_t = n:  num = e . P t_t + n . P t_a,  den = e . P t_a - n . P t_t
-    num = products[2, :, :, 1] + products[1, :, :, 2]
-    num -= s_t * e_s
-    num -= s_a * n_s_
-    den = products[1, :, :, 1] - products[2, :, :, 2]
-    den -= s_a * e_s
-    den += s_t * n_s_
-    phase = np.arctan2(num, den)
-    num *= num
-    den *= den
-    num += den
-    phase[num < kernel.DEGENERATE_NORM**2] = np.nan
-    sine = None
-    if need_sine:
-        sine = (products[0, :, :, 3] - x_u) * inverse
-        sine = sine.transpose(0, 2, 1)
-    return phase.transpose(0, 2, 1), sine
-
-
-def _phase_block(rx, target, aligned, transverse, directions, form, need_sine):
-    """Feed rotation (RCP, radians) and sine of elevation on one block, shape (t, A, S)."""
-    t = target.shape[0]
-    n_s = target.shape[-2]
-    n_a = len(rx.station_xyz)
-    phase = np.empty((t, n_a, n_s))
-    sine = np.empty((t, n_a, n_s)) if need_sine else None
-    satellite = aligned is not None
-    fast = rx.stationary & (satellite and form == "beyerle" and not directions)
-    index = np.flatnonzero(fast)
-    if index.size:
-        p, e = _beyerle_by_contraction(rx.station_xyz[index], rx.station_axes[index],
-                                       target, aligned, transverse, need_sine)
-        phase[:, index] = p
-        if need_sine:
-            sine[:, index] = e
-    index = np.flatnonzero(~fast)
-    if not index.size:
-        return phase, sine
-    if directions:
-        s = target[:, index] if target.ndim == 4 else target[:, np.newaxis]
-    else:
-        s = kernel.unit(target[:, np.newaxis] - rx.station_xyz[index][:, np.newaxis])
-    if satellite:
-        ta, tt = aligned[:, np.newaxis], transverse[:, np.newaxis]
-        t_eff = kernel.transmitter_effective_dipole(s, ta, tt)
-    else:
-        t_eff = kernel.project(kernel.NORTH_POLE, s)
-    axes = rx.station_axes[index][:, :, np.newaxis]  # (a, 3, 1, 3)
-    east, north, up = axes[:, 0], axes[:, 1], axes[:, 2]  # (a, 1, 3)
-    if need_sine:
-        sine[:, index] = kernel.dot(s, up)
-    for stationary in (True, False):
-        j = np.flatnonzero(rx.stationary[index] == stationary)
-        if not j.size:
-            continue
-        s_j = s[:, j] if s.shape[1] > 1 else s
-        t_j = t_eff[:, j] if t_eff.shape[1] > 1 else t_eff
-        if stationary and satellite and form == "beyerle":  # Eq 30
-            p = kernel.beyerle_phase(s_j, east[j], north[j], ta, tt)
-        elif stationary:  # Eq 7 with the receiver's effective dipole (Eqs 31, 33)
-            p = kernel.wu_phase(s_j, kernel.receiver_effective_dipole(s_j, east[j], north[j]),
-                                t_j)
-        else:  # Eq 7 with the fixed axis (Eqs 13, 35), and the focus terms (Eqs 38-41)
-            p = kernel.wu_phase(s_j, rx.fixed_axis[index[j]][:, np.newaxis], t_j)
-            terms = rx.focus_terms[index[j]]
-            if np.any(terms):
-                azimuth, elevation = horizontal(s_j, LocalFrame(east[j], north[j], up[j]))
-                p = kernel.wrap_phase(p + terms[:, 0, np.newaxis] * elevation
-                                      + terms[:, 1, np.newaxis] * azimuth)
-        phase[:, index[j]] = p
-    return phase, sine
 
 
 def _blocks(n_epochs, points_per_epoch):
@@ -594,17 +412,14 @@ def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transve
     30.0
     """
     rx = _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms)
-    form = _check_form(form)
+    form = check_form(form)
     target, aligned, transverse = _check_targets(target, aligned, transverse, directions,
                                                  len(rx.station_xyz), rx.station_xyz.shape)
-    n_t, n_s = target.shape[0], target.shape[-2]
-    out = np.empty((n_t, len(rx.station_xyz), n_s))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        for block in _blocks(n_t, out[0].size):
-            out[block] = _phase_block(
-                rx, target[block], None if aligned is None else aligned[block],
-                None if transverse is None else transverse[block], directions, form, False)[0]
-    return out
+    if directions and target.ndim == 3:  # the same directions for every antenna
+        target = target[:, np.newaxis]
+    return _grid_block(target, aligned, transverse, receivers=Receivers.from_arrays(rx),
+                       positions=not directions, form=form, sign=1.0, min_sine=None,
+                       degrees=False)
 
 
 def nominal_attitude(position, sun):
@@ -659,12 +474,11 @@ def nominal_attitude(position, sun):
 class _Grid(NamedTuple):
     """Everything a block of epochs needs, as arrays."""
 
-    receivers: ReceiverArrays
-    traced: list
+    receivers: Receivers
     target: np.ndarray
     aligned: np.ndarray
     transverse: np.ndarray
-    directions: bool
+    positions: bool
     form: str
     sign: np.ndarray
     min_sine: float
@@ -724,7 +538,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     NaN at ``masked`` epochs (True), where ``obstime`` holds stand-ins.
     """
     n_t, n_s = obstime.size, len(satellites)
-    sign = np.array([sat._receiver_sign(polarization) for sat in satellites], dtype=float)
+    sign = np.array([engine.receiver_sign(sat, polarization) for sat in satellites], dtype=float)
     if masked is not None and masked.all():
         nothing = np.full((n_t, n_s, 3), np.nan)
         return nothing, nothing.copy(), nothing.copy(), sign
@@ -796,17 +610,13 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
                          f"got shape {obstime.shape}; flatten it with .ravel()")
     shape = obstime.shape
     obstime, masked = fill_masked(obstime.reshape((obstime.size,)))
-    form = _check_form(form)
-    min_sine = None
-    limit = as_elevation_limit(min_elevation)
-    if limit is not None:
-        # Below where arcsin(s . up) < limit, as Antenna: s . up < sin(limit) within +-90 deg.
-        min_sine = -np.inf if limit <= -np.pi / 2 else float(np.sin(limit))
-    receivers, traced = _receivers(antennas)
+    form = check_form(form)
+    min_sine = engine.min_sine(as_elevation_limit(min_elevation))
+    receivers = _receivers(antennas)
     if kind == "satellites":
         target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization,
                                                               masked)
-        directions = False
+        positions = True
     else:
         sign = np.full(targets.size, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
@@ -817,45 +627,29 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
         if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
             target[masked] = np.nan
         aligned = transverse = None
-        directions = True
-    return _Grid(receivers, traced, target, aligned, transverse, directions, form, sign,
-                 min_sine, shape + (len(antennas), len(sign)))
+        positions = False
+    return _Grid(receivers, target, aligned, transverse, positions, form, sign, min_sine,
+                 shape + (len(antennas), len(sign)))
 
 
-def _grid_block(target, aligned=None, transverse=None, *, receivers, traced, directions,
-                form, sign, min_sine, count=False):
-    """Feed rotation in degrees (t, A, S) of a block of epochs; with ``count`` also the
-    number of degenerate grid points (NaN where the target is finite and not masked)."""
+def _grid_block(target, aligned=None, transverse=None, *, receivers, positions, form, sign,
+                min_sine, degrees=True, count=False):
+    """Feed rotation (t, A, S) of a block of epochs, by the engine in blocks of
+    `BLOCK_POINTS`; with ``count`` also the number of degenerate grid points (NaN
+    where the target is finite and not masked)."""
     n_t, n_s = target.shape[0], target.shape[-2]
-    n_a = len(receivers.station_xyz)
-    out = np.empty((n_t, n_a, n_s))
+    out = np.empty((n_t, len(receivers), n_s))
     degenerate = 0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        for block in _blocks(n_t, n_a * n_s):
-            tb = target[block]
-            ab = None if aligned is None else aligned[block]
-            rb = None if transverse is None else transverse[block]
-            phase, sine = _phase_block(receivers, tb, ab, rb, directions, form,
-                                       min_sine is not None)
-            for i, antenna in traced:
-                if directions:
-                    s = tb[:, i] if tb.ndim == 4 else tb
-                else:
-                    s = kernel.unit(tb - receivers.station_xyz[i])
-                phase[:, i] = antenna._phase(LineOfSight(s, ab, rb), form)
-            phase *= sign
-            below = None if min_sine is None else sine < min_sine
-            if count:
-                finite = np.all(np.isfinite(tb), axis=-1)
-                bad = np.isnan(phase) & (finite if directions and tb.ndim == 4
-                                         else finite[:, np.newaxis])
-                if below is not None:
-                    bad &= ~below
-                degenerate += int(np.count_nonzero(bad))
-            if below is not None:
-                phase[below] = np.nan
-            phase *= _RAD_TO_DEG
-            out[block] = phase
+    scale = sign * _RAD_TO_DEG if degrees else sign
+    for block in _blocks(n_t, len(receivers) * n_s):
+        tb = target[block]
+        phase, below = engine.feed_rotation(
+            receivers, tb, None if aligned is None else aligned[block],
+            None if transverse is None else transverse[block], positions=positions,
+            form=form, min_sine=min_sine)
+        if count:
+            degenerate += int(np.count_nonzero(engine.degenerate(phase, tb, below, positions)))
+        np.multiply(phase, scale, out=out[block])
     return (out, degenerate) if count else out
 
 
@@ -864,8 +658,8 @@ def _dask_block(*arrays, **kwargs):
 
 
 def _block_arguments(grid):
-    return dict(receivers=grid.receivers, traced=grid.traced, directions=grid.directions,
-                form=grid.form, sign=grid.sign, min_sine=grid.min_sine)
+    return dict(receivers=grid.receivers, positions=grid.positions, form=grid.form,
+                sign=grid.sign, min_sine=grid.min_sine)
 
 
 @iers_context()  # one check of the Earth-orientation tables per call
@@ -957,14 +751,7 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
     out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, count=True,
                                   **_block_arguments(grid))
-    if degenerate:
-        warn_caller(
-            f"feed rotation is undefined at {degenerate} of {out.size} grid points, where a "
-            "line of sight is within 0.2 mas of a singular direction of a mount (a fixed "
-            "axis such as the zenith of an alt-az mount) or of the celestial pole, or where "
-            "a transmitter is seen edge-on; NaN is returned there",
-            DegenerateGeometryWarning,
-        )
+    engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
 

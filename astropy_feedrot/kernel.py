@@ -34,6 +34,7 @@ __all__ = [
     "transmitter_effective_dipole",
     "wu_phase",
     "beyerle_phase",
+    "beyerle_phase_from_products",
     "transmitter_term",
     "receiver_term",
     "wrap_phase",
@@ -321,7 +322,9 @@ def beyerle_phase(s, r_aligned, r_transverse, t_aligned, t_transverse):
     Unlike `wu_phase`, this form keeps the response of a receiver that does
     not point at the transmitter to the cross-hand (LHCP) part of an
     off-boresight signal. It equals `wu_phase` of the effective dipoles when
-    either boresight lies along the line of sight (Appendix A).
+    either boresight lies along the line of sight (Appendix A). The scalar
+    products are formed here and handed to `beyerle_phase_from_products`,
+    which holds the equation.
 
     Examples
     --------
@@ -337,12 +340,52 @@ def beyerle_phase(s, r_aligned, r_transverse, t_aligned, t_transverse):
     -30.0
     """
     s = np.asarray(s, dtype=float)
-    pta = project(t_aligned, s)
-    ptt = project(t_transverse, s)
-    num = dot(r_aligned, ptt) + dot(r_transverse, pta)
-    den = dot(r_aligned, pta) - dot(r_transverse, ptt)
-    defined = np.hypot(num, den) >= DEGENERATE_NORM
-    return _atan2_defined(num, den, defined)
+    return beyerle_phase_from_products(
+        dot(r_aligned, t_aligned), dot(r_aligned, t_transverse),
+        dot(r_transverse, t_aligned), dot(r_transverse, t_transverse),
+        dot(s, r_aligned), dot(s, r_transverse), dot(s, t_aligned), dot(s, t_transverse))
+
+
+def beyerle_phase_from_products(ra_ta, ra_tt, rt_ta, rt_tt, s_ra, s_rt, s_ta, s_tt):
+    """Beyerle's form (Eq 5) from the scalar products of the dipoles and the line of sight.
+
+    With :math:`P v = v - (v\\cdot\\hat{s})\\hat{s}` (Eq 4) every term of
+    Eq 5 is a scalar product of the unit vectors, so the phase needs only
+    these eight numbers per line of sight, however they were obtained (from
+    the vectors, as `beyerle_phase` does, or by contracting positions and
+    dipoles of many receivers and transmitters at once).
+
+    Parameters
+    ----------
+    ra_ta, ra_tt, rt_ta, rt_tt : array-like
+        :math:`\\hat{r}^a\\cdot\\hat{t}^a`, :math:`\\hat{r}^a\\cdot\\hat{t}^t`,
+        :math:`\\hat{r}^t\\cdot\\hat{t}^a`, :math:`\\hat{r}^t\\cdot\\hat{t}^t`.
+    s_ra, s_rt, s_ta, s_tt : array-like
+        The scalar products of the source unit vector with the receiver's
+        aligned and transverse dipoles and the transmitter's.
+
+    Returns
+    -------
+    ndarray
+        The phase in radians, in :math:`(-\\pi, \\pi]`, with the broadcast shape
+        of the arguments; NaN where both the numerator and the denominator of
+        Eq 5 are below `DEGENERATE_NORM`.
+
+    Examples
+    --------
+    Dipoles of the receiver turned by 90 degrees from the transmitter's
+    about a line of sight they both face:
+
+    >>> from astropy_feedrot.kernel import beyerle_phase_from_products
+    >>> phi = beyerle_phase_from_products(0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    >>> float(phi)  # doctest: +FLOAT_CMP
+    1.5707963267948966
+    """
+    # num = r_a . P t_t + r_t . P t_a,  den = r_a . P t_a - r_t . P t_t
+    num = np.asarray(ra_tt, dtype=float) + rt_ta - np.multiply(s_tt, s_ra) - np.multiply(s_ta, s_rt)
+    den = np.asarray(ra_ta, dtype=float) - rt_tt - np.multiply(s_ta, s_ra) + np.multiply(s_tt, s_rt)
+    phase = np.arctan2(num, den)
+    return np.where(num * num + den * den < DEGENERATE_NORM**2, np.nan, phase)
 
 
 def transmitter_term(s, t):
@@ -389,7 +432,19 @@ def receiver_term(s, r):
     -------
     ndarray, shape (...)
         :math:`\\Phi_\\mathrm{rx}` in radians, which for a fixed-axis
-        telescope is the feed rotation of a natural source (Eq 13).
+        telescope is the feed rotation of a natural source (Eq 13); NaN where
+        the projection of ``r`` or of the pole on the plane of the sky is
+        degenerate.
+
+    Notes
+    -----
+    With the pole :math:`\\hat{z}` written out, Eq 22 (Eq 13) is a closed form
+    in the components of :math:`\\hat{s}`: :math:`r^T S_\\times^T \\hat{z} =
+    s_x r_y - s_y r_x` and :math:`r^T P \\hat{z} = r_z (s_x^2 + s_y^2) - s_z
+    (r_x s_x + r_y s_y)`, using :math:`1 - s_z^2 = s_x^2 + s_y^2 =
+    |P\\hat{z}|^2`. Both keep their precision near the pole and near
+    ``r``, so the degenerate directions are those of `wu_phase`, found at a
+    fraction of its cost.
 
     Examples
     --------
@@ -400,7 +455,17 @@ def receiver_term(s, r):
     >>> float(receiver_term([0.6, 0.0, 0.8], NORTH_POLE))
     0.0
     """
-    return wu_phase(s, r, NORTH_POLE)
+    s = np.asarray(s, dtype=float)
+    r = np.asarray(r, dtype=float)
+    sx, sy, sz = s[..., 0], s[..., 1], s[..., 2]
+    rx, ry, rz = r[..., 0], r[..., 1], r[..., 2]
+    num = sx * ry - sy * rx
+    pole = sx * sx + sy * sy  # |P z|^2
+    den = rz * pole - sz * (rx * sx + ry * sy)
+    # hypot(num, den) = |P r| |P z|: NaN where either is degenerate.
+    defined = (pole >= DEGENERATE_NORM**2) & (num * num + den * den
+                                              >= DEGENERATE_NORM**2 * pole)
+    return _atan2_defined(num, den, defined)
 
 
 def wrap_phase(phase):

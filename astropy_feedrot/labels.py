@@ -88,23 +88,22 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .antenna import _check_instance
 from .focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
-    Focus,
     GregorianFocus,
     MirrorTrain,
     NasmythFocus,
     PrimeFocus,
+    as_focus,
 )
 from .mounts import (
     AltAzMount,
     EquatorialMount,
     FixedAxisMount,
-    Mount,
     StationaryMount,
     XYMount,
+    as_mount,
 )
 
 __all__ = ["SOFTWARE", "KNOWN_LABELS", "known_labels", "mount_from_label", "label_from_mount"]
@@ -671,9 +670,9 @@ def label_from_mount(mount, focus=None, software=None):
     'X-YN'
     """
     software = _check_software(software)
-    mount = _check_instance(mount, Mount, "mount")
+    mount = as_mount(mount)
     if focus is not None:
-        focus = _check_instance(focus, Focus, "focus")
+        focus = as_focus(focus)
     kind = _kind(mount, focus)
     label = _written(software, kind)
     if label is not None:

@@ -6,6 +6,10 @@ A steerable telescope keeps its boresight on the source and turns about a
 the plane of the sky, from the projected fixed axis to the projected north
 celestial pole (Eq 13). A `StationaryMount` is a crossed dipole that never
 moves (a GNSS antenna, Eqs 28-29).
+
+A mount declares what it is, and `~astropy_feedrot.engine` picks the
+equation: a mount that ``tracks`` gives its ``fixed_axis(local)``; one that
+does not gives its ``dipoles(local)``.
 """
 
 import numpy as np
@@ -17,6 +21,7 @@ __all__ = [
     "EquatorialMount",
     "XYMount",
     "StationaryMount",
+    "as_mount",
 ]
 
 
@@ -24,7 +29,12 @@ class Mount:
     """Base class of antenna mounts.
 
     Subclasses describe how the receiving feed is oriented; they hold no site
-    and no time, and are immutable.
+    and no time, and are immutable. A subclass that tracks (``tracks =
+    True``, the default) defines ``fixed_axis(local)``, the unit vector its
+    first axis keeps fixed to the ground (as `FixedAxisMount`); one that
+    does not track defines ``dipoles(local)``, its aligned, transverse and
+    boresight unit vectors (as `StationaryMount`). That is all
+    `~astropy_feedrot.engine` needs to give it every feed rotation.
     """
 
     #: Whether the antenna points its boresight at the source.
@@ -283,3 +293,40 @@ class StationaryMount(Mount):
         array([0., 1., 0.])
         """
         return local.east, local.north, local.up
+
+
+def as_mount(mount, name="mount"):
+    """Check that a value is a mount instance.
+
+    Parameters
+    ----------
+    mount : object
+        The value to check.
+    name : str, optional
+        How to call it in error messages.
+
+    Returns
+    -------
+    Mount
+        ``mount`` itself.
+
+    Raises
+    ------
+    TypeError
+        If ``mount`` is a mount class rather than an instance, or not a
+        `Mount` at all.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.mounts import AltAzMount, as_mount
+    >>> as_mount(AltAzMount())
+    AltAzMount()
+    """
+    if isinstance(mount, type) and issubclass(mount, Mount):
+        raise TypeError(f"{name} must be an instance; did you mean {mount.__name__}()?")
+    if not isinstance(mount, Mount):
+        raise TypeError(
+            f"{name} must be a Mount instance (e.g. AltAzMount(), StationaryMount()), got "
+            f"{type(mount).__name__}"
+        )
+    return mount

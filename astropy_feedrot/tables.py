@@ -58,25 +58,16 @@ def _check_target(target):
     return coord.reshape(())
 
 
-def _antenna_columns(antenna, target, times, polarization, limit):
+def _antenna_columns(antenna, target, times, polarization, min_elevation, limit):
     if not isinstance(antenna, Antenna):
         raise TypeError(f"antenna must be an Antenna, got {type(antenna).__name__}")
     # One line of sight (orbit propagation, Earth rotation) serves every column.
-    sign = antenna._sign(target, polarization)
-    los = antenna._line_of_sight(target, times)
-    azimuth, elevation = antenna._altaz(los.s)
-    terms = antenna._terms_of(los, sign, limit)
+    angles = antenna.angles(target, times, polarization, min_elevation=min_elevation)
     # Visible: a finite elevation (not a masked epoch) at or above the limit.
     lowest = -np.inf if limit is None else limit
-    visible = np.isfinite(elevation.rad) & (elevation.rad >= lowest)
-    columns = {
-        "azimuth": azimuth.to(u.deg),
-        "elevation": elevation.to(u.deg),
-        "parallactic_angle": antenna._parallactic_angle_of(los.s).to(u.deg),
-        "transmitter": terms.transmitter.to(u.deg),
-        "receiver": terms.receiver.to(u.deg),
-        "total": antenna._feed_rotation_of(los, sign, None, limit).to(u.deg),
-    }
+    elevation = angles.elevation.rad
+    visible = np.isfinite(elevation) & (elevation >= lowest)
+    columns = {name: getattr(angles, name).to(u.deg) for name in COLUMNS[:-1]}
     columns["continuous"] = unwrap(columns["total"], mask=~visible, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
     return {name: u.Quantity(value) for name, value in columns.items()}, visible
@@ -144,7 +135,7 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     times = _check_times(obstime)
     target = _check_target(target)
     limit = as_elevation_limit(min_elevation)
-    columns, _ = _antenna_columns(antenna, target, times, polarization, limit)
+    columns, _ = _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     table = Table({"time": times, **columns})
     table.meta.update(antenna=antenna.name or repr(antenna), target=_target_name(target),
                       polarization=str(polarization or getattr(target, "polarization", "RCP")),
@@ -216,7 +207,8 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     visible = np.ones(times.shape, bool)
     totals = []
     for prefix, antenna in zip(prefixes, (antenna1, antenna2)):
-        columns, above = _antenna_columns(antenna, target, times, polarization, limit)
+        columns, above = _antenna_columns(antenna, target, times, polarization, min_elevation,
+                                          limit)
         visible &= above
         totals.append(columns["total"])
         for name, value in columns.items():

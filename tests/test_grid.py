@@ -1,5 +1,7 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Feed rotation on grids: agreement with Antenna one pair at a time, dask, errors."""
+"""Feed rotation on grids: every receiver against the paper's equations as printed (explicit
+matrices of Eqs 4 and 6) and the traced mirror trains of Appendix C; the grid's batched
+orbits, attitudes and Earth orientation against Antenna one pair at a time; dask; errors."""
 
 import sys
 import warnings
@@ -20,6 +22,7 @@ from astropy_feedrot import (
     DegenerateGeometryWarning,
     EquatorialMount,
     FixedAxisMount,
+    Focus,
     GregorianFocus,
     MirrorTrain,
     NasmythFocus,
@@ -38,7 +41,7 @@ from astropy_feedrot import kernel as k
 from astropy_feedrot.attitude import interpolated_sun_position, sun_position
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.earth import EarthOrientation
-from astropy_feedrot.frames import local_frame, location_xyz
+from astropy_feedrot.frames import LocalFrame, local_frame, location_xyz
 from astropy_feedrot.grid import (
     feed_rotation_grid,
     feed_rotation_grid_dask,
@@ -79,13 +82,13 @@ def satellites():
     return [gps_svn76(), gps_like(1, 2), gps_like(4, 0)]
 
 
-def assert_same_angle(grid_value, reference, tolerance=TOLERANCE):
+def assert_same_angle(grid_value, reference, tolerance=TOLERANCE, what=""):
     """Equal modulo 360 deg, with NaN at the same places."""
     grid_value, reference = Angle(grid_value), Angle(reference)
-    assert np.array_equal(np.isnan(grid_value), np.isnan(reference))
+    assert np.array_equal(np.isnan(grid_value), np.isnan(reference)), what
     difference = (grid_value - reference).wrap_at(180 * u.deg)
     finite = np.isfinite(difference)
-    assert np.all(np.abs(difference[finite]) < tolerance)
+    assert np.all(np.abs(difference[finite]) < tolerance), what
 
 
 def test_grid_agrees_with_antenna_pair_by_pair(antennas, satellites):
@@ -114,27 +117,158 @@ def test_forms_and_elevation_limit(antennas, satellites, form, min_elevation):
         assert 0.2 < np.mean(np.isnan(phi)) < 0.8
 
 
-@pytest.mark.parametrize("antenna", [
-    Antenna(SITES["YEBES"], AltAzMount(), NasmythFocus("right")),
-    Antenna(SITES["YEBES"], AltAzMount(), NasmythFocus("left")),
-    Antenna(SITES["WARKWORTH"], AltAzMount(), BeamWaveguideFocus("right")),
-    Antenna(SITES["WARKWORTH"], AltAzMount(), BeamWaveguideFocus("left")),
-    Antenna(SITES["GGAO12M"], EquatorialMount(), PrimeFocus()),
-    Antenna(SITES["WETTZ13S"], XYMount("north"), GregorianFocus()),
-    Antenna(SITES["WETTZ13S"], XYMount("east")),
-    Antenna(SITES["FD-VLBA"], FixedAxisMount([1.0, 2.0, 3.0])),
-    Antenna(SITES["YEBES"], AltAzMount(), MirrorTrain.yebes40m("X")),
-    Antenna(SITES["WARKWORTH"], AltAzMount(), MirrorTrain.wark30m()),
-    Antenna(SITES["GGAO12M"], StationaryMount(), vertical="geocentric"),
-], ids=repr)
-def test_every_mount_and_focus(antenna, satellites):
-    # Closed forms (Nasmyth, beam waveguide: wrapped here, not in Antenna) and
-    # traced mirror trains, next to a GNSS antenna.
-    gnss = get_antenna("DBR205")
-    phi = feed_rotation_grid([gnss, antenna], satellites, TIMES, polarization="RCP")
+# -- References: the paper's equations as printed, with explicit matrices -------------------
+
+
+def printed_matrices(s):
+    """P (Eq 4) and S_x (Eq 6), built element by element."""
+    p = np.eye(3) - s[..., :, np.newaxis] * s[..., np.newaxis, :]
+    sx = np.zeros(s.shape + (3,))
+    sx[..., 0, 1], sx[..., 0, 2] = -s[..., 2], s[..., 1]
+    sx[..., 1, 0], sx[..., 1, 2] = s[..., 2], -s[..., 0]
+    sx[..., 2, 0], sx[..., 2, 1] = -s[..., 1], s[..., 0]
+    return p, sx
+
+
+def mat(m, v):
+    return np.einsum("...ij,...j->...i", m, v)
+
+
+def inner(a, b):
+    return np.sum(a * b, axis=-1)
+
+
+def eq8_transmitter(s, ta, tt):
+    """Eq 8: t = P t^a + S_x t^t."""
+    p, sx = printed_matrices(s)
+    return mat(p, ta) + mat(sx, tt)
+
+
+def eq7_fixed_axis(s, t, axis):
+    """Eq 7 with the projected fixed axis r = P a (Eqs 10, 13, 35): tan = r^T S^T t / r^T t."""
+    p, sx = printed_matrices(s)
+    r = mat(p, np.broadcast_to(axis, s.shape))
+    return np.arctan2(inner(r, mat(np.swapaxes(sx, -1, -2), t)), inner(r, t))
+
+
+def eq30_beyerle(s, ra, rt, ta, tt):
+    """Eq 30 (Eq 5): tan = (r^a P t^t + r^t P t^a) / (r^a P t^a - r^t P t^t)."""
+    p, _ = printed_matrices(s)
+    pta, ptt = mat(p, ta), mat(p, tt)
+    return np.arctan2(inner(ra, ptt) + inner(rt, pta), inner(ra, pta) - inner(rt, ptt))
+
+
+def eq31_wu(s, ra, rt, t):
+    """Eq 31: tan = (r^a S^T t + r^t t) / (r^a t - r^t S^T t)."""
+    _, sx = printed_matrices(s)
+    sxt = mat(np.swapaxes(sx, -1, -2), t)
+    return np.arctan2(inner(ra, sxt) + inner(rt, t), inner(ra, t) - inner(rt, sxt))
+
+
+def elevation_azimuth(s, enu):
+    """Elevation and azimuth (north through east) by their definitions."""
+    east, north, up = enu
+    return np.arcsin(inner(s, up)), np.arctan2(inner(s, east), inner(s, north))
+
+
+class TurnedGnss(StationaryMount):
+    """A GNSS antenna whose dipoles are turned by ``alpha`` from east towards north."""
+
+    def __init__(self, alpha):
+        self.alpha = alpha
+
+    def dipoles(self, local):
+        c, s = np.cos(self.alpha), np.sin(self.alpha)
+        return c * local.east + s * local.north, c * local.north - s * local.east, local.up
+
+
+class CoudeFocus(Focus):
+    """A user's focus: the beam down the azimuth axis to the ground (Psi + E - A)."""
+
+    closed_form = (1, -1)
+
+
+#: The constant of MirrorTrain.wark30m (its docstring: 2 atan(2500/9500) - 180 deg).
+WARK30M_CONSTANT = 2 * np.arctan(2500 / 9500) - np.pi
+
+#: Every kind of receiver at once (name, antenna, reference): the references are
+#: functions of the line of sight s, the transmitter's effective dipole t (Eq 8)
+#: and dipoles, the site's east-north-up vectors, elevation E and azimuth A.
+FD, DBR = SITES["FD-VLBA"], SITES["DBR205"]
+EVERY_RECEIVER = [
+    ("alt-az", Antenna(FD, AltAzMount()),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2])),
+    ("equatorial", Antenna(FD, EquatorialMount(), PrimeFocus()),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, [0, 0, 1.0])),
+    ("X-Y north", Antenna(FD, XYMount("north"), GregorianFocus()),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[1])),
+    ("X-Y east", Antenna(FD, XYMount("east")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[0])),
+    ("fixed axis", Antenna(FD, FixedAxisMount([1.0, 2.0, 3.0])),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, np.array([1, 2, 3]) / 14**0.5)),
+    # Eqs 38-41: Psi-like term plus elevation (Nasmyth), minus azimuth (beam waveguide).
+    ("Nasmyth right", Antenna(FD, AltAzMount(), NasmythFocus("right")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) + e),
+    ("Nasmyth left", Antenna(FD, AltAzMount(), NasmythFocus("left")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) - e),
+    ("BWG right", Antenna(FD, AltAzMount(), BeamWaveguideFocus("right")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) + e - a),
+    ("BWG left", Antenna(FD, AltAzMount(), BeamWaveguideFocus("left")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) - e + a),
+    ("user closed form", Antenna(FD, AltAzMount(), CoudeFocus()),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) + e - a),
+    # Traced mirror trains: the closed forms plus their documented constants.
+    ("YEBES40M X", Antenna(FD, AltAzMount(), MirrorTrain.yebes40m("X")),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) + e + np.pi / 2),
+    ("WARK30M", Antenna(FD, AltAzMount(), MirrorTrain.wark30m()),
+     lambda s, t, ta, tt, enu, e, a: eq7_fixed_axis(s, t, enu[2]) + e - a + WARK30M_CONSTANT),
+    # Stationary crossed dipoles: Eq 30 with their dipoles (Eq 28).
+    ("GNSS", Antenna(DBR, StationaryMount()),
+     lambda s, t, ta, tt, enu, e, a: eq30_beyerle(s, enu[0], enu[1], ta, tt)),
+    ("GNSS geocentric", Antenna(SITES["GGAO12M"], StationaryMount(), vertical="geocentric"),
+     lambda s, t, ta, tt, enu, e, a: eq30_beyerle(s, enu[0], enu[1], ta, tt)),
+    ("GNSS turned", Antenna(DBR, TurnedGnss(0.5)),
+     lambda s, t, ta, tt, enu, e, a: eq30_beyerle(
+         s, np.cos(0.5) * enu[0] + np.sin(0.5) * enu[1],
+         np.cos(0.5) * enu[1] - np.sin(0.5) * enu[0], ta, tt)),
+]
+
+
+def test_every_mount_and_focus(satellites):
+    # Every receiver in one grid (so the engine sorts them), each against the
+    # paper's equation as printed for it, with the satellites' positions and
+    # dipoles from the orbit and attitude models one by one.
+    antennas = [antenna for _, antenna, _ in EVERY_RECEIVER]
+    phi = feed_rotation_grid(antennas, satellites, TIMES, polarization="RCP")
     for j, satellite in enumerate(satellites):
-        assert_same_angle(phi[:, 1, j], antenna.feed_rotation(satellite, TIMES))
-        assert_same_angle(phi[:, 0, j], gnss.feed_rotation(satellite, TIMES))
+        position = satellite.position(TIMES)
+        ta, tt = satellite.attitude.dipoles(TIMES, position)
+        for i, (name, antenna, reference) in enumerate(EVERY_RECEIVER):
+            offset = position - location_xyz(antenna.location)
+            s = offset / np.linalg.norm(offset, axis=-1, keepdims=True)  # Eq 2
+            enu = np.stack(antenna.local_frame)
+            e, a = elevation_azimuth(s, enu)
+            expected = reference(s, eq8_transmitter(s, ta, tt), ta, tt, enu, e, a)
+            assert_same_angle(phi[:, i, j], expected * u.rad, what=name)
+
+
+def test_every_stationary_receiver_in_the_effective_dipole_form(satellites):
+    # form="wu": Eq 31 as printed for the crossed dipoles; the telescopes unchanged.
+    antennas = [antenna for _, antenna, _ in EVERY_RECEIVER]
+    wu = feed_rotation_grid(antennas, satellites, TIMES, form="wu")
+    beyerle = feed_rotation_grid(antennas, satellites, TIMES)
+    for j, satellite in enumerate(satellites):
+        position = satellite.position(TIMES)
+        ta, tt = satellite.attitude.dipoles(TIMES, position)
+        for i, (name, antenna, _) in enumerate(EVERY_RECEIVER):
+            if antenna.mount.tracks:
+                assert_same_angle(wu[:, i, j], beyerle[:, i, j])
+                continue
+            dipoles = antenna.mount.dipoles(antenna.local_frame)
+            offset = position - location_xyz(antenna.location)
+            s = offset / np.linalg.norm(offset, axis=-1, keepdims=True)
+            expected = eq31_wu(s, dipoles[0], dipoles[1], eq8_transmitter(s, ta, tt))
+            assert_same_angle(wu[:, i, j], expected * u.rad, what=name)
 
 
 def test_natural_sources(antennas):
@@ -212,48 +346,77 @@ def test_rotation_delay_agrees_with_baseline_function(antennas, satellites):
                              rotation_delay_grid(phi, L1)[0][np.isfinite(delay)])
 
 
-def test_wind_up_arrays_against_the_kernel():
-    # Random geometry: the scalar-product evaluation of Eq 30 for stationary
-    # antennas and the vector forms for tracking ones equal the kernel's.
+def test_wind_up_arrays_against_printed_equations():
+    # Random geometry, each receiver against the paper's equation as printed
+    # (explicit matrices): Eq 30 / Eq 31 for stationary crossed dipoles (Eq 28),
+    # Eq 7 with the projected fixed axis for tracking antennas, and for alt-az
+    # antennas with focus terms the traced mirror trains of Appendix C, which
+    # reproduce Eqs 38-39 up to their constants.
     rng = np.random.default_rng(5)
-    n_t, n_a, n_s = 7, 6, 5
+    n_t, n_a, n_s = 7, 7, 5
     xyz = k.unit(rng.normal(size=(n_a, 3))) * 6.371e6  # on the Earth's surface
     enu = np.stack([np.stack(local_frame_of(x)) for x in xyz])
-    stationary = np.array([True, False, True, False, True, False])
+    stationary = np.array([True, False, True, False, False, False, False])
     axis = k.unit(rng.normal(size=(n_a, 3)))
-    terms = np.array([[0, 0], [1, 0], [0, 0], [-1, 1], [0, 0], [0, 0.0]])
+    axis[3:] = enu[3:, 2]  # alt-az mounts for the foci
+    terms = np.array([[0, 0], [0, 0], [0, 0], [0, 0], [1, 0], [1, -1], [-1, 1.0]])
     target = rng.normal(size=(n_t, n_s, 3)) * 2.6e7
     aligned = k.unit(rng.normal(size=(n_t, n_s, 3)))
     transverse = k.unit(np.cross(aligned, rng.normal(size=(n_t, n_s, 3))))
-    s = k.unit(target[:, np.newaxis] - xyz[:, np.newaxis])
-    e, n, up = (enu[:, i, np.newaxis] for i in range(3))
+    offset = target[:, np.newaxis] - xyz[:, np.newaxis]
+    s = offset / np.linalg.norm(offset, axis=-1, keepdims=True)  # (T, A, S, 3), Eq 2
     ta, tt = aligned[:, np.newaxis], transverse[:, np.newaxis]
-    t = k.transmitter_effective_dipole(s, ta, tt)
-    elevation = np.arcsin(k.dot(s, up))
-    azimuth = np.arctan2(k.dot(s, e), k.dot(s, n))
-    tracking = (k.wu_phase(s, axis[:, np.newaxis], t) + terms[:, 0, np.newaxis] * elevation
-                + terms[:, 1, np.newaxis] * azimuth)
-    for form, fixed in (("beyerle", k.beyerle_phase(s, e, n, ta, tt)),
-                        ("wu", k.wu_phase(s, k.receiver_effective_dipole(s, e, n), t))):
-        expected = np.where(stationary[:, np.newaxis], fixed, tracking)
+    t = eq8_transmitter(s, ta, tt)
+
+    def reference(form):
+        out = np.empty((n_t, n_a, n_s))
+        for i in range(n_a):
+            e, n, up = enu[i]
+            if stationary[i]:
+                out[:, i] = (eq30_beyerle(s[:, i], e, n, ta[:, 0], tt[:, 0]) if form == "beyerle"
+                             else eq31_wu(s[:, i], e, n, t[:, i]))
+            elif not np.any(terms[i]):
+                out[:, i] = eq7_fixed_axis(s[:, i], t[:, i], axis[i])
+            else:
+                local = LocalFrame(e, n, up)
+                nasmyth = MirrorTrain.yebes40m("C").receiver_phase(s[:, i], t[:, i], up, local)
+                bwg = MirrorTrain.wark30m().receiver_phase(s[:, i], t[:, i], up, local)
+                conventional = eq7_fixed_axis(s[:, i], t[:, i], up)
+                out[:, i] = {(1, 0): nasmyth - np.pi / 2,  # Psi + E
+                             (1, -1): bwg - WARK30M_CONSTANT,  # Psi + E - A
+                             (-1, 1): 2 * conventional - bwg + WARK30M_CONSTANT,  # Psi - E + A
+                             }[tuple(terms[i])]
+        return out
+
+    for form in ("beyerle", "wu"):
         phi = wind_up(xyz, enu, stationary, target, aligned, transverse, fixed_axis=axis,
                       focus_terms=terms, form=form)
         assert phi.shape == (n_t, n_a, n_s)
-        assert_allclose(k.wrap_phase(phi - expected), 0, atol=1e-12)
-        # The same lines of sight given as directions, per antenna.
+        assert_allclose(k.wrap_phase(phi - reference(form)), 0, atol=1e-9)
+        # The same lines of sight given as directions, per antenna: Eq 30 from
+        # the vectors instead of the scalar products of positions.
         directed = wind_up(xyz, enu, stationary, s, aligned, transverse, fixed_axis=axis,
                            focus_terms=terms, form=form, directions=True)
         assert_allclose(k.wrap_phase(directed - phi), 0, atol=1e-12)
-    # Natural sources: directions shared by all antennas (Eq 11, Eqs 13, 33).
+    # Eq 30 = Eq 31 when the transmitters face the receivers (Appendix A, Eqs A4-A5):
+    # dipoles perpendicular to the line of sight of antenna 0, boresight -s.
+    s0 = s[:, 0]
+    facing = k.unit(np.cross(s0, rng.normal(size=s0.shape)))
+    other = np.cross(facing, s0)  # facing x other = -s
+    beyerle = wind_up(xyz[:1], enu[:1], [True], target, facing, other)
+    wu = wind_up(xyz[:1], enu[:1], [True], target, facing, other, form="wu")
+    assert_allclose(k.wrap_phase(beyerle - wu), 0, atol=1e-12)
+    assert np.ptp(beyerle) > 1  # and not trivially
+    # Natural sources: directions shared by all antennas, Eq 33 and Eq 13 as
+    # printed, with the projected pole as the transmitter's dipole (Eq 11).
     sources = k.unit(rng.normal(size=(n_t, n_s, 3)))
     phi = wind_up(xyz, enu, stationary, sources, directions=True, fixed_axis=axis)
-    pole = k.project(k.NORTH_POLE, sources[:, np.newaxis])
-    expected = np.where(stationary[:, np.newaxis],
-                        k.wu_phase(sources[:, np.newaxis],
-                                   k.receiver_effective_dipole(sources[:, np.newaxis], e, n),
-                                   pole),
-                        k.wu_phase(sources[:, np.newaxis], axis[:, np.newaxis], pole))
-    assert_allclose(phi, expected, atol=1e-12)
+    p, _ = printed_matrices(sources)
+    pole = mat(p, k.NORTH_POLE)
+    for i in range(n_a):
+        expected = (eq31_wu(sources, enu[i, 0], enu[i, 1], pole) if stationary[i]
+                    else eq7_fixed_axis(sources, pole, axis[i]))
+        assert_allclose(k.wrap_phase(phi[:, i] - expected), 0, atol=1e-12)
 
 
 def local_frame_of(xyz):

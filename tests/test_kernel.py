@@ -121,6 +121,23 @@ def test_beyerle_differs_from_wu_off_boresight():
     assert abs(k.wrap_phase(k.beyerle_phase(s, ra, rt, ta, tt) - k.wu_phase(s, r, t))) > 0.1
 
 
+@given(unit3, quaternion, quaternion)
+def test_beyerle_phase_matches_matrix_form(s, qr, qt):
+    # Eq 5 as printed, with the explicit projection matrix of Eq 4:
+    # tan(Phi) = (r^a P t^t + r^t P t^a) / (r^a P t^a - r^t P t^t).
+    ra, rt, _ = triad(qr)
+    ta, tt, _ = triad(qt)
+    p = k.projection_matrix(s)
+    num = ra @ p @ tt + rt @ p @ ta
+    den = ra @ p @ ta - rt @ p @ tt
+    if np.hypot(num, den) < 1e-3:  # ill-conditioned (both boresights on the sky plane)
+        return
+    same_angle(k.beyerle_phase(s, ra, rt, ta, tt), np.arctan2(num, den))
+    # The same from the eight scalar products alone.
+    products = [ra @ ta, ra @ tt, rt @ ta, rt @ tt, s @ ra, s @ rt, s @ ta, s @ tt]
+    same_angle(k.beyerle_phase_from_products(*products), np.arctan2(num, den))
+
+
 @given(unit3, vec3, vec3)
 def test_effective_dipoles_are_on_the_sky_plane(s, a, b):
     # "These vectors are by construction orthogonal to s" (below Eq 8).

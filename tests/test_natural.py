@@ -33,7 +33,7 @@ from astropy_feedrot import (
     XYMount,
 )
 from astropy_feedrot import kernel as k
-from astropy_feedrot.frames import local_frame
+from astropy_feedrot.frames import local_frame, source_direction
 
 GRID = sky_grid(60)[:, np.newaxis]  # 60 directions x 96 epochs
 
@@ -116,7 +116,7 @@ def test_fixed_axis_mount_reproduces_named_mounts(site):
 def test_stationary_mount_is_eq33(site):
     # Eq 33 as printed, with the matrices of Eqs 4 and 6 built independently.
     antenna = Antenna(site, StationaryMount())
-    s = antenna._direction(GRID, DAY)
+    s = source_direction(GRID, site, DAY)
     e, n, _ = local_frame(site)
     z = k.NORTH_POLE
     sx = k.cross_matrix(s)

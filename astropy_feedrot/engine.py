@@ -1,0 +1,797 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""The wind-up engine: the feed rotation of many receivers seeing many targets, on arrays.
+
+This module is the one place that decides which equation a receiver uses. The
+receivers declare what they are (`~astropy_feedrot.mounts`,
+`~astropy_feedrot.focus`) and `Receivers` reads that declaration once:
+
+* a mount that does not track gives its dipoles (`StationaryMount.dipoles
+  <astropy_feedrot.StationaryMount.dipoles>`, Eq 28): Beyerle's crossed-dipole
+  form (Eq 30) for a transmitter with dipoles, or the effective-dipole form
+  (Eq 31) on request, and Eq 33 for a natural source;
+* a mount that tracks gives its fixed axis (Eq 10), and its focus the
+  multiples of elevation and azimuth it adds (`Focus.closed_form
+  <astropy_feedrot.Focus.closed_form>`): Eq 13 (Eq 35 for a satellite) plus
+  those terms (Eqs 38-41), in `~astropy_feedrot.focus.closed_form_phase`;
+* a focus without closed form (`~astropy_feedrot.MirrorTrain`) traces its
+  mirrors (Eqs 42-45) in its ``receiver_phase``.
+
+The transmitter is a natural source, whose effective dipole is the projected
+celestial pole (Eq 11), or a satellite with aligned and transverse dipoles
+(Eq 8). `feed_rotation` evaluates all of that on arrays of lines of sight
+shaped ``(..., antennas, targets, 3)`` (or on geocentric positions of the
+targets, from which Eq 30 is contracted without forming those arrays);
+`feed_rotation_terms` splits it into transmitter and receiver terms (Eqs
+20-22). Angles are radians, positions metres, and nothing here knows of
+astropy's units, times or coordinates: `~astropy_feedrot.Antenna` is the case
+of one antenna, `~astropy_feedrot.grid` the case of many, and both attach the
+units.
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+
+from . import kernel
+from .exceptions import DegenerateGeometryWarning, warn_caller
+from .focus import CassegrainFocus, as_focus, closed_form_phase
+from .frames import LocalFrame
+from .mounts import as_mount
+from .polarization import polarization_sign
+from .satellite import Satellite
+
+__all__ = [
+    "FORMS",
+    "check_form",
+    "ReceiverArrays",
+    "Receivers",
+    "receiver_sign",
+    "transmitter_dipole",
+    "feed_rotation",
+    "feed_rotation_terms",
+    "parallactic_angle",
+    "min_sine",
+    "degenerate",
+    "warn_degenerate",
+]
+
+#: Forms of the wind-up of a stationary crossed dipole seeing a satellite:
+#: Beyerle's crossed-dipole form (Eq 30, the default) and Wu's effective-dipole
+#: form (Eq 31).
+FORMS = ("beyerle", "wu")
+
+
+def check_form(form):
+    """The form of the wind-up to use; None is Beyerle's.
+
+    Parameters
+    ----------
+    form : {'beyerle', 'wu'} or None
+
+    Returns
+    -------
+    str
+        ``'beyerle'`` or ``'wu'``.
+
+    Raises
+    ------
+    ValueError
+        For another value.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.engine import check_form
+    >>> check_form(None)
+    'beyerle'
+    """
+    if form is None:
+        return "beyerle"
+    if form not in FORMS:
+        raise ValueError(f"form must be one of {FORMS}, got {form!r}")
+    return form
+
+
+class ReceiverArrays(NamedTuple):
+    """The receiving antennas of a grid as plain arrays (the inputs of `grid.wind_up`).
+
+    Attributes
+    ----------
+    station_xyz : ndarray, shape (A, 3)
+        Geocentric ITRS positions in metres.
+    station_axes : ndarray, shape (A, 3, 3)
+        East, north and up unit vectors of each site in ITRS (rows). A
+        stationary crossed dipole has its aligned dipole east and its
+        transverse dipole north (Eq 28).
+    stationary : ndarray of bool, shape (A,)
+        True for a crossed dipole fixed to the ground, False for a tracking
+        antenna.
+    fixed_axis : ndarray, shape (A, 3)
+        The fixed axis of each tracking mount in ITRS (Eq 10; ignored for a
+        stationary one).
+    focus_terms : ndarray, shape (A, 2)
+        Multiples of the elevation and the azimuth a focus adds: (0, 0) for a
+        prime, Cassegrain or Gregorian focus, (+-1, 0) for a right/left
+        Nasmyth focus (Eq 38), (+-1, -+1) for a right/left beam waveguide
+        (Eq 39).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> arrays = receiver_arrays([get_antenna("DBR205"), get_antenna("FD-VLBA")])
+    >>> arrays.stationary.tolist()
+    [True, False]
+    """
+
+    station_xyz: np.ndarray
+    station_axes: np.ndarray
+    stationary: np.ndarray
+    fixed_axis: np.ndarray
+    focus_terms: np.ndarray
+
+
+def _closed_form(focus):
+    """The closed form of a focus as two floats, or None; TypeError/ValueError if malformed."""
+    form = focus.closed_form
+    if form is None:
+        return None
+    try:
+        multiples = tuple(float(value) for value in form)
+    except (TypeError, ValueError):
+        raise TypeError(f"{focus!r}.closed_form must be None or two numbers (the multiples of "
+                        f"elevation and azimuth), got {form!r}") from None
+    if len(multiples) != 2 or not all(np.isfinite(multiples)):
+        raise ValueError(f"{focus!r}.closed_form must be None or two finite numbers (the "
+                         f"multiples of elevation and azimuth), got {form!r}")
+    return multiples
+
+
+def _unit_vector(value, what):
+    vector = np.asarray(value, dtype=float)
+    if vector.shape != (3,) or not np.all(np.isfinite(vector)):
+        raise ValueError(f"{what} must be three finite numbers, got {value!r}")
+    return vector
+
+
+class Receivers:
+    """The receivers of A antennas, sorted by the equation each one needs.
+
+    Build it from the mounts and foci of the antennas with `from_mounts`, or
+    from plain arrays with `from_arrays`.
+
+    Parameters
+    ----------
+    station_xyz : ndarray, shape (A, 3)
+        Geocentric ITRS positions in metres.
+    station_axes : ndarray, shape (A, 3, 3)
+        East, north and up unit vectors of each site in ITRS (rows).
+    stationary : ndarray of bool, shape (A,)
+        True for a receiver that does not track (crossed dipoles fixed to the
+        ground), False for a tracking one.
+    dipoles : ndarray, shape (A, 2, 3)
+        Aligned and transverse dipoles of the stationary receivers in ITRS
+        (ignored for the others).
+    fixed_axis : ndarray, shape (A, 3)
+        Fixed axis of the tracking mounts in ITRS (ignored for the others).
+    focus_terms : ndarray, shape (A, 2)
+        Multiples of elevation and azimuth of each tracking receiver's focus
+        (`Focus.closed_form <astropy_feedrot.Focus.closed_form>`; ignored for
+        the traced ones).
+    traced : dict, optional
+        ``{index: focus}`` for tracking receivers whose focus has no closed
+        form: the engine calls ``focus.receiver_phase`` for them.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot import AltAzMount, NasmythFocus, StationaryMount
+    >>> from astropy_feedrot.engine import Receivers
+    >>> enu = np.eye(3)[np.newaxis].repeat(2, axis=0)
+    >>> xyz = np.array([[0.0, 0, 6.4e6], [0.0, 0, 6.4e6]])
+    >>> rx = Receivers.from_mounts(xyz, enu, [StationaryMount(), AltAzMount()],
+    ...                            [None, NasmythFocus("left")])
+    >>> rx.stationary.tolist(), rx.focus_terms.tolist()
+    ([True, False], [[0.0, 0.0], [-1.0, 0.0]])
+    """
+
+    def __init__(self, station_xyz, station_axes, stationary, dipoles, fixed_axis, focus_terms,
+                 traced=None):
+        self.station_xyz = np.asarray(station_xyz, dtype=float)
+        self.station_axes = np.asarray(station_axes, dtype=float)
+        self.stationary = np.asarray(stationary, dtype=bool)
+        self.dipoles = np.asarray(dipoles, dtype=float)
+        self.fixed_axis = np.asarray(fixed_axis, dtype=float)
+        self.focus_terms = np.asarray(focus_terms, dtype=float)
+        self.traced = dict(traced or {})
+        tracking = ~self.stationary
+        tracking[list(self.traced)] = False
+        terms = np.any(self.focus_terms != 0, axis=-1)
+        # The groups of receivers that share an equation.
+        self.stationary_index = np.flatnonzero(self.stationary)
+        self.plain_index = np.flatnonzero(tracking & ~terms)
+        self.focus_index = np.flatnonzero(tracking & terms)
+        self.traced_index = np.array(sorted(self.traced), dtype=int)
+
+    def __len__(self):
+        return len(self.station_xyz)
+
+    def __repr__(self):
+        return (f"<Receivers: {len(self)} antennas, {self.stationary_index.size} stationary, "
+                f"{self.plain_index.size + self.focus_index.size} closed-form, "
+                f"{self.traced_index.size} traced>")
+
+    @classmethod
+    def from_mounts(cls, station_xyz, station_axes, mounts, foci):
+        """The receivers of antennas from their sites, mounts and foci.
+
+        Parameters
+        ----------
+        station_xyz : array-like, shape (A, 3)
+            Geocentric ITRS positions in metres.
+        station_axes : array-like, shape (A, 3, 3)
+            East, north and up unit vectors of each site in ITRS (rows).
+        mounts : sequence of `~astropy_feedrot.mounts.Mount`
+            A mount that tracks gives ``fixed_axis(local)``; one that does not
+            gives ``dipoles(local)``.
+        foci : sequence of `~astropy_feedrot.focus.Focus` or None
+            Each focus's ``closed_form``, or its ``receiver_phase`` if that is
+            None; None is a Cassegrain focus.
+
+        Returns
+        -------
+        Receivers
+
+        Raises
+        ------
+        TypeError
+            If a mount or focus is not one, a tracking mount has no
+            ``fixed_axis`` (or a stationary one no ``dipoles``), or a
+            ``closed_form`` is not two numbers.
+        ValueError
+            If a mount that does not track has a focus that adds terms, or a
+            closed form or an axis is not finite.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import AltAzMount, MirrorTrain
+        >>> from astropy_feedrot.engine import Receivers
+        >>> rx = Receivers.from_mounts([[0.0, 0, 6.4e6]], [np.eye(3)], [AltAzMount()],
+        ...                            [MirrorTrain.wark30m()])
+        >>> rx.traced_index.tolist()
+        [0]
+        """
+        xyz = np.asarray(station_xyz, dtype=float)
+        axes = np.asarray(station_axes, dtype=float)
+        n = len(xyz)
+        stationary = np.zeros(n, dtype=bool)
+        dipoles = np.full((n, 2, 3), np.nan)
+        fixed_axis = np.full((n, 3), np.nan)
+        terms = np.zeros((n, 2))
+        traced = {}
+        for i, (mount, focus) in enumerate(zip(mounts, foci)):
+            mount = as_mount(mount)
+            focus = CassegrainFocus() if focus is None else as_focus(focus)
+            local = LocalFrame(*axes[i])
+            form = _closed_form(focus)
+            if mount.tracks:
+                if not callable(getattr(mount, "fixed_axis", None)):
+                    raise TypeError(f"{mount!r} tracks but has no fixed_axis(local): a tracking "
+                                    "mount turns about an axis fixed to the ground (see "
+                                    "FixedAxisMount)")
+                fixed_axis[i] = _unit_vector(mount.fixed_axis(local),
+                                             f"the fixed axis of {mount!r}")
+                if form is None:
+                    traced[i] = focus
+                else:
+                    terms[i] = form
+                continue
+            if form != (0.0, 0.0):
+                raise ValueError(f"a {type(mount).__name__} has no optics to add terms; "
+                                 f"{focus!r} needs a steerable mount")
+            if not callable(getattr(mount, "dipoles", None)):
+                raise TypeError(f"{mount!r} does not track but has no dipoles(local): a "
+                                "stationary mount gives its aligned and transverse dipoles "
+                                "(see StationaryMount)")
+            aligned, transverse = mount.dipoles(local)[:2]
+            stationary[i] = True
+            dipoles[i] = (_unit_vector(aligned, f"the aligned dipole of {mount!r}"),
+                          _unit_vector(transverse, f"the transverse dipole of {mount!r}"))
+        return cls(xyz, axes, stationary, dipoles, fixed_axis, terms, traced)
+
+    @classmethod
+    def from_arrays(cls, arrays):
+        """The receivers described by plain arrays.
+
+        Parameters
+        ----------
+        arrays : ReceiverArrays
+            Checked arrays; a stationary receiver has its aligned dipole east
+            and its transverse dipole north (Eq 28).
+
+        Returns
+        -------
+        Receivers
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot.engine import ReceiverArrays, Receivers
+        >>> rx = Receivers.from_arrays(ReceiverArrays(
+        ...     np.array([[6.4e6, 0, 0]]), np.eye(3)[np.newaxis], np.array([True]),
+        ...     np.array([[0.0, 0, 1]]), np.zeros((1, 2))))
+        >>> rx.dipoles[0, 1]
+        array([0., 1., 0.])
+        """
+        axes = np.asarray(arrays.station_axes, dtype=float)
+        return cls(arrays.station_xyz, axes, arrays.stationary, axes[:, :2],
+                   arrays.fixed_axis, arrays.focus_terms)
+
+    def as_arrays(self):
+        """The receivers as `ReceiverArrays`, or None if some have no such description.
+
+        Traced foci, and stationary dipoles other than east and north, have
+        none.
+
+        Returns
+        -------
+        ReceiverArrays or None
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import AltAzMount, BeamWaveguideFocus
+        >>> from astropy_feedrot.engine import Receivers
+        >>> rx = Receivers.from_mounts([[0.0, 0, 6.4e6]], [np.eye(3)], [AltAzMount()],
+        ...                            [BeamWaveguideFocus("left")])
+        >>> rx.as_arrays().focus_terms
+        array([[-1.,  1.]])
+        """
+        if self.traced or not np.array_equal(self.dipoles[self.stationary],
+                                             self.station_axes[self.stationary, :2]):
+            return None
+        fixed_axis = np.where(self.stationary[:, np.newaxis], self.station_axes[:, 2],
+                              self.fixed_axis)
+        return ReceiverArrays(self.station_xyz, self.station_axes, self.stationary, fixed_axis,
+                              self.focus_terms)
+
+    def unrepresentable(self):
+        """Indices of the receivers that `as_arrays` cannot describe.
+
+        Returns
+        -------
+        ndarray of int
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import AltAzMount, MirrorTrain
+        >>> from astropy_feedrot.engine import Receivers
+        >>> Receivers.from_mounts([[0.0, 0, 6.4e6]], [np.eye(3)], [AltAzMount()],
+        ...                       [MirrorTrain.wark30m()]).unrepresentable().tolist()
+        [0]
+        """
+        other = np.any(self.dipoles != self.station_axes[:, :2], axis=(1, 2)) & self.stationary
+        other[self.traced_index] = True
+        return np.flatnonzero(other)
+
+
+def receiver_sign(target, polarization):
+    """+1 or -1, the sign of the feed rotation a receiver of a hand sees.
+
+    Parameters
+    ----------
+    target : `~astropy_feedrot.Satellite` or other
+        A satellite (whose hand the receiver must share), or a natural
+        source.
+    polarization : {'RCP', 'LCP'} or None
+        The receiver's hand: the satellite's own, or RCP for a natural
+        source, by default.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        For an unknown hand, or one that differs from the satellite's.
+
+    Examples
+    --------
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot.engine import receiver_sign
+    >>> receiver_sign(SkyCoord("03h19m48.16s +41d30m42.1s"), "LCP")
+    -1
+    """
+    if isinstance(target, Satellite):
+        return target._receiver_sign(polarization)
+    return polarization_sign("RCP" if polarization is None else polarization)
+
+
+def transmitter_dipole(s, aligned=None, transverse=None):
+    """Effective dipole of the transmitter along lines of sight (Eqs 8, 11).
+
+    Parameters
+    ----------
+    s : ndarray, shape (..., 3)
+        Source unit vectors (receiver to transmitter) in ITRS.
+    aligned, transverse : ndarray, shape (..., 3), optional
+        The transmitter's dipoles; None for a natural source.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        :math:`P\\hat{t}^a + S_\\times\\hat{t}^t` (Eq 8), or the projected
+        celestial pole :math:`P\\hat{z}` of a natural source (Eq 11).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import transmitter_dipole
+    >>> transmitter_dipole(np.array([1.0, 0.0, 0.0]))
+    array([0., 0., 1.])
+    """
+    if aligned is None:
+        return kernel.project(kernel.NORTH_POLE, s)
+    return kernel.transmitter_effective_dipole(s, aligned, transverse)
+
+
+def min_sine(limit):
+    """The sine of an elevation limit below which angles are masked.
+
+    Parameters
+    ----------
+    limit : float or None
+        Radians in [-pi/2, pi/2], or None (no limit).
+
+    Returns
+    -------
+    float or None
+        ``sin(limit)``; minus infinity for -pi/2 (nothing is below it, the
+        rounding of lines of sight included); None for None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import min_sine
+    >>> min_sine(np.pi / 6)  # doctest: +FLOAT_CMP
+    0.5
+    """
+    if limit is None:
+        return None
+    return -np.inf if limit <= -np.pi / 2 else float(np.sin(limit))
+
+
+def _take(array, index, n):
+    """``array[..., index, :, :]``, without a copy when ``index`` is all of ``n`` or the
+    axis is 1 long (shared by every receiver)."""
+    if array.shape[-3] == 1 or len(index) == n:
+        return array
+    return array[..., index, :, :]
+
+
+def _beyerle_by_contraction(rx, index, target, aligned, transverse, need_sine):
+    """Eq 30 for stationary receivers from geocentric positions, shape (..., a, S).
+
+    The scalar products of `kernel.beyerle_phase_from_products` with the line
+    of sight ``s = (target - xyz) / |target - xyz|`` are written with those of
+    the per-epoch transmitter vectors (position, dipoles) and the per-site
+    receiver vectors (position, dipoles, up), all from one contraction; no
+    (..., a, S, 3) array is formed.
+    """
+    xyz = rx.station_xyz[index]
+    ra, rt = rx.dipoles[index, 0], rx.dipoles[index, 1]
+    up = rx.station_axes[index, 2]
+    n_a = len(index)
+    columns = [xyz, ra, rt] + ([up] if need_sine else [])
+    receivers = np.ascontiguousarray(np.concatenate(columns).T)  # (3, k a)
+    # All scalar products [g, ta, tt] . [x, ra, rt, up] at once. einsum's own loops
+    # rather than a BLAS matrix product: the same arithmetic whatever the block
+    # size, and no BLAS threads competing with the workers of a parallel scheduler.
+    products = np.einsum("k...i,ij->k...j", np.stack([target, aligned, transverse]), receivers)
+    g, ta, tt = products.reshape(products.shape[:-1] + (len(columns), n_a))  # (..., S, k, a)
+    x_ra, x_rt, x_up, x_x = (kernel.dot(v, xyz) for v in (ra, rt, up, xyz))
+    g_g, g_ta, g_tt = (kernel.dot(target, v)[..., np.newaxis]
+                       for v in (target, aligned, transverse))
+    inverse = g_g + x_x
+    inverse -= 2 * g[..., 0, :]
+    np.sqrt(inverse, out=inverse)
+    np.divide(1.0, inverse, out=inverse)  # 1 / |target - xyz|
+    phase = kernel.beyerle_phase_from_products(
+        ta[..., 1, :], tt[..., 1, :], ta[..., 2, :], tt[..., 2, :],
+        (g[..., 1, :] - x_ra) * inverse, (g[..., 2, :] - x_rt) * inverse,
+        (g_ta - ta[..., 0, :]) * inverse, (g_tt - tt[..., 0, :]) * inverse)
+    sine = None
+    if need_sine:
+        sine = ((g[..., 3, :] - x_up) * inverse).swapaxes(-1, -2)
+    return phase.swapaxes(-1, -2), sine
+
+
+def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions=False,
+                  form="beyerle", min_sine=None):
+    """Feed rotation of every receiver seeing every target (RCP, radians).
+
+    Parameters
+    ----------
+    receivers : Receivers
+        The receivers (A of them).
+    target : ndarray
+        Unit vectors from the receivers to the targets in ITRS, shape
+        (..., A, S, 3), or (..., 1, S, 3) for directions shared by all
+        receivers; or, with ``positions``, geocentric ITRS positions of the
+        targets in metres, shape (..., S, 3).
+    aligned, transverse : ndarray, shape (..., S, 3), optional
+        The transmitters' dipoles in ITRS; None for natural sources.
+    positions : bool, optional
+        Whether ``target`` holds positions.
+    form : {'beyerle', 'wu'}, optional
+        For stationary receivers seeing transmitters with dipoles: Eq 30
+        (default) or Eq 31.
+    min_sine : float, optional
+        NaN where the sine of a target's elevation is below this (see
+        `min_sine`).
+
+    Returns
+    -------
+    phase : ndarray, shape (..., A, S)
+        The feed rotation in radians, in [-pi, pi]; NaN where undefined,
+        where an input is NaN, or below the elevation limit. Negate it for
+        LCP.
+    below : ndarray of bool, shape (..., A, S), or None
+        Where the target is below the elevation limit (None without one).
+
+    Notes
+    -----
+    Which equation each receiver takes is decided by `Receivers` from what
+    its mount and focus declare; see this module's description. With
+    ``positions``, Eq 30 for the stationary receivers is contracted from
+    scalar products (`kernel.beyerle_phase_from_products
+    <astropy_feedrot.kernel.beyerle_phase_from_products>`) and the other
+    receivers form their lines of sight (Eq 2) here.
+
+    Examples
+    --------
+    The parallactic angle (Eq 15) of a source setting due west, seen by an
+    alt-az receiver at latitude 45 deg and longitude 0 (Eq 16 gives
+    :math:`\\mathrm{atan2}(1, \\tan 45^\\circ)`):
+
+    >>> import numpy as np
+    >>> from astropy_feedrot import AltAzMount
+    >>> from astropy_feedrot.engine import Receivers, feed_rotation
+    >>> r = np.sqrt(0.5)
+    >>> enu = [[0, 1.0, 0], [-r, 0, r], [r, 0, r]]  # east, north, up in ITRS
+    >>> rx = Receivers.from_mounts([[4.5e6, 0, 4.5e6]], [enu], [AltAzMount()], [None])
+    >>> west = np.array([0.0, -1.0, 0.0])
+    >>> phase, below = feed_rotation(rx, west.reshape(1, 1, 3))
+    >>> float(np.degrees(phase[0, 0]))  # doctest: +FLOAT_CMP
+    45.0
+    """
+    rx = receivers
+    n_a = len(rx)
+    lead = target.shape[:-2] if positions else target.shape[:-3]
+    n_s = target.shape[-2]
+    phase = np.empty(lead + (n_a, n_s))
+    need_sine = min_sine is not None
+    sine = np.empty(phase.shape) if need_sine else None
+    satellite = aligned is not None
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rest = np.arange(n_a)
+        if positions and satellite and form == "beyerle" and rx.stationary_index.size:
+            index = rx.stationary_index
+            p, e = _beyerle_by_contraction(rx, index, target, aligned, transverse, need_sine)
+            phase[..., index, :] = p
+            if need_sine:
+                sine[..., index, :] = e
+            rest = np.flatnonzero(~rx.stationary)
+        if rest.size:
+            _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form,
+                                 phase, sine)
+        below = None
+        if need_sine:
+            below = sine < min_sine
+            phase[below] = np.nan
+    return phase, below
+
+
+def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form, phase, sine):
+    """Fill ``phase`` (and ``sine``) for the receivers ``rest``, from their lines of sight."""
+    n_a, n_rest = len(rx), rest.size
+    if positions:
+        s = kernel.unit(target[..., np.newaxis, :, :] - rx.station_xyz[rest][:, np.newaxis])
+    else:
+        s = _take(target, rest, n_a)
+    satellite = aligned is not None
+    ta = tt = t = None
+    if satellite:
+        ta, tt = aligned[..., np.newaxis, :, :], transverse[..., np.newaxis, :, :]
+
+    def dipole(j):
+        """The transmitter's effective dipole (Eqs 8, 11) on the lines of sight ``j``."""
+        nonlocal t
+        if t is None:
+            t = transmitter_dipole(s, ta, tt)
+        return _take(t, j, n_rest)
+
+    axes = rx.station_axes[rest][:, :, np.newaxis]  # (a, 3, 1, 3)
+    if sine is not None:
+        sine[..., rest, :] = kernel.dot(s, axes[:, 2])
+    # Positions of each group within ``rest``.
+    where = np.full(n_a, -1)
+    where[rest] = np.arange(n_rest)
+    for group in (rx.stationary_index, rx.plain_index, rx.focus_index):
+        group = group[where[group] >= 0]
+        if not group.size:
+            continue
+        j = where[group]
+        s_j = _take(s, j, n_rest)
+        if rx.stationary[group[0]]:
+            ra, rt = rx.dipoles[group, 0, np.newaxis], rx.dipoles[group, 1, np.newaxis]
+            if satellite and form == "beyerle":  # Eq 30
+                p = kernel.beyerle_phase(s_j, ra, rt, ta, tt)
+            else:  # Eq 7 with the receiver's effective dipole (Eqs 31, 33)
+                p = kernel.wu_phase(s_j, kernel.receiver_effective_dipole(s_j, ra, rt),
+                                    dipole(j))
+        else:  # Eq 13 with the fixed axis (Eq 35), and the focus terms (Eqs 38-41)
+            local = LocalFrame(*np.moveaxis(axes[j], 1, 0))
+            terms = rx.focus_terms[group, :, np.newaxis]  # (a, 2, 1)
+            p = closed_form_phase(s_j, dipole(j) if satellite else None,
+                                  rx.fixed_axis[group, np.newaxis], local, terms[:, 0],
+                                  terms[:, 1])
+        phase[..., group, :] = p
+    for i in rx.traced_index:  # the mirrors traced (Eqs 42-45)
+        if where[i] < 0:
+            continue
+        j = [where[i]]
+        phase[..., i, :] = rx.traced[i].receiver_phase(
+            _take(s, j, n_rest)[..., 0, :, :], dipole(j)[..., 0, :, :], rx.fixed_axis[i],
+            LocalFrame(*rx.station_axes[i]))
+
+
+def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine=None):
+    """The feed rotation split into transmitter and receiver terms (Eqs 20-22), in radians.
+
+    Parameters
+    ----------
+    receivers : Receivers
+        The receivers.
+    s : ndarray, shape (..., A or 1, S, 3)
+        Unit vectors from the receivers to the targets in ITRS.
+    aligned, transverse : ndarray, shape (..., S, 3), optional
+        The transmitters' dipoles; None for natural sources.
+    min_sine : float, optional
+        NaN below this sine of the elevation (see `min_sine`).
+
+    Returns
+    -------
+    transmitter, receiver : ndarray, shape (..., A, S)
+        :math:`\\Phi_\\mathrm{tx}` (Eq 21), the transmitter's effective dipole
+        measured from the projected north celestial pole, and
+        :math:`\\Phi_\\mathrm{rx}`, the receiver's feed rotation for a
+        natural source in the same direction (Eq 22 and the focus terms).
+        RCP; NaN where undefined or below the limit.
+    below : ndarray of bool or None
+        As for `feed_rotation`.
+
+    Examples
+    --------
+    A natural source has no transmitter term:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot import AltAzMount
+    >>> from astropy_feedrot.engine import Receivers, feed_rotation_terms
+    >>> rx = Receivers.from_mounts([[0.0, 0, 6.4e6]], [np.eye(3)], [AltAzMount()], [None])
+    >>> tx, rx_term, _ = feed_rotation_terms(rx, np.array([[[0.6, 0.0, 0.8]]]))
+    >>> float(tx[0, 0])
+    0.0
+    """
+    ta = tt = None
+    if aligned is not None:
+        ta, tt = aligned[..., np.newaxis, :, :], transverse[..., np.newaxis, :, :]
+    with np.errstate(invalid="ignore"):
+        transmitter = kernel.transmitter_term(s, transmitter_dipole(s, ta, tt))
+    receiver, below = feed_rotation(receivers, s, min_sine=min_sine)
+    transmitter = np.array(np.broadcast_to(transmitter, receiver.shape))
+    if below is not None:
+        transmitter[below] = np.nan
+    return transmitter, receiver, below
+
+
+def parallactic_angle(s, up):
+    """Parallactic angle of lines of sight at a site (Eq 15), in radians.
+
+    Parameters
+    ----------
+    s : ndarray, shape (..., 3)
+        Source unit vectors in ITRS.
+    up : ndarray, shape (..., 3)
+        The site's vertical.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        :math:`\\Psi`, positive west of the meridian (as ERFA's ``hd2pa``);
+        NaN at the zenith and at the pole.
+
+    Examples
+    --------
+    A source setting due west at latitude 45 deg, longitude 0:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import parallactic_angle
+    >>> up = np.array([1.0, 0.0, 1.0]) / np.sqrt(2)
+    >>> float(np.degrees(parallactic_angle([0.0, -1.0, 0.0], up)))  # doctest: +FLOAT_CMP
+    45.0
+    """
+    return kernel.receiver_term(s, up)
+
+
+def degenerate(phase, target, below=None, positions=False):
+    """Where a feed rotation is NaN because the geometry is degenerate.
+
+    Parameters
+    ----------
+    phase : ndarray, shape (..., A, S)
+        From `feed_rotation` (or a term of `feed_rotation_terms`).
+    target : ndarray
+        The ``target`` given to it: NaN there is missing data, not
+        degenerate geometry.
+    below : ndarray of bool, optional
+        Below the elevation limit: not degenerate either.
+    positions : bool, optional
+        Whether ``target`` held positions, shape (..., S, 3).
+
+    Returns
+    -------
+    ndarray of bool, shape (..., A, S)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import degenerate
+    >>> degenerate(np.array([[np.nan, 1.0, np.nan]]),
+    ...            np.array([[[0, 0, 1.0], [0, 1.0, 0], [np.nan] * 3]])).tolist()
+    [[True, False, False]]
+    """
+    finite = np.all(np.isfinite(target), axis=-1)
+    if positions:
+        finite = finite[..., np.newaxis, :]
+    bad = np.isnan(phase) & finite
+    if below is not None:
+        bad &= ~below
+    return bad
+
+
+def warn_degenerate(count, total, what="feed rotation", points="epochs",
+                    receiver="a mount"):
+    """One `~astropy_feedrot.DegenerateGeometryWarning` for ``count`` undefined angles.
+
+    Nothing happens if ``count`` is 0. The warning points at the caller's line
+    outside the package (`~astropy_feedrot.exceptions.warn_caller`).
+
+    Parameters
+    ----------
+    count, total : int
+        How many angles are undefined, out of how many.
+    what : str, optional
+        The quantity (``'feed rotation'``, ``'parallactic angle'``...).
+    points : str, optional
+        What the angles are counted in (``'epochs'``, ``'grid points'``).
+    receiver : str, optional
+        The receiver's mount and focus, or ``'a mount'`` for several.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.engine import warn_degenerate
+    >>> warn_degenerate(0, 10)  # nothing to say
+    """
+    if not count:
+        return
+    article = "the" if points == "epochs" else "a"
+    warn_caller(
+        f"{what} is undefined at {count} of {total} {points}, where {article} line of sight "
+        f"is within 0.2 mas of a singular direction of {receiver} (a fixed axis such as the "
+        "zenith of an alt-az mount) or of the celestial pole, or where a transmitter is seen "
+        "edge-on; NaN is returned there",
+        DegenerateGeometryWarning,
+    )
