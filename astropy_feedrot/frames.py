@@ -393,7 +393,7 @@ def check_station_xyz(xyz, name="location"):
                          f"{xyz[where].tolist()}; give finite geocentric coordinates")
     height = erfa.gc2gd(1, xyz)[2]  # 1: WGS84
     low, high = STATION_HEIGHTS
-    bad = (height < low) | (height > high)
+    bad = ~((height >= low) & (height <= high))  # NaN where ERFA overflows: bad too
     if np.any(bad):
         where = tuple(np.argwhere(bad)[0])
         which = _index(where)

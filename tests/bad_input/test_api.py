@@ -507,6 +507,8 @@ def test_tables_refuse_unsorted_epochs_masked_aside():
                 r"an Earth station lies between -12 and 100 km"),
     ((4075.659, 931.825, 4801.516), r"location is 6367 m from the geocentre.* \(are the "
                                     r"coordinates in metres\?\)"),
+    ((-6.6e25, -6.6e25, 7.7e25), r"location is .* m from the geocentre.* an Earth station"),
+    ((1.18e26, 0, 0), r"location is .* m from the geocentre.* an Earth station"),
 ])
 def test_antenna_refuses_sites_off_the_earth(xyz, match):
     with pytest.raises(ValueError, match=match):
