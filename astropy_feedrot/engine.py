@@ -405,7 +405,7 @@ def receiver_sign(target, polarization):
     -1
     """
     if isinstance(target, Satellite):
-        return target._receiver_sign(polarization)
+        return target.receiver_sign(polarization)
     return polarization_sign("RCP" if polarization is None else polarization)
 
 

@@ -33,13 +33,7 @@ from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 
 from . import engine
 from .antenna import Antenna
-from .attitude import (
-    NominalAttitude,
-    _warn_nominal_undefined,
-    interpolated_sun_position,
-    nominal_dipoles,
-    sun_position,
-)
+from .attitude import Attitude, nominal_dipoles
 from .config import conf
 from .continuity import delay_of_difference, frequency_hz
 from .engine import ReceiverArrays, Receivers, check_form
@@ -54,7 +48,7 @@ from .frames import (
     location_xyz,
     source_direction,
 )
-from .orbits import TLEOrbit, propagate_tles, teme_to_itrs
+from .orbits import Orbit
 from .polarization import polarization_sign
 from .satellite import Satellite
 
@@ -524,58 +518,38 @@ def _earth_orientation(obstime):
     return None
 
 
-def _propagate_tle(orbits, obstime, orientation):
-    """ITRS positions (S, T, 3) in metres of TLE orbits, propagated together."""
-    r = propagate_tles(orbits, obstime)  # NaN and a warning where SGP4 fails
-    if orientation is not None:
-        return orientation.teme_to_itrs(r)
-    return np.stack([teme_to_itrs(one, obstime) for one in r])
-
-
 def _satellite_arrays(satellites, obstime, polarization, masked=None):
     """Positions and dipoles (T, S, 3) of satellites, and their signs (S,).
 
-    NaN at ``masked`` epochs (True), where ``obstime`` holds stand-ins.
+    Every orbit class propagates its members in one batch and every attitude
+    model with the Sun shares one Sun (`Orbit.positions`,
+    `Attitude.dipoles_many`); one Earth orientation serves them all. NaN at
+    ``masked`` epochs (True), where ``obstime`` holds stand-ins.
     """
     n_t, n_s = obstime.size, len(satellites)
     sign = np.array([engine.receiver_sign(sat, polarization) for sat in satellites], dtype=float)
     if masked is not None and masked.all():
         nothing = np.full((n_t, n_s, 3), np.nan)
         return nothing, nothing.copy(), nothing.copy(), sign
-    orientation = _earth_orientation(obstime)
-    position = np.empty((n_t, n_s, 3))
-    tle = {i for i, sat in enumerate(satellites)
-           if isinstance(sat.orbit, TLEOrbit) and type(sat.orbit).position is TLEOrbit.position}
-    if tle:
-        order = sorted(tle)
-        position[:, order] = np.swapaxes(
-            _propagate_tle([satellites[i].orbit for i in order], obstime, orientation), 0, 1)
-    for i, sat in enumerate(satellites):
-        if i in tle:
-            continue
-        xyz = np.asarray(sat.orbit.position(obstime), dtype=float)
-        if xyz.shape != (n_t, 3):
-            raise ValueError(f"the orbit of targets[{i}] gives positions of shape {xyz.shape} "
-                             f"for obstime of shape {obstime.shape}; a grid needs one position "
-                             "per epoch")
-        position[:, i] = xyz
+    orbits = [sat.orbit for sat in satellites]
+    attitudes = [sat.attitude for sat in satellites]
+    orientation = None
+    if any(o.uses_orientation for o in orbits) or any(a.needs_sun for a in attitudes):
+        orientation = _earth_orientation(obstime)
+    try:
+        xyz = Orbit.positions(orbits, obstime, orientation)  # (S, T, 3)
+    except ValueError:
+        for i, orbit in enumerate(orbits):  # name the target, as the grid's users know it
+            shape = np.shape(orbit.position(obstime, orientation))
+            if shape != (n_t, 3):
+                raise ValueError(f"the orbit of targets[{i}] gives positions of shape {shape} "
+                                 f"for obstime of shape {obstime.shape}; a grid needs one "
+                                 "position per epoch") from None
+        raise
     if masked is not None:
-        position[masked] = np.nan
-    aligned = np.empty_like(position)
-    transverse = np.empty_like(position)
-    nominal = [i for i, sat in enumerate(satellites)
-               if type(sat.attitude).dipoles is NominalAttitude.dipoles]
-    others = set(range(n_s)) - set(nominal)
-    if nominal:
-        sun = (interpolated_sun_position(orientation) if orientation is not None
-               else sun_position(obstime))
-        where = position[:, nominal]
-        a, t = nominal_dipoles(where, sun[:, np.newaxis])
-        _warn_nominal_undefined(t, where)
-        aligned[:, nominal], transverse[:, nominal] = a, t
-    for i in sorted(others):
-        a, t = satellites[i].attitude.dipoles(obstime, position[:, i])
-        aligned[:, i], transverse[:, i] = a, t
+        xyz[:, masked] = np.nan
+    aligned, transverse = Attitude.dipoles_many(attitudes, obstime, xyz, orientation)
+    position, aligned, transverse = (np.swapaxes(v, 0, 1) for v in (xyz, aligned, transverse))
     if masked is not None:
         aligned[masked] = transverse[masked] = np.nan
     return position, aligned, transverse, sign

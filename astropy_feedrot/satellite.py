@@ -112,10 +112,31 @@ class Satellite:
         return (f"<Satellite {label}{type(self.orbit).__name__}, {self.attitude!r}, "
                 f"{self.polarization}>")
 
-    def _receiver_sign(self, polarization):
-        """+1/-1 for a receiver of hand ``polarization`` (None: the satellite's own).
+    def receiver_sign(self, polarization):
+        """The sign of the feed rotation for a receiver of hand ``polarization``.
 
-        A receiver of the other hand does not receive this signal: ValueError.
+        Parameters
+        ----------
+        polarization : {'RCP', 'LCP'} or None
+            The receiver's hand; None for the satellite's own.
+
+        Returns
+        -------
+        int
+            +1 for RCP, -1 for LCP.
+
+        Raises
+        ------
+        ValueError
+            If the receiver's hand is not the satellite's: it does not receive
+            this signal.
+
+        Examples
+        --------
+        >>> from astropy_feedrot import Satellite, TLEOrbit
+        >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+        >>> Satellite(TLEOrbit(*GPS_SVN76_TLE)).receiver_sign(None)
+        1
         """
         if polarization is None:
             return self.sign
