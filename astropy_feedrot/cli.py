@@ -731,7 +731,8 @@ def _parser():
         prog="feedrot",
         description="Feed rotation (parallactic angle, carrier-phase wind-up) of radio "
         "telescopes and GNSS antennas, as tables: time, azimuth, elevation, parallactic "
-        "angle, transmitter and receiver terms, total and continuous total (degrees).",
+        "angle, transmitter and receiver terms, total and continuous total (degrees), and "
+        "the rate of the feed rotation (deg/s).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="examples:\n  feedrot demo\n  feedrot stations\n"
         + "\n".join(text.split("\n", 2)[1] for text in _EXAMPLES.values())

@@ -32,7 +32,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import kernel
+from . import kernel, rates
 from .exceptions import DegenerateGeometryWarning, warn_caller
 from .focus import CassegrainFocus, as_focus, closed_form_phase
 from .frames import LocalFrame
@@ -49,6 +49,7 @@ __all__ = [
     "transmitter_dipole",
     "feed_rotation",
     "feed_rotation_terms",
+    "feed_rotation_rate",
     "parallactic_angle",
     "min_sine",
     "degenerate",
@@ -695,6 +696,72 @@ def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine
     if below is not None:
         transmitter[below] = np.nan
     return transmitter, receiver, below
+
+
+def feed_rotation_rate(receivers, s, s_rate):
+    """Rate of the feed rotation of natural sources (RCP), in rad/s.
+
+    The receivers are taken as `feed_rotation` takes them, each by its own
+    equation: a stationary crossed dipole by the rate of Eq 33, a tracking
+    receiver with a closed form by the rate of Eq 13 plus its multiples of
+    elevation and azimuth (Eqs 38, 39), both analytic
+    (`~astropy_feedrot.rates`), and traced mirrors by the derivative of the
+    traced phase along the motion of the line of sight.
+
+    Parameters
+    ----------
+    receivers : Receivers
+        The receivers (A of them).
+    s, s_rate : ndarray, shape (..., A, S, 3)
+        Unit vectors from the receivers to the sources in ITRS, and their
+        rates in rad/s (`~astropy_feedrot.rates.source_direction_rate`).
+
+    Returns
+    -------
+    ndarray, shape (..., A, S)
+        :math:`d\\Phi/dt` in rad/s; NaN where the feed rotation is undefined.
+
+    Examples
+    --------
+    An alt-az antenna at latitude 45 deg and a source due south at 45 deg
+    elevation (on the meridian): :math:`\\dot\\Psi = -\\omega\\cos\\phi\\cos A/\\cos E
+    = \\omega` there.
+
+    >>> import numpy as np
+    >>> from astropy_feedrot import AltAzMount
+    >>> from astropy_feedrot.engine import Receivers, feed_rotation_rate
+    >>> from astropy_feedrot.rates import source_direction_rate
+    >>> c = np.sqrt(0.5)
+    >>> east, north, up = [0.0, 1, 0], [-c, 0, c], [c, 0, c]
+    >>> rx = Receivers.from_mounts([[4.5e6, 0, 4.5e6]], [[east, north, up]],
+    ...                            [AltAzMount()], [None])
+    >>> s = np.array([[[1.0, 0, 0]]])  # south of the zenith by 45 deg: the equator
+    >>> rate = feed_rotation_rate(rx, s, source_direction_rate(s))
+    >>> float(rate[0, 0] / 7.292115e-5)  # doctest: +FLOAT_CMP
+    1.0
+    """
+    s = np.asarray(s, dtype=float)
+    s_rate = np.asarray(s_rate, dtype=float)
+    out = np.full(np.broadcast_shapes(s.shape, s_rate.shape)[:-1], np.nan)
+    for i in range(len(receivers)):
+        s_i, rate_i = s[..., i, :, :], s_rate[..., i, :, :]
+        east, north, up = receivers.station_axes[i]
+        local = LocalFrame(east, north, up)
+        if receivers.stationary[i]:
+            aligned, transverse = receivers.dipoles[i]
+            rate = rates.stationary_rate(s_i, rate_i, LocalFrame(aligned, transverse, up))
+        elif i in receivers.traced:
+            focus, axis = receivers.traced[i], receivers.fixed_axis[i]
+
+            def phase(v, focus=focus, axis=axis, local=local):
+                return focus.receiver_phase(v, kernel.project(kernel.NORTH_POLE, v), axis, local)
+
+            rate = rates.directional_rate(phase, s_i, rate_i)
+        else:
+            rate = rates.fixed_axis_rate(s_i, rate_i, receivers.fixed_axis[i], local,
+                                         tuple(receivers.focus_terms[i]))
+        out[..., i, :] = rate
+    return out
 
 
 def parallactic_angle(s, up):

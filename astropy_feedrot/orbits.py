@@ -53,9 +53,13 @@ class Orbit:
         when given one (class attribute: False here, True for `TLEOrbit`).
         Callers build one for their epochs only when some orbit (or attitude)
         will use it.
+    coverage : tuple of `~astropy.time.Time` or None
+        ``(start, stop)`` outside which `position` cannot give positions (an
+        orbit file's span); None (here) where there is no such limit.
     """
 
     uses_orientation = False
+    coverage = None
 
     def position(self, obstime, orientation=None):
         """Geocentric ITRS position(s), in metres.
@@ -774,6 +778,12 @@ class SP3Orbit(Orbit):
         start = self._run_start[self._usable]
         end = self._run_end[self._usable]
         return self.epochs[np.stack([start, end], axis=-1)]
+
+    @property
+    def coverage(self):
+        """(start, stop): the first and last epochs of the file, outside which
+        `position` raises."""
+        return self.epochs[0], self.epochs[-1]
 
     def position(self, obstime, orientation=None):
         # The file's positions are Earth-fixed already: no Earth orientation needed.

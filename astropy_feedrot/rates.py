@@ -668,7 +668,7 @@ def directional_rate(phase, s, s_rate, step=DIRECTIONAL_STEP):
     return speed * change / (2 * step)
 
 
-def difference_rate(phase, obstime, step=DIFFERENCE_STEP):
+def difference_rate(phase, obstime, step=DIFFERENCE_STEP, span=None):
     """Rate of any time-dependent angle, by a centred difference in time.
 
     The general path: for satellites (whose attitude turns the transmitter's
@@ -685,6 +685,12 @@ def difference_rate(phase, obstime, step=DIFFERENCE_STEP):
         Epoch(s) at which to take the rate. Masked epochs give NaN.
     step : float or `~astropy.units.Quantity`, optional
         Half the difference interval, in seconds (default `DIFFERENCE_STEP`).
+    span : tuple of `~astropy.time.Time`, optional
+        ``(start, stop)`` outside which ``phase`` cannot be evaluated (the
+        coverage of an orbit file, `~astropy_feedrot.SP3Orbit.coverage`).
+        Epochs within ``step`` of either end take a one-sided difference
+        over ``step`` that stays inside (first order: an error of
+        :math:`h|\\ddot\\Phi|/2`).
 
     Returns
     -------
@@ -749,15 +755,22 @@ def difference_rate(phase, obstime, step=DIFFERENCE_STEP):
     phase = _callable(phase)
     step = _step(step, "step", u.s)
     obstime = as_time(obstime)
-    delta = step * u.s
+    forward = np.full(obstime.shape, step)
+    backward = np.full(obstime.shape, -step)
+    if span is not None:
+        start, stop = (as_time(end) for end in span)
+        filled, _ = fill_masked(obstime)
+        backward[(filled - start).to_value(u.s) < step] = 0.0
+        forward[(stop - filled).to_value(u.s) < step] = 0.0
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         with iers_context(obstime):  # one check of the tables for both evaluations
-            ahead = _radians(phase(obstime + delta))
-            behind = _radians(phase(obstime - delta))
+            ahead = _radians(phase(obstime + forward * u.s))
+            behind = _radians(phase(obstime + backward * u.s))
     seen = set()
     for warning in caught:  # each category once (the two evaluations warn alike)
         if warning.category not in seen:
             seen.add(warning.category)
             warn_caller(str(warning.message), warning.category)
-    return wrap_phase(ahead - behind) / (2 * step)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a span shorter than the step
+        return wrap_phase(ahead - behind) / (forward - backward)

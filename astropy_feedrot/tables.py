@@ -22,7 +22,7 @@ __all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary
 
 #: Columns of `feed_rotation_table` (after ``time``), in order.
 COLUMNS = ("azimuth", "elevation", "parallactic_angle", "transmitter", "receiver", "total",
-           "continuous")
+           "continuous", "rate")
 
 
 def _max_gap(times):
@@ -67,9 +67,11 @@ def _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     lowest = -np.inf if limit is None else limit
     elevation = angles.elevation.rad
     visible = np.isfinite(elevation) & (elevation >= lowest)
-    columns = {name: getattr(angles, name).to(u.deg) for name in COLUMNS[:-1]}
+    columns = {name: getattr(angles, name).to(u.deg) for name in COLUMNS[:-2]}
     columns["continuous"] = unwrap(columns["total"], mask=~visible, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
+    columns["rate"] = antenna.feed_rotation_rate(target, times, polarization,
+                                                 min_elevation=min_elevation)
     return {name: u.Quantity(value) for name, value in columns.items()}, visible
 
 
@@ -102,8 +104,9 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     `~astropy.table.Table`
         Columns ``time`` and then `COLUMNS`: azimuth and elevation (deg),
         parallactic angle (Eq 15), the transmitter and receiver terms
-        (Eqs 21, 22), the total feed rotation wrapped to (-180, 180] deg and
-        the continuous total. Angles are NaN below ``min_elevation``. The
+        (Eqs 21, 22), the total feed rotation wrapped to (-180, 180] deg,
+        the continuous total and the rate of the feed rotation (deg/s,
+        `~astropy_feedrot.Antenna.feed_rotation_rate`). Angles are NaN below ``min_elevation``. The
         ``meta`` records antenna, target, polarization and elevation limit.
 
     Raises

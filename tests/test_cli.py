@@ -49,7 +49,7 @@ def test_natural_parallactic_angle_against_erfa(capsys):
     assert status == 0 and err == ""
     table = read(out)
     assert table.colnames == ["time", "azimuth", "elevation", "parallactic_angle", "transmitter",
-                              "receiver", "total", "continuous"]
+                              "receiver", "total", "continuous", "rate"]
     assert len(table) == 5
     # Independent: erfa.hd2pa from astropy's HADec frame.
     antenna = get_antenna("EFLSBERG")

@@ -525,3 +525,113 @@ def test_bad_obstime():
         rates.difference_rate(lambda t: 0.0, 60000.0)
     with pytest.raises(TypeError, match="obstime must be an astropy Time"):
         rates.celestial_pole([1, 2])
+
+
+# --- Antenna.feed_rotation_rate: the front-end ------------------------------------------
+
+
+ANTENNA_CASES = FIXED_AXIS_CASES + [
+    ("stationary", StationaryMount(), CassegrainFocus(), None),
+    ("YEBES40M train", AltAzMount(), MirrorTrain.yebes40m("X"), None),
+    ("WARK30M train", AltAzMount(), MirrorTrain.wark30m(), None),
+]
+
+
+@pytest.mark.parametrize("label, mount, focus, multiples", ANTENNA_CASES,
+                         ids=[case[0] for case in ANTENNA_CASES])
+def test_antenna_rate_against_rigorous_difference(sky, label, mount, focus, multiples):
+    antenna = Antenna(sky.site, mount, focus)
+    rate = antenna.feed_rotation_rate(sky.targets, sky.obstime)
+    assert rate.unit == u.deg / u.s and rate.shape == sky.targets.shape
+    reference = rigorous_rate(antenna, sky.targets, sky.obstime)
+    assert np.abs(rate.to_value(u.rad / u.s) - reference).max() < TOLERANCE
+
+
+def test_antenna_rate_over_a_day_fast_path():
+    """Dense epochs (the fast path) at one source, against the rigorous difference."""
+    antenna = Antenna(SITES["YEBES"], AltAzMount(), NasmythFocus("right"))
+    source = SkyCoord("03h19m48.16s +41d30m42.1s")
+    times = T0 + np.arange(0, 86400, 1800) * u.s
+    rate = antenna.feed_rotation_rate(source, times).to_value(u.rad / u.s)
+    reference = rigorous_rate(antenna, source, times)
+    _, elevation = antenna.altaz(source, times)
+    up = (elevation > 5 * u.deg) & (elevation < 89 * u.deg)
+    assert up.sum() > 20
+    assert np.abs(rate - reference)[up].max() < TOLERANCE
+
+
+def test_antenna_rate_of_a_satellite(gps_pass):
+    gps, times = gps_pass
+    antenna = Antenna(SITES["FD-VLBA"], AltAzMount())
+    rate = antenna.feed_rotation_rate(gps, times, min_elevation=5 * u.deg)
+    h = 0.005
+    with conf.set_temp("fast_path", False):
+        f = [antenna.feed_rotation(gps, times + k * h * u.s).rad for k in (-2, -1, 1, 2)]
+    reference = (8 * wrap_phase(f[2] - f[1]) - wrap_phase(f[3] - f[0])) / (12 * h)
+    _, elevation = antenna.altaz(gps, times)
+    visible = elevation > 5 * u.deg
+    assert np.all(np.isnan(rate[~visible]))
+    assert np.abs(rate.to_value(u.rad / u.s) - reference)[visible].max() < TOLERANCE
+
+
+def test_antenna_rate_lcp_scalar_masked_and_below():
+    antenna = Antenna(SITES["WETTZ13S"], AltAzMount())
+    source = SkyCoord("03h19m48.16s +41d30m42.1s")
+    rcp = antenna.feed_rotation_rate(source, T0)
+    assert rcp.shape == () and np.isfinite(rcp)
+    assert antenna.feed_rotation_rate(source, T0, polarization="LCP") == -rcp
+    times = T0 + np.arange(3) * u.hour
+    times[1] = np.ma.masked
+    rate = antenna.feed_rotation_rate(source, times)
+    assert np.isnan(rate[1]) and np.all(np.isfinite(rate[[0, 2]]))
+    below = antenna.feed_rotation_rate(source, times, min_elevation=89 * u.deg)
+    assert np.all(np.isnan(below))
+
+
+def test_antenna_rate_at_the_zenith_is_nan_with_one_warning():
+    site = SITES["WETTZ13S"]
+    antenna = Antenna(site, AltAzMount())
+    up = local_frame(site).up
+    zenith = SkyCoord(ITRS(x=up[0], y=up[1], z=up[2], representation_type="cartesian",
+                           obstime=T0, location=site)).icrs
+    with pytest.warns(DegenerateGeometryWarning, match="feed rotation rate is undefined at 1 "
+                                                       "of 1 epochs") as caught:
+        rate = antenna.feed_rotation_rate(zenith, T0)
+    assert len(caught) == 1 and np.isnan(rate)
+
+
+def test_antenna_rate_errors(gps_pass):
+    gps, times = gps_pass
+    antenna = Antenna(SITES["FD-VLBA"], AltAzMount())
+    with pytest.raises(ValueError, match="an LCP receiver does not receive the RCP signal"):
+        antenna.feed_rotation_rate(gps, times, polarization="LCP")
+    with pytest.raises(ValueError, match=r"form must be one of \('beyerle', 'wu'\)"):
+        antenna.feed_rotation_rate(gps, times, form="x")
+    with pytest.raises(u.UnitsError):
+        antenna.feed_rotation_rate(gps, times, min_elevation=10 * u.m)
+    with pytest.raises(TypeError, match="obstime must be an astropy Time"):
+        antenna.feed_rotation_rate(SkyCoord("03h19m48.16s +41d30m42.1s"), 3.0)
+
+
+def test_antenna_rate_at_the_ends_of_an_sp3_file():
+    """One-sided differences inside the file's coverage, equal to the central ones."""
+    from astropy_feedrot import SP3Orbit
+    from astropy_feedrot.data import sample_file
+
+    orbit = SP3Orbit(sample_file("sample.sp3"), "G01", points=4)
+    gps = Satellite(orbit)
+    antenna = Antenna(SITES["FD-VLBA"], StationaryMount())
+    start, stop = orbit.coverage
+    ends = Time([start.utc.isot, stop.utc.isot], scale="utc")
+    rate = antenna.feed_rotation_rate(gps, ends).to_value(u.rad / u.s)
+    assert np.all(np.isfinite(rate))
+    # Reference: the second-order one-sided differences (-3 f0 + 4 f1 - f2) / 2h,
+    # inwards (error h^2 |d3Phi/dt3| / 3); the package's first-order one differs
+    # by h |d2Phi/dt2| / 2, below 1e-9 rad/s for a GNSS orbit.
+    h = 0.01
+    inwards = np.array([1.0, -1.0])
+    f = [antenna.feed_rotation(gps, ends + k * h * inwards * u.s).rad for k in (0, 1, 2)]
+    reference = inwards * (-3 * f[0] + 4 * f[1] - f[2]) / (2 * h)
+    assert np.abs(rate - reference).max() < 1e-9
+    with pytest.raises(ValueError, match="times outside the coverage of the SP3 orbit"):
+        antenna.feed_rotation_rate(gps, ends - [1, 0] * u.s)
