@@ -46,7 +46,6 @@ __all__ = [
     "ReceiverArrays",
     "Receivers",
     "receiver_sign",
-    "transmitter_dipole",
     "feed_rotation",
     "feed_rotation_terms",
     "feed_rotation_rate",
@@ -410,34 +409,6 @@ def receiver_sign(target, polarization):
     return polarization_sign("RCP" if polarization is None else polarization)
 
 
-def transmitter_dipole(s, aligned=None, transverse=None):
-    """Effective dipole of the transmitter along lines of sight (Eqs 8, 11).
-
-    Parameters
-    ----------
-    s : ndarray, shape (..., 3)
-        Source unit vectors (receiver to transmitter) in ITRS.
-    aligned, transverse : ndarray, shape (..., 3), optional
-        The transmitter's dipoles; None for a natural source.
-
-    Returns
-    -------
-    ndarray, shape (..., 3)
-        :math:`P\\hat{t}^a + S_\\times\\hat{t}^t` (Eq 8), or the projected
-        celestial pole :math:`P\\hat{z}` of a natural source (Eq 11).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from astropy_feedrot.engine import transmitter_dipole
-    >>> transmitter_dipole(np.array([1.0, 0.0, 0.0]))
-    array([0., 0., 1.])
-    """
-    if aligned is None:
-        return kernel.project(kernel.NORTH_POLE, s)
-    return kernel.transmitter_effective_dipole(s, aligned, transverse)
-
-
 def min_sine(limit):
     """The sine of an elevation limit below which angles are masked.
 
@@ -611,7 +582,7 @@ def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form,
         """The transmitter's effective dipole (Eqs 8, 11) on the lines of sight ``j``."""
         nonlocal t
         if t is None:
-            t = transmitter_dipole(s, ta, tt)
+            t = kernel.transmitter_dipole(s, ta, tt)
         return _take(t, j, n_rest)
 
     axes = rx.station_axes[rest][:, :, np.newaxis]  # (a, 3, 1, 3)
@@ -690,7 +661,7 @@ def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine
     if aligned is not None:
         ta, tt = aligned[..., np.newaxis, :, :], transverse[..., np.newaxis, :, :]
     with np.errstate(invalid="ignore"):
-        transmitter = kernel.transmitter_term(s, transmitter_dipole(s, ta, tt))
+        transmitter = kernel.transmitter_term(s, kernel.transmitter_dipole(s, ta, tt))
     receiver, below = feed_rotation(receivers, s, min_sine=min_sine)
     transmitter = np.array(np.broadcast_to(transmitter, receiver.shape))
     if below is not None:

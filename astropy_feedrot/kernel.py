@@ -32,6 +32,7 @@ __all__ = [
     "project",
     "receiver_effective_dipole",
     "transmitter_effective_dipole",
+    "transmitter_dipole",
     "wu_phase",
     "beyerle_phase",
     "beyerle_phase_from_products",
@@ -248,6 +249,34 @@ def transmitter_effective_dipole(s, aligned, transverse):
     """
     s = np.asarray(s, dtype=float)
     return project(aligned, s) + np.cross(s, np.asarray(transverse, dtype=float))
+
+
+def transmitter_dipole(s, aligned=None, transverse=None):
+    """Effective dipole of the transmitter along lines of sight (Eqs 8, 11).
+
+    Parameters
+    ----------
+    s : ndarray, shape (..., 3)
+        Source unit vectors (receiver to transmitter) in ITRS.
+    aligned, transverse : ndarray, shape (..., 3), optional
+        The transmitter's dipoles; None for a natural source.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        :math:`P\\hat{t}^a + S_\\times\\hat{t}^t` (Eq 8), or the projected
+        celestial pole :math:`P\\hat{z}` of a natural source (Eq 11).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.kernel import transmitter_dipole
+    >>> transmitter_dipole(np.array([1.0, 0.0, 0.0]))
+    array([0., 0., 1.])
+    """
+    if aligned is None:
+        return project(NORTH_POLE, s)
+    return transmitter_effective_dipole(s, aligned, transverse)
 
 
 def _atan2_defined(num, den, defined):

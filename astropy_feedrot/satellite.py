@@ -43,10 +43,11 @@ class LineOfSight:
         self.s = s
         self.aligned = aligned
         self.transverse = transverse
-        if aligned is None:
-            self.t = kernel.project(kernel.NORTH_POLE, s)  # Eq 11
-        else:
-            self.t = kernel.transmitter_effective_dipole(s, aligned, transverse)  # Eq 8
+
+    @property
+    def t(self):
+        """The transmitter's effective dipole (Eq 8; Eq 11 for a natural source)."""
+        return kernel.transmitter_dipole(self.s, self.aligned, self.transverse)
 
 
 class Satellite:
