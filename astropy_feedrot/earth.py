@@ -1,70 +1,390 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Earth orientation at many epochs, from exact values at a few nodes.
+"""Earth orientation at many epochs, each quantity computed as often as it needs.
 
-Astropy's transformation from a celestial frame to the Earth-fixed ITRS costs
-about 100 us per epoch, almost all of it in quantities that change slowly:
-precession-nutation, aberration and light deflection (together the direction of
-a source in the topocentric CIRS frame), UT1 - TT and polar motion. Only the
-Earth rotation angle (ERA) changes fast, and it is linear in UT1.
+Astropy's transformation from a celestial frame to the topocentric ITRS
+(``ITRS(location=...)``) spends nearly all its time on two series that change
+over days: precession-nutation (ERFA ``pnm06a``, whose CIP coordinates X, Y
+and CIO locator s set the GCRS to CIRS rotation) and the Earth's ephemeris
+(``epv00``: barycentric position and velocity, heliocentric position, which
+set the annual aberration and the light deflection). `EarthOrientation`
+evaluates exactly what astropy evaluates (ERFA ``apco`` with astropy's
+``atciqz``: deflection ``ld``, aberration ``ab``, then the CIO-based rotation
+to ITRS), but takes each input where it is cheap:
 
-`EarthOrientation` evaluates the slow quantities exactly (through astropy and
-ERFA, as the rigorous path does) at nodes every ``step`` of TT, and at each
-epoch interpolates them and applies the exact rotation:
+* UT1 - UTC, polar motion and TT - UTC are linear within each UTC day (the
+  IERS values are daily and astropy interpolates them linearly; UTC days are
+  86,401 s long across a leap second): they are looked up once at the start
+  and the middle of each day with epochs, and the Earth rotation angle, GMST
+  1982, the TIO locator s' and polar motion follow exactly at any instant;
+* X, Y and s come from ERFA every day of TT and the ephemeris every two days,
+  interpolated by Lagrange polynomials through 10 and 8 nodes (below 0.001
+  mas and 1 mm/s), or from ERFA at the instants themselves when they are
+  fewer than the nodes;
+* the diurnal aberration (the site's velocity), the Earth's rotation and polar
+  motion are computed at each instant.
 
-* CIRS directions: cubic (four-point Lagrange) interpolation. The error grows
-  as the fourth power of the step; with the default 15 min it is below
-  0.0002 mas (0.002 mas at 30 min, 0.02 mas at 1 h, dominated by diurnal
-  aberration).
-* UT1 - TT and the polar-motion angles: linear interpolation. astropy's own
-  UT1 - UTC and polar motion are linear between the daily IERS values, and
-  the nodes are placed on UTC midnight, so this reproduces them exactly
-  except for the seconds around a leap second.
-* ITRS = W(x_p, y_p, s') R_z(ERA) CIRS, the CIO-based rotation of astropy's
-  ``cirs_to_itrs_mat``, and ITRS = W(x_p, y_p, 0) R_z(GMST82) TEME for SGP4
-  orbits, as astropy's ``teme_to_itrs_mat``.
-
-The nodes cover only the intervals where there are epochs, so a sparse series
-over years costs at most four nodes per epoch.
+Many epochs close together share the work: within each cell of a fixed grid
+of UTC (15 min to 4 h, chosen by the density of the epochs, never across a
+UTC midnight) the ITRS direction is evaluated exactly at the Chebyshev points
+of the cell and is a polynomial (degree 5 to 11) in time at every epoch, good
+to about 1e-13 rad; cells with too few epochs are evaluated at the epochs.
+The cost is a few ERFA series per day of the span plus about 0.1 us per epoch,
+and at no number of epochs more than astropy's own transformation (see
+`fast_path_applies`).
 """
 
 import erfa
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import CIRS
+from astropy.coordinates import (
+    FK4,
+    FK5,
+    ICRS,
+    BarycentricMeanEcliptic,
+    BarycentricTrueEcliptic,
+    FK4NoETerms,
+    Galactic,
+    Supergalactic,
+    UnitSphericalRepresentation,
+)
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
 
+from .config import conf
 from .eop import iers_context
-from .frames import as_time
+from .inputs import as_location, as_skycoord, as_time
 
-__all__ = ["EarthOrientation", "DEFAULT_STEP"]
+__all__ = [
+    "EarthOrientation",
+    "fast_path_applies",
+    "FIXED_FRAMES",
+    "FAST_PATH_MIN_DISTANCE",
+    "DEFAULT_STEP",
+]
 
-#: Default node spacing.
+#: The default of the ``step`` argument of `EarthOrientation`, kept for
+#: compatibility: node spacings are now chosen per quantity.
 DEFAULT_STEP = 15 * u.min
 
+#: Celestial frames whose transformation to ICRS does not depend on the time
+#: of observation (their own equinox or obstime attributes are fixed).
+FIXED_FRAMES = (ICRS, FK5, FK4, FK4NoETerms, Galactic, Supergalactic,
+                BarycentricMeanEcliptic, BarycentricTrueEcliptic)
+
+#: Sources nearer than this take astropy's transformation at every epoch (a
+#: distance-less source is infinitely far).
+FAST_PATH_MIN_DISTANCE = 1 * u.au
+
 _DAY = 86400.0
+# d(ERA)/d(UT1) in radians per day (ERFA era00).
+_ERA_RATE = 2 * np.pi * 1.00273781191135448
+_AU = erfa.DAU  # metres
+
+# Slow series: (node spacing in days of TT, number of nodes per Lagrange polynomial).
+# X, Y, s: 12 nodes a day apart interpolate the nutation's 5- to 14-day terms to
+# 0.00015 mas. The ephemeris: 8 nodes 1.5 days apart give the velocity to 2e-4 m/s
+# (0.0001 mas of aberration), enough for distant sources; 10 nodes a day apart give
+# the positions to 0.2 m, for the Sun (1e-12 rad) and the parallax of sources with
+# a distance (0.0002 mas at 1 au).
+_CIP_GRID = (1.0, 12)
+_VELOCITY_GRID = (1.5, 8)
+_POSITION_GRID = (1.0, 10)
+
+# Cells of UTC: (cells per day, polynomial degree). The direction turns with the
+# Earth by 2 pi / (cells per day) within a cell; these degrees keep the error of
+# the polynomials below 3e-5 mas (and 1e-13 rad for the Sun).
+_CELLS = ((96, 5), (48, 6), (24, 7), (12, 8), (6, 10))
+
+# Cost model of the choice between cells and evaluation at the epochs, in
+# units of one exact evaluation at an instant: a polynomial of degree m costs
+# (_HORNER_BASE + _HORNER_PER_DEGREE * m) per epoch.
+_HORNER_BASE = 0.01
+_HORNER_PER_DEGREE = 0.006
 
 
-def _rotate_z(x, y, angle):
-    """Components of R_z(angle) v (ERFA's ``rz``: a rotation of the axes)."""
-    c, s = np.cos(angle), np.sin(angle)
-    return c * x + s * y, c * y - s * x
+def fast_path_applies(target, obstime):
+    """Whether Earth orientation at these epochs comes from `EarthOrientation`.
+
+    This is the one rule of the package for its fast path. Where it holds,
+    directions, rotations and the Sun come from `EarthOrientation`, which
+    agrees with astropy's transformation at every epoch to about 0.001 mas
+    and costs less at any number of epochs; elsewhere astropy's frames are
+    used at every epoch.
+
+    Parameters
+    ----------
+    target : `~astropy.coordinates.SkyCoord` or None
+        The natural source(s), or None for Earth rotation alone (the TEME to
+        ITRS rotation of SGP4 orbits, the Sun).
+    obstime : `~astropy.time.Time`
+        The epochs.
+
+    Returns
+    -------
+    bool
+        True if ``astropy_feedrot.conf.fast_path`` is on (the default) and,
+        for a target, it is fixed in one of `FIXED_FRAMES`, has no proper
+        motion or radial velocity, is at least `FAST_PATH_MIN_DISTANCE` away
+        (or has no distance), and its shape and that of ``obstime`` pair every
+        target with every epoch (or there is one target); the shapes (3, 1)
+        and (24,) do, (24,) and (24,) do not.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.earth import fast_path_applies
+    >>> times = Time("2023-01-25") + np.arange(24) * u.hour
+    >>> fast_path_applies(SkyCoord(ra=10 * u.deg, dec=20 * u.deg), times)
+    True
+    >>> fast_path_applies(SkyCoord(ra=10 * u.deg, dec=20 * u.deg, distance=0.5 * u.au), times)
+    False
+    >>> fast_path_applies(None, times)
+    True
+    """
+    obstime = as_time(obstime)
+    if not conf.fast_path or obstime.size == 0:
+        return False
+    if target is None:
+        return True
+    target = as_skycoord(target)
+    if not isinstance(target.frame, FIXED_FRAMES) or target.data.differentials:
+        return False
+    if not _distance_less(target.data):
+        distance = target.spherical.distance
+        if distance.unit.physical_type != "length" or not np.all(
+                np.abs(distance) >= FAST_PATH_MIN_DISTANCE):
+            return False
+    try:
+        shape = np.broadcast_shapes(target.shape, obstime.shape)
+    except ValueError:
+        return False
+    return target.size == 1 or int(np.prod(shape)) == target.size * obstime.size
+
+
+def _distance_less(data):
+    """Whether astropy treats coordinate data as a direction without distance."""
+    return (isinstance(data, UnitSphericalRepresentation)
+            or data.to_cartesian().x.unit == u.one)
+
+
+def _distinct(values, limit):
+    """Distinct values of a float array of integers, and a function of each element's index.
+
+    If the values span at most ``limit``, every integer of their range is
+    taken (the index is then a subtraction); otherwise only those present.
+    """
+    low, high = values.min(), values.max()
+    if high - low < limit:
+        return np.arange(low, high + 1), lambda: (values - low).astype(np.intp)
+    distinct, index = np.unique(values, return_inverse=True)
+    return distinct, lambda: index.reshape(values.shape)
+
+
+class _Days:
+    """The UTC days of some epochs and the quantities linear within each day.
+
+    Every epoch is a day number ``day`` (UTC midnights counted from ``ref``)
+    and a fraction ``frac`` of that day. At the start and the middle of each
+    day, astropy gives TT, UT1 and polar motion; between them they are linear
+    (astropy interpolates the daily IERS values linearly in UTC, and ERFA
+    spreads a leap second over its day), so the tables hold the value at the
+    start of the day and the rate per day.
+    """
+
+    def __init__(self, obstime):
+        jd1 = np.asarray(obstime.jd1, dtype=float).ravel()
+        jd2 = np.asarray(obstime.jd2, dtype=float).ravel()
+        total = jd1 + jd2
+        if not np.all(np.isfinite(total)):
+            raise ValueError("epochs must be finite")
+        first, last = int(np.argmin(total)), int(np.argmax(total))
+        with iers_context(obstime[[first, last]]):
+            if obstime.scale != "utc":
+                utc = obstime.utc
+                jd1, jd2 = np.asarray(utc.jd1, dtype=float), np.asarray(utc.jd2, dtype=float)
+            self.ref = Time(np.floor((jd1[first] - erfa.DJM0) + jd2[first]),
+                            format="mjd", scale="utc")
+            a = jd1 - self.ref.jd1
+            b = jd2 - self.ref.jd2
+            self.u = a + b
+            day = np.floor(self.u)
+            # At a midnight the rounding of a + b may leave the fraction a hair outside.
+            self.day, self.frac = day, np.clip((a - day) + b, 0.0, 1.0 - 2.0**-53)
+            self.days, self._slot = _distinct(day, max(day.size, 2))
+            self._tables()
+
+    @property
+    def slot(self):
+        """Each epoch's index into the day tables."""
+        if callable(self._slot):
+            self._slot = self._slot()
+        return self._slot
+
+    def slot_of(self, day):
+        """Indices into the day tables of days (which must be in them)."""
+        return np.searchsorted(self.days, day)
+
+    def _tables(self):
+        days = self.days
+        t = Time(self.ref.jd1 + np.stack([days, days]),
+                 self.ref.jd2 + np.array([[0.0], [0.5]]), format="jd", scale="utc")
+        tt, ut1 = t.tt, t.ut1
+        # TT is counted in days from the start of the first day of the tables.
+        self.tt1, self.tt2 = float(tt.jd1[0, 0]), float(tt.jd2[0, 0])
+        tt_rel = (tt.jd1 - self.tt1) + (tt.jd2 - self.tt2)
+        self.tt0, self.tt_rate = tt_rel[0], 2 * (tt_rel[1] - tt_rel[0])
+        ut1_rate = 2 * ((ut1.jd1[1] - ut1.jd1[0]) + (ut1.jd2[1] - ut1.jd2[0]))
+        self.era0 = erfa.era00(ut1.jd1[0], ut1.jd2[0])
+        self.era_rate = _ERA_RATE * ut1_rate
+        gmst = erfa.gmst82(ut1.jd1, ut1.jd2)
+        self.gmst0 = gmst[0]
+        self.gmst_rate = 2 * np.mod(gmst[1] - gmst[0], 2 * np.pi)
+        xp, yp = get_polar_motion(t)
+        self.xp0, self.xp_rate = xp[0], 2 * (xp[1] - xp[0])
+        self.yp0, self.yp_rate = yp[0], 2 * (yp[1] - yp[0])
+        self.sp = erfa.sp00(tt.jd1[0], tt.jd2[0])
+
+    def at(self, slot, frac):
+        """The quantities at instants given by day slots and fractions of day."""
+        return _Instants(self, slot, frac)
+
+
+class _Instants:
+    """Instants within the days of a `_Days`, with their exact Earth orientation."""
+
+    def __init__(self, days, slot, frac):
+        self.size = frac.size
+        self.tt = days.tt0[slot] + days.tt_rate[slot] * frac  # days from days.tt1 + tt2
+        self.tt1, self.tt2 = days.tt1, days.tt2 + self.tt
+        self.era = days.era0[slot] + days.era_rate[slot] * frac
+        self.xp = days.xp0[slot] + days.xp_rate[slot] * frac
+        self.yp = days.yp0[slot] + days.yp_rate[slot] * frac
+        self.sp = days.sp[slot]
+        self._days, self._slot, self._frac = days, slot, frac
+
+    @property
+    def gmst82(self):
+        days = self._days
+        return days.gmst0[self._slot] + days.gmst_rate[self._slot] * self._frac
+
+    def celestial_to_terrestrial(self):
+        """CIRS to ITRS matrices (astropy's ``cirs_to_itrs_mat``), shape (P, 3, 3)."""
+        return erfa.c2tcio(np.eye(3), self.era, erfa.pom00(self.xp, self.yp, self.sp))
+
+
+def _lagrange_weights(xi, offsets):
+    """Weights of the Lagrange polynomial through nodes at ``offsets`` at ``xi``."""
+    factors = xi[:, np.newaxis] - offsets
+    n = offsets.size
+    before = np.ones_like(factors)
+    after = np.ones_like(factors)
+    np.cumprod(factors[:, :-1], axis=1, out=before[:, 1:])
+    np.cumprod(factors[:, :0:-1], axis=1, out=after[:, -2::-1])
+    denominators = np.array([np.prod([offsets[k] - offsets[m] for m in range(n) if m != k])
+                             for k in range(n)])
+    return before * after / denominators
+
+
+class _Series:
+    """A slow quantity from ERFA on a grid of TT, interpolated to instants.
+
+    ``evaluate(tt1, tt2)`` returns an (M, C) array at M instants of TT.
+    Values at the grid nodes are kept, so that instants asked for later reuse
+    the nodes already computed.
+    """
+
+    def __init__(self, evaluate, spacing, order, tt1, tt2):
+        self.evaluate, self.spacing, self.order = evaluate, spacing, order
+        self.tt1, self.tt2 = tt1, tt2
+        self.offsets = np.arange(order) - (order // 2 - 1)
+        self._nodes = {}
+
+    def stencils(self, tt):
+        """Grid nodes (integers) needed for instants at ``tt``, and their index and weights."""
+        x = tt / self.spacing
+        j = np.floor(x)
+        distinct = np.unique(j)
+        needed = np.unique(distinct[:, np.newaxis] + self.offsets)
+        index = np.searchsorted(needed, j[:, np.newaxis] + self.offsets)
+        return needed, index, _lagrange_weights(x - j, self.offsets.astype(float))
+
+    def node_count(self, tt):
+        """How many grid nodes instants at ``tt`` need."""
+        distinct = np.unique(np.floor(tt / self.spacing))
+        return np.unique(distinct[:, np.newaxis] + self.offsets).size
+
+    def at(self, tt):
+        """The quantity at instants ``tt`` (days from the reference), shape (P, C)."""
+        if tt.size <= self.node_count(tt):
+            return self.evaluate(self.tt1, self.tt2 + tt)
+        needed, index, weights = self.stencils(tt)
+        values = self.nodes(needed)
+        out = weights[:, 0, np.newaxis] * values[index[:, 0]]
+        for k in range(1, self.order):
+            out += weights[:, k, np.newaxis] * values[index[:, k]]
+        return out
+
+    def nodes(self, needed):
+        """Values at grid nodes ``needed`` (integers), computing those not yet known."""
+        missing = [j for j in needed.tolist() if j not in self._nodes]
+        if missing:
+            tt = np.array(missing) * self.spacing
+            for j, row in zip(missing, self.evaluate(self.tt1, self.tt2 + tt)):
+                self._nodes[j] = row
+        return np.array([self._nodes[j] for j in needed.tolist()])
+
+
+def _cip(tt1, tt2):
+    """CIP X, Y and CIO locator s (IAU 2006/2000A, as astropy's ``get_cip``)."""
+    x, y = erfa.bpn2xy(erfa.pnm06a(tt1, tt2))
+    return np.stack([x, y, erfa.s06(tt1, tt2, x, y)], axis=-1)
+
+
+def _ephemeris(tt1, tt2):
+    """The Earth's heliocentric position, barycentric position and velocity (au, au/d).
+
+    At TDB = TT + ERFA ``dtdb`` (geocentric), as astropy's ``Time.tdb`` for a
+    time without location, from ERFA ``epv00``.
+    """
+    tdb2 = tt2 + erfa.dtdb(tt1, tt2, 0.0, 0.0, 0.0, 0.0) / _DAY
+    heliocentric, barycentric = erfa.epv00(tt1, tdb2)
+    return np.concatenate([heliocentric["p"], barycentric["p"], barycentric["v"]], axis=-1)
+
+
+def _chebyshev(degree):
+    """Chebyshev points of the first kind in (-1, 1) and the monomial fit through them."""
+    n = degree + 1
+    points = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    return points, np.linalg.inv(np.vander(points, n, increasing=True))
 
 
 class EarthOrientation:
-    """Earth rotation and CIRS interpolation for a set of epochs.
+    """Earth orientation, apparent directions and the Sun at a set of epochs.
+
+    The epochs object of the package: one instance serves every quantity at
+    its epochs, each computed as often as it needs (see `astropy_feedrot.earth`).
 
     Parameters
     ----------
     obstime : `~astropy.time.Time`
-        The epochs (any shape, any scale).
+        The epochs (any shape, any scale; UTC is the cheapest).
     step : `~astropy.units.Quantity`, optional
-        Spacing of the nodes (default `DEFAULT_STEP`).
+        Accepted for compatibility and checked, but no longer used: the
+        spacing of the exact evaluations is chosen per quantity and by the
+        density of the epochs.
 
     Raises
     ------
     ValueError
         If ``step`` is not positive or the epochs are not finite.
+
+    Notes
+    -----
+    Results are at the flattened epochs (``obstime.ravel()``): arrays of
+    shape (..., N, 3) or (N,) with N = ``obstime.size``.
 
     Examples
     --------
@@ -74,77 +394,115 @@ class EarthOrientation:
     >>> from astropy_feedrot.earth import EarthOrientation
     >>> times = Time("2023-01-25T00:00") + np.arange(1000) * u.min
     >>> orientation = EarthOrientation(times)
-    >>> orientation.nodes.size  # 67 quarter hours and the margins of the cubic
-    70
+    >>> orientation.nodes.size  # nodes of the nutation series, a day apart around the epochs
+    12
     """
 
     def __init__(self, obstime, step=DEFAULT_STEP):
         obstime = as_time(obstime)
-        step = u.Quantity(step, u.s).value
-        if not step > 0:
-            raise ValueError(f"step must be positive, got {step} s")
+        if step is not None:
+            step = u.Quantity(step, u.s).value
+            if not step > 0:
+                raise ValueError(f"step must be positive, got {step} s")
         self.obstime = obstime
         self.shape = obstime.shape
-        self.step = step
-        with iers_context(obstime):
-            tt = obstime.tt.ravel()
-            # Node grid on the UTC midnight before the first epoch.
-            first = Time(np.floor(np.min(obstime.utc.mjd)), format="mjd", scale="utc").tt
-            x = (tt.jd1 - first.jd1) * _DAY + (tt.jd2 - first.jd2) * _DAY
-            if not np.all(np.isfinite(x)):
-                raise ValueError("epochs must be finite")
-            k = np.floor(x / step).astype(np.int64)
-            self._fraction = x / step - k
-            used = np.zeros(k.max() - k.min() + 4, dtype=bool)
-            for offset in range(4):
-                used[k - k.min() + offset] = True
-            needed = np.flatnonzero(used) + k.min() - 1
-            self._index = np.searchsorted(needed, k - 1)
-            self.nodes = first + needed * step * u.s
-            self._tt = tt
-            nodes_tt = self.nodes.tt
-            ut1 = self.nodes.ut1
-            self._ut1_minus_tt = ((ut1.jd1 - nodes_tt.jd1) + (ut1.jd2 - nodes_tt.jd2)) * _DAY
-            xp, yp = get_polar_motion(self.nodes)
-            self._xp, self._yp = np.asarray(xp), np.asarray(yp)
-            self._sp = erfa.sp00(nodes_tt.jd1, nodes_tt.jd2)
-        self._era = None
-        self._gmst = None
+        self.size = obstime.size
+        flat = obstime.ravel()
+        if flat.masked:
+            flat = flat.unmasked
+        self._days = days = _Days(flat)
+        self._cip = _Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
+        self._velocity = _Series(_ephemeris, *_VELOCITY_GRID, days.tt1, days.tt2)
+        self._position = _Series(_ephemeris, *_POSITION_GRID, days.tt1, days.tt2)
+        self._epochs = None
 
-    def _linear(self, values):
-        i = self._index + 1
-        return values[i] + self._fraction * (values[i + 1] - values[i])
+    # --- the epochs themselves ---------------------------------------------
 
-    def _ut1(self):
-        return self._tt.jd1, self._tt.jd2 + self._linear(self._ut1_minus_tt) / _DAY
+    def _at_epochs(self):
+        if self._epochs is None:
+            self._epochs = self._days.at(self._days.slot, self._days.frac)
+        return self._epochs
 
     @property
     def era(self):
-        """ndarray: The Earth rotation angle (rad) at each epoch (flattened)."""
-        if self._era is None:
-            self._era = erfa.era00(*self._ut1())
-        return self._era
+        """ndarray: The Earth rotation angle (rad, in [0, 2 pi)) at each epoch (flattened)."""
+        return np.mod(self._at_epochs().era, 2 * np.pi)
 
     @property
     def gmst82(self):
         """ndarray: Greenwich mean sidereal time (IAU 1982, rad), as used with TEME."""
-        if self._gmst is None:
-            self._gmst = erfa.gmst82(*self._ut1())
-        return self._gmst
+        return np.mod(self._at_epochs().gmst82, 2 * np.pi)
 
-    def _polar_motion(self, x, y, z):
-        # W = R_x(-y_p) R_y(-x_p) R_z(s') (ERFA pom00), after R_z(ERA or GMST).
-        xp, yp = self._linear(self._xp), self._linear(self._yp)
-        cx, sx = np.cos(xp), np.sin(xp)
-        x, z = cx * x + sx * z, cx * z - sx * x
-        cy, sy = np.cos(yp), np.sin(yp)
-        y, z = cy * y - sy * z, cy * z + sy * y
-        return np.stack([x, y, z], axis=-1)
+    @property
+    def nodes(self):
+        """`~astropy.time.Time`: The instants (TT) at which ERFA's nutation series is evaluated.
 
-    def _to_itrs(self, vectors, angle):
+        Days of TT around the epochs, or the epochs themselves where they are
+        fewer; `interpolate` takes values given there to the epochs.
+        """
+        tt = self._at_epochs().tt
+        if tt.size <= self._cip.node_count(tt):
+            offsets = tt
+        else:
+            offsets = self._cip.stencils(tt)[0] * self._cip.spacing
+        return Time(self._days.tt1, self._days.tt2 + offsets, format="jd", scale="tt")
+
+    def interpolate(self, node_values):
+        """Interpolate values given at `nodes` to the epochs.
+
+        Parameters
+        ----------
+        node_values : array-like, shape (..., K, C)
+            Values at the K `nodes` of a quantity that changes over days.
+
+        Returns
+        -------
+        ndarray, shape (..., N, C)
+            At the flattened epochs: the Lagrange polynomial through 10 nodes
+            a day apart (or the values themselves where the nodes are the
+            epochs).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import astropy.units as u
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot.earth import EarthOrientation
+        >>> orientation = EarthOrientation(Time("2023-01-25") + np.arange(100) * u.hour)
+        >>> days = (orientation.nodes - orientation.nodes[0]).jd
+        >>> values = np.stack([days, days ** 2], axis=-1)  # a polynomial is reproduced
+        >>> result = orientation.interpolate(values)
+        >>> epochs = (orientation.obstime - orientation.nodes[0]).jd
+        >>> bool(np.allclose(result, np.stack([epochs, epochs ** 2], axis=-1), atol=1e-11))
+        True
+        """
+        node_values = np.asarray(node_values, dtype=float)
+        tt = self._at_epochs().tt
+        if tt.size <= self._cip.node_count(tt):
+            return node_values.copy()
+        _, index, weights = self._cip.stencils(tt)
+        out = weights[:, 0, np.newaxis] * node_values[..., index[:, 0], :]
+        for k in range(1, self._cip.order):
+            out += weights[:, k, np.newaxis] * node_values[..., index[:, k], :]
+        return out
+
+    # --- rotations at each epoch -------------------------------------------
+
+    def _rotate(self, vectors, angle, sp):
         vectors = np.asarray(vectors, dtype=float)
-        x, y = _rotate_z(vectors[..., 0], vectors[..., 1], angle)
-        return self._polar_motion(x, y, vectors[..., 2])
+        epochs = self._at_epochs()
+        c, s = np.cos(angle + sp), np.sin(angle + sp)
+        x = c * vectors[..., 0] + s * vectors[..., 1]
+        y = c * vectors[..., 1] - s * vectors[..., 0]
+        z = vectors[..., 2]
+        # W = R_x(-y_p) R_y(-x_p) (ERFA pom00); polar motion is below 1e-5 rad,
+        # so that cos = 1 - a**2 / 2 and sin = a are exact to 1e-17.
+        xp, yp = epochs.xp, epochs.yp
+        cx = 1 - 0.5 * xp * xp
+        x, z = cx * x + xp * z, cx * z - xp * x
+        cy = 1 - 0.5 * yp * yp
+        y, z = cy * y - yp * z, cy * z + yp * y
+        return np.stack([x, y, z], axis=-1)
 
     def cirs_to_itrs(self, vectors):
         """Rotate CIRS vectors to ITRS at each epoch.
@@ -157,6 +515,8 @@ class EarthOrientation:
         Returns
         -------
         ndarray, shape (..., N, 3)
+            W(x_p, y_p, s') R_z(ERA) applied to each, as astropy's
+            ``cirs_to_itrs_mat``.
 
         Examples
         --------
@@ -168,7 +528,8 @@ class EarthOrientation:
         >>> bool(np.allclose(z, [0, 0, 1], atol=1e-5))  # polar motion: below 1 arcsec
         True
         """
-        return self._to_itrs(vectors, self.era + self._linear(self._sp))
+        epochs = self._at_epochs()
+        return self._rotate(vectors, epochs.era, epochs.sp)
 
     def teme_to_itrs(self, vectors):
         """Rotate TEME vectors (SGP4 output) to ITRS at each epoch.
@@ -181,6 +542,8 @@ class EarthOrientation:
         Returns
         -------
         ndarray, shape (..., N, 3)
+            W(x_p, y_p, 0) R_z(GMST82) applied to each, as astropy's
+            ``teme_to_itrs_mat``.
 
         Examples
         --------
@@ -191,31 +554,9 @@ class EarthOrientation:
         >>> float(np.linalg.norm(orientation.teme_to_itrs([[7000.0, 0, 0]])))  # doctest: +FLOAT_CMP
         7000.0
         """
-        return self._to_itrs(vectors, self.gmst82)
+        return self._rotate(vectors, self._at_epochs().gmst82, 0.0)
 
-    def interpolate(self, node_values):
-        """Cubic interpolation of values given at the nodes.
-
-        Parameters
-        ----------
-        node_values : array-like, shape (..., K, 3)
-            Values at `nodes` (K of them).
-
-        Returns
-        -------
-        ndarray, shape (..., N, 3)
-            At the flattened epochs.
-        """
-        node_values = np.asarray(node_values, dtype=float)
-        p0, p1 = node_values[..., :-3, :], node_values[..., 1:-2, :]
-        p2, p3 = node_values[..., 2:-1, :], node_values[..., 3:, :]
-        # The cubic through nodes at -1, 0, 1, 2 in powers of the fraction,
-        # for every run of four nodes; each epoch picks its run and Horner.
-        coefficients = np.stack([p1, p2 - p0 / 3 - p1 / 2 - p3 / 6, (p0 + p2) / 2 - p1,
-                                 (p3 - p0) / 6 + (p1 - p2) / 2], axis=-2)
-        c = coefficients[..., self._index, :, :]
-        f = self._fraction[:, None]
-        return c[..., 0, :] + f * (c[..., 1, :] + f * (c[..., 2, :] + f * c[..., 3, :]))
+    # --- directions and the Sun at each epoch ------------------------------
 
     def source_directions(self, target, location):
         """Apparent topocentric ITRS directions of fixed celestial sources.
@@ -223,14 +564,24 @@ class EarthOrientation:
         Parameters
         ----------
         target : `~astropy.coordinates.SkyCoord`
-            Directions fixed in a celestial frame (shape S).
+            Directions fixed in a celestial frame (shape S), with or without
+            distance.
         location : `~astropy.coordinates.EarthLocation`
-            The site.
+            The site (a single one).
 
         Returns
         -------
         ndarray, shape S + (N, 3)
-            Unit vectors at the flattened epochs.
+            Unit vectors at the flattened epochs: astropy's
+            ``target.transform_to(ITRS(obstime=..., location=location))``
+            (aberration with the site's velocity, light deflection by the
+            Sun, precession-nutation, UT1 and polar motion), to about
+            0.001 mas.
+
+        Raises
+        ------
+        ValueError
+            If ``location`` holds more than one site.
 
         Examples
         --------
@@ -245,10 +596,149 @@ class EarthOrientation:
         >>> s.shape
         (100, 3)
         """
-        with iers_context(self.nodes), np.errstate(invalid="ignore"):
-            frame = CIRS(obstime=self.nodes, location=location)
-            cirs = target.reshape(target.shape + (1,)).transform_to(frame)
-        nodes = np.moveaxis(cirs.cartesian.xyz.value, 0, -1)
-        s = self.cirs_to_itrs(self.interpolate(nodes))
+        target = as_skycoord(target)
+        location = as_location(location)
+        if not location.isscalar:
+            raise ValueError(f"location must be a single site, got shape {location.shape}")
+        icrs = target if isinstance(target.frame, ICRS) else target.icrs
+        shape = icrs.shape
+        data = icrs.data.without_differentials()
+        unit_vectors = data.represent_as(UnitSphericalRepresentation)
+        pco = erfa.s2c(unit_vectors.lon.to_value(u.rad), unit_vectors.lat.to_value(u.rad))
+        pco = pco.reshape(-1, 3)
+        distance = None
+        if not _distance_less(data):
+            distance = icrs.spherical.distance.to_value(u.au).reshape(-1)
+        lon, lat, height = location.to_geodetic("WGS84")
+        site = (lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+
+        def evaluate(instants):
+            return self._directions_at(instants, pco, distance, site)
+
         with np.errstate(invalid="ignore"):
-            return s / np.linalg.norm(s, axis=-1, keepdims=True)
+            s = self._per_epoch(evaluate, pco.shape[0])
+            # The polynomials of the cells keep the length to about 1e-13.
+            s /= np.sqrt(np.einsum("...i,...i->...", s, s))[..., np.newaxis]
+        return s.reshape(shape + (self.size, 3))
+
+    def sun_position(self):
+        """Geocentric ITRS position of the Sun at each epoch, in metres.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            At the flattened epochs, as `astropy_feedrot.attitude.sun_position`
+            (ERFA ``epv00`` in GCRS, rotated to ITRS) to about 1e-13 rad.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot.earth import EarthOrientation
+        >>> sun = EarthOrientation(Time("2023-01-25")).sun_position()
+        >>> round(float(np.linalg.norm(sun) / 1.495978707e11), 3)  # au
+        0.984
+        """
+        return self._per_epoch(self._sun_at, 1)[0]
+
+    def _sun_at(self, instants):
+        x, y, s = self._cip.at(instants.tt).T
+        sun = -self._position.at(instants.tt)[:, 0:3] * _AU
+        cirs = erfa.rxp(erfa.c2ixys(x, y, s), sun)
+        return erfa.rxp(instants.celestial_to_terrestrial(), cirs)[np.newaxis]
+
+    def _directions_at(self, instants, pco, distance, site):
+        """Astropy's ICRS -> ITRS(location) at instants, with ERFA inputs interpolated."""
+        x, y, s = self._cip.at(instants.tt).T
+        ephemeris = (self._velocity if distance is None else self._position).at(instants.tt)
+        pv = np.empty(instants.size, erfa.dt_pv)
+        pv["p"], pv["v"] = ephemeris[:, 3:6], ephemeris[:, 6:9]
+        astrom = erfa.apco(instants.tt1, instants.tt2, pv, ephemeris[:, 0:3], x, y, s,
+                           instants.era, *site, instants.xp, instants.yp, instants.sp,
+                           0.0, 0.0)
+        eh, em = astrom["eh"], astrom["em"]
+        if distance is None:
+            p = q = pco[:, np.newaxis, :]
+        else:  # astropy's atciqz: parallax first, then deflection from the Sun
+            offset = distance[:, np.newaxis, np.newaxis] * pco[:, np.newaxis, :] - astrom["eb"]
+            r, p = erfa.pn(offset)
+            sun_distance, q = erfa.pn(em[:, np.newaxis] * eh + r[..., np.newaxis] * p)
+            q = np.where(sun_distance[..., np.newaxis] > 1e-10, q, p)
+        natural = erfa.ld(1.0, p, q, eh, em, 1e-6)
+        proper = erfa.ab(natural, astrom["v"], em, astrom["bm1"])
+        cirs = erfa.rxp(astrom["bpn"], proper)
+        return erfa.rxp(instants.celestial_to_terrestrial(), cirs)
+
+    def _per_epoch(self, evaluate, count):
+        """``evaluate`` (instants -> (count, P, 3)) at every epoch, through cells where they pay."""
+        days = self._days
+        choice = self._choose_cells()
+        if choice is None:
+            return evaluate(self._at_epochs())
+        per_day, degree = choice
+        scaled = days.frac * per_day
+        within = np.floor(scaled)
+        x = scaled - within
+        x *= 2
+        x -= 1
+        cells, slot = _distinct(days.day * per_day + within, 2 * self.size)
+        slot = slot()
+        counts = np.bincount(slot, minlength=cells.size)
+        # A cell pays when its epochs outnumber its points (with the Horner margin).
+        full = counts * (1 - _horner_cost(degree)) > degree + 1
+        coefficients = np.zeros((degree + 1, count, cells.size, 3))
+        if np.any(full):
+            coefficients[:, :, full] = self._cell_polynomials(evaluate, count, cells[full],
+                                                              per_day, degree)
+        out = _horner(coefficients, slot, x)
+        if not np.all(full[counts > 0]):
+            rest = np.flatnonzero(~full[slot])
+            out[:, rest] = evaluate(days.at(days.slot[rest], days.frac[rest]))
+        return out
+
+    def _choose_cells(self):
+        """The cells (per day, degree) that cost least, or None for the epochs themselves."""
+        days = self._days
+        n = self.size
+        if n < 2:
+            return None
+        span = float(days.u.max() - days.u.min())
+        best, best_cost = None, float(n)
+        for per_day, degree in _CELLS:
+            occupied = min(n, np.ceil(span * per_day) + 1)
+            cost = occupied * (degree + 1) + n * _horner_cost(degree)
+            if cost < best_cost:
+                best, best_cost = (per_day, degree), cost
+        return best
+
+    def _cell_polynomials(self, evaluate, count, cells, per_day, degree):
+        """Monomial coefficients (degree + 1, count, cells, 3) of each cell's polynomial."""
+        days = self._days
+        points, inverse = _chebyshev(degree)
+        day = np.floor(cells / per_day)
+        within = cells - day * per_day
+        frac = (within[:, np.newaxis] + (points + 1) / 2) / per_day
+        instants = days.at(np.repeat(days.slot_of(day), points.size), frac.ravel())
+        values = evaluate(instants).reshape(count, cells.size, points.size, 3)
+        coefficients = np.empty((degree + 1, count, cells.size, 3))
+        for k in range(degree + 1):
+            total = inverse[k, 0] * values[:, :, 0]
+            for j in range(1, points.size):
+                total += inverse[k, j] * values[:, :, j]
+            coefficients[k] = total
+        return coefficients
+
+
+def _horner_cost(degree):
+    """Cost of a polynomial of ``degree`` at an epoch, in exact evaluations at an instant."""
+    return _HORNER_BASE + _HORNER_PER_DEGREE * degree
+
+
+def _horner(coefficients, slot, x):
+    """Evaluate each epoch's cell polynomial: coefficients (m + 1, S, cells, 3) -> (S, N, 3)."""
+    x = x[:, np.newaxis]
+    out = np.take(coefficients[-1], slot, axis=1)
+    for k in range(coefficients.shape[0] - 2, -1, -1):
+        out *= x
+        out += np.take(coefficients[k], slot, axis=1)
+    return out
