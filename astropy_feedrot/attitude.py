@@ -116,8 +116,9 @@ def interpolated_sun_position(orientation):
     Returns
     -------
     ndarray, shape (N, 3)
-        Metres, at the N flattened epochs of ``orientation``; within 1e-12 rad
-        of `sun_position` in direction and 1e-12 in relative distance.
+        Metres, at the N flattened epochs of ``orientation``; within 1e-11 rad
+        of `sun_position` in direction and 1e-11 in relative distance (about
+        1e-12 for both).
 
     Examples
     --------

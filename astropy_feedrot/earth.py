@@ -198,8 +198,6 @@ class _Days:
         jd1 = np.asarray(obstime.jd1, dtype=float).ravel()
         jd2 = np.asarray(obstime.jd2, dtype=float).ravel()
         total = jd1 + jd2
-        if not np.all(np.isfinite(total)):
-            raise ValueError("epochs must be finite")
         first, last = int(np.argmin(total)), int(np.argmax(total))
         with iers_context(obstime[[first, last]]):
             if obstime.scale != "utc":
@@ -378,8 +376,10 @@ class EarthOrientation:
 
     Raises
     ------
+    TypeError
+        If ``obstime`` is not a time (see `~astropy_feedrot.inputs.as_time`).
     ValueError
-        If ``step`` is not positive or the epochs are not finite.
+        If ``step`` is not positive.
 
     Notes
     -----
@@ -628,7 +628,7 @@ class EarthOrientation:
         -------
         ndarray, shape (N, 3)
             At the flattened epochs, as `astropy_feedrot.attitude.sun_position`
-            (ERFA ``epv00`` in GCRS, rotated to ITRS) to about 1e-13 rad.
+            (ERFA ``epv00`` in GCRS, rotated to ITRS) to about 1e-12 rad.
 
         Examples
         --------
