@@ -33,6 +33,8 @@ and at no number of epochs more than astropy's own transformation (see
 `fast_path_applies`).
 """
 
+import math
+
 import erfa
 import numpy as np
 from astropy import units as u
@@ -78,17 +80,31 @@ FAST_PATH_MIN_DISTANCE = 1 * u.au
 _DAY = 86400.0
 # d(ERA)/d(UT1) in radians per day (ERFA era00).
 _ERA_RATE = 2 * np.pi * 1.00273781191135448
+# The Earth's angular velocity in rad/s, as ERFA's pvtob.
+_OMEGA = _ERA_RATE / 86400.0
+# Metres per second in au per day, and au per day in units of c (ERFA apcs).
+_AU_PER_DAY = erfa.DAU / 86400.0
+_C_AU_PER_DAY = erfa.DAU / erfa.CMPS / 86400.0
 _AU = erfa.DAU  # metres
 
 # Slow series: (node spacing in days of TT, number of nodes per Lagrange polynomial).
-# X, Y, s: 12 nodes a day apart interpolate the nutation's 5- to 14-day terms to
-# 0.00015 mas. The ephemeris: 8 nodes 1.5 days apart give the velocity to 2e-4 m/s
-# (0.0001 mas of aberration), enough for distant sources; 10 nodes a day apart give
-# the positions to 0.2 m, for the Sun (1e-12 rad) and the parallax of sources with
-# a distance (0.0002 mas at 1 au).
-_CIP_GRID = (1.0, 12)
-_VELOCITY_GRID = (1.5, 8)
-_POSITION_GRID = (1.0, 10)
+# X, Y, s: 16 nodes a day apart interpolate the nutation's 5- to 14-day terms to
+# 0.00002 mas (1e-13 rad). The ephemeris: 10 nodes 1.5 days apart give the Earth's
+# velocity to 5e-5 m/s (0.00003 mas of aberration), enough for sources without a
+# distance; 14 nodes a day apart give the positions to 1 cm, for the Sun (1e-13 rad)
+# and the parallax of sources with a distance.
+_CIP_GRID = (1.0, 16)
+_VELOCITY_GRID = (1.5, 10)
+_POSITION_GRID = (1.0, 14)
+# With fewer than _SPARSE epochs per node of _CIP_GRID the nodes cost more than the
+# epochs, and sparser grids take over for the directions of sources (the Sun keeps
+# the others): 0.002 mas for X and Y, 0.0012 m/s (0.0008 mas).
+_SPARSE = 100
+_SPARSE_CIP_GRID = (1.5, 24)
+_SPARSE_VELOCITY_GRID = (2.5, 20)
+# With many instants in an interval of a grid, the interpolant is reduced there to
+# a polynomial of this degree (Chebyshev points), below 1e-6 mas.
+_PIECE_DEGREE = 5
 
 # Cells of UTC: (cells per day, polynomial degree). The direction turns with the
 # Earth by 2 pi / (cells per day) within a cell; these degrees keep the error of
@@ -226,28 +242,39 @@ class _Days:
         return np.searchsorted(self.days, day)
 
     def _tables(self):
+        # Values at the start of each day and of the next one: within a UTC day
+        # they are linear, and continuous across midnights (a leap second is
+        # spread over its day).
         days = self.days
-        t = Time(self.ref.jd1 + np.stack([days, days]),
-                 self.ref.jd2 + np.array([[0.0], [0.5]]), format="jd", scale="utc")
+        starts = np.union1d(days, days + 1)
+        this, following = np.searchsorted(starts, days), np.searchsorted(starts, days + 1)
+        t = Time(self.ref.jd1 + starts, np.full(starts.shape, self.ref.jd2),
+                 format="jd", scale="utc")
         tt, ut1 = t.tt, t.ut1
         # TT is counted in days from the start of the first day of the tables.
-        self.tt1, self.tt2 = float(tt.jd1[0, 0]), float(tt.jd2[0, 0])
-        tt_rel = (tt.jd1 - self.tt1) + (tt.jd2 - self.tt2)
-        self.tt0, self.tt_rate = tt_rel[0], 2 * (tt_rel[1] - tt_rel[0])
-        ut1_rate = 2 * ((ut1.jd1[1] - ut1.jd1[0]) + (ut1.jd2[1] - ut1.jd2[0]))
-        self.era0 = erfa.era00(ut1.jd1[0], ut1.jd2[0])
-        self.era_rate = _ERA_RATE * ut1_rate
+        self.tt1, self.tt2 = float(tt.jd1[0]), float(tt.jd2[0])
+        self.tt0 = ((tt.jd1 - self.tt1) + (tt.jd2 - self.tt2))[this]
+        self.tt_rate = _length(tt, this, following)
+        era = erfa.era00(ut1.jd1, ut1.jd2)
+        self.era0 = era[this]
+        self.era_rate = _ERA_RATE * _length(ut1, this, following)
         gmst = erfa.gmst82(ut1.jd1, ut1.jd2)
-        self.gmst0 = gmst[0]
-        self.gmst_rate = 2 * np.mod(gmst[1] - gmst[0], 2 * np.pi)
+        self.gmst0 = gmst[this]
+        # GMST turns by a little more than 2 pi in a day.
+        self.gmst_rate = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
         xp, yp = get_polar_motion(t)
-        self.xp0, self.xp_rate = xp[0], 2 * (xp[1] - xp[0])
-        self.yp0, self.yp_rate = yp[0], 2 * (yp[1] - yp[0])
-        self.sp = erfa.sp00(tt.jd1[0], tt.jd2[0])
+        self.xp0, self.xp_rate = xp[this], xp[following] - xp[this]
+        self.yp0, self.yp_rate = yp[this], yp[following] - yp[this]
+        self.sp = erfa.sp00(tt.jd1[this], tt.jd2[this])
 
     def at(self, slot, frac):
         """The quantities at instants given by day slots and fractions of day."""
         return _Instants(self, slot, frac)
+
+
+def _length(t, this, following):
+    """Days from ``t[this]`` to ``t[following]``, to the precision of the two-part JD."""
+    return (t.jd1[following] - t.jd1[this]) + (t.jd2[following] - t.jd2[this])
 
 
 class _Instants:
@@ -268,22 +295,73 @@ class _Instants:
         days = self._days
         return days.gmst0[self._slot] + days.gmst_rate[self._slot] * self._frac
 
-    def celestial_to_terrestrial(self):
-        """CIRS to ITRS matrices (astropy's ``cirs_to_itrs_mat``), shape (P, 3, 3)."""
-        return erfa.c2tcio(np.eye(3), self.era, erfa.pom00(self.xp, self.yp, self.sp))
+    def to_itrs(self, vectors):
+        """CIRS vectors (..., P, 3) to ITRS, as astropy's ``cirs_to_itrs_mat``."""
+        return _terrestrial(vectors, self.era + self.sp, self.xp, self.yp)
+
+    def site(self, xyz):
+        """Position and velocity (m, m/s) in CIRS of a site at ITRS ``xyz`` (ERFA ``pvtob``)."""
+        x, y, z = xyz
+        # ERFA's pom00 transposed: R_z(-s') R_y(x_p) R_x(y_p), then R_z(-ERA).
+        cy, sy = np.cos(self.yp), np.sin(self.yp)
+        y, z = cy * y + sy * z, cy * z - sy * y
+        cx, sx = np.cos(self.xp), np.sin(self.xp)
+        x, z = cx * x - sx * z, cx * z + sx * x
+        angle = self.era + self.sp
+        c, s = np.cos(angle), np.sin(angle)
+        position = np.stack([c * x - s * y, s * x + c * y, z], axis=-1)
+        velocity = _OMEGA * np.stack([-s * x - c * y, c * x - s * y, np.zeros_like(x)], axis=-1)
+        return position, velocity
+
+
+def _terrestrial(vectors, angle, xp, yp):
+    """W(x_p, y_p) R_z(angle) applied to vectors (..., N, 3); W = R_x(-y_p) R_y(-x_p).
+
+    Polar motion is below 1e-5 rad, so that cos = 1 - a**2 / 2 and sin = a
+    are exact to 1e-17.
+    """
+    vectors = np.asarray(vectors, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    x = c * vectors[..., 0] + s * vectors[..., 1]
+    y = c * vectors[..., 1] - s * vectors[..., 0]
+    z = vectors[..., 2]
+    cx = 1 - 0.5 * xp * xp
+    x, z = cx * x + xp * z, cx * z - xp * x
+    cy = 1 - 0.5 * yp * yp
+    y, z = cy * y - yp * z, cy * z + yp * y
+    return np.stack([x, y, z], axis=-1)
+
+
+def _node_count(days, *grids):
+    """About how many nodes of these grids a series of ``days`` days needs."""
+    return sum(days / spacing + order for spacing, order in grids)
 
 
 def _lagrange_weights(xi, offsets):
-    """Weights of the Lagrange polynomial through nodes at ``offsets`` at ``xi``."""
-    factors = xi[:, np.newaxis] - offsets
+    """Weights (P, n) of the Lagrange polynomials through nodes at integer ``offsets``.
+
+    The barycentric form for consecutive integers: w_k = b_k / (xi - o_k),
+    normalized, with b_k = (-1)**k binomial(n - 1, k).
+    """
     n = offsets.size
-    before = np.ones_like(factors)
-    after = np.ones_like(factors)
-    np.cumprod(factors[:, :-1], axis=1, out=before[:, 1:])
-    np.cumprod(factors[:, :0:-1], axis=1, out=after[:, -2::-1])
-    denominators = np.array([np.prod([offsets[k] - offsets[m] for m in range(n) if m != k])
-                             for k in range(n)])
-    return before * after / denominators
+    b = np.array([(-1) ** k * math.comb(n - 1, k) for k in range(n)], dtype=float)
+    distance = xi[:, np.newaxis] - offsets
+    with np.errstate(divide="ignore", invalid="ignore"):
+        weights = b / distance
+        weights /= weights.sum(axis=1, keepdims=True)
+    on_node = distance == 0
+    rows = np.any(on_node, axis=1)
+    if np.any(rows):
+        weights[rows] = on_node[rows]
+    return weights
+
+
+def _combine(values, start, weights):
+    """Sum of ``weights[:, k]`` times ``values[start + k]`` (values (M, ...) -> (P, ...))."""
+    out = weights[:, 0, np.newaxis] * values[start]
+    for k in range(1, weights.shape[1]):
+        out += weights[:, k, np.newaxis] * values[start + k]
+    return out
 
 
 class _Series:
@@ -300,30 +378,47 @@ class _Series:
         self.offsets = np.arange(order) - (order // 2 - 1)
         self._nodes = {}
 
-    def stencils(self, tt):
-        """Grid nodes (integers) needed for instants at ``tt``, and their index and weights."""
-        x = tt / self.spacing
-        j = np.floor(x)
-        distinct = np.unique(j)
-        needed = np.unique(distinct[:, np.newaxis] + self.offsets)
-        index = np.searchsorted(needed, j[:, np.newaxis] + self.offsets)
-        return needed, index, _lagrange_weights(x - j, self.offsets.astype(float))
+    def plan(self, tt):
+        """Grid nodes (integers, sorted) needed by instants at ``tt``, or None.
 
-    def node_count(self, tt):
-        """How many grid nodes instants at ``tt`` need."""
-        distinct = np.unique(np.floor(tt / self.spacing))
-        return np.unique(distinct[:, np.newaxis] + self.offsets).size
+        None when there are no more instants than the nodes they would need:
+        ERFA is then evaluated at the instants themselves.
+        """
+        needed = np.unique(np.unique(np.floor(tt / self.spacing))[:, np.newaxis]
+                           + self.offsets)
+        return None if tt.size <= needed.size else needed
 
     def at(self, tt):
-        """The quantity at instants ``tt`` (days from the reference), shape (P, C)."""
-        if tt.size <= self.node_count(tt):
+        """The quantity at instants ``tt`` (days from the reference), shape (P, C).
+
+        From ERFA at the instants, the Lagrange polynomial through the grid
+        nodes around each instant, or, with many instants per interval of the
+        grid, that polynomial reduced to a Chebyshev interpolant of degree
+        `_PIECE_DEGREE` in each interval (below 1e-6 mas).
+        """
+        x = tt / self.spacing
+        j = np.floor(x)
+        intervals, slot = np.unique(j, return_inverse=True)
+        needed = np.unique(intervals[:, np.newaxis] + self.offsets)
+        if tt.size <= needed.size:
             return self.evaluate(self.tt1, self.tt2 + tt)
-        needed, index, weights = self.stencils(tt)
         values = self.nodes(needed)
-        out = weights[:, 0, np.newaxis] * values[index[:, 0]]
-        for k in range(1, self.order):
-            out += weights[:, k, np.newaxis] * values[index[:, k]]
-        return out
+        # The nodes of a stencil are consecutive integers, hence consecutive in needed.
+        first = np.searchsorted(needed, intervals + self.offsets[0])
+        offsets = self.offsets.astype(float)
+        if tt.size <= 2 * (_PIECE_DEGREE + 1) * intervals.size:
+            return _combine(values, first[slot], _lagrange_weights(x - j, offsets))
+        points, inverse = _chebyshev(_PIECE_DEGREE)
+        weights = _lagrange_weights((points + 1) / 2, offsets)  # (K, order), every interval
+        at_points = [_combine(values, first, np.broadcast_to(w, (first.size, w.size)))
+                     for w in weights]  # K arrays (intervals, C)
+        coefficients = np.empty((_PIECE_DEGREE + 1, 1) + at_points[0].shape)
+        for k in range(_PIECE_DEGREE + 1):
+            total = inverse[k, 0] * at_points[0]
+            for i in range(1, len(at_points)):
+                total += inverse[k, i] * at_points[i]
+            coefficients[k, 0] = total
+        return _horner(coefficients, slot.reshape(-1), 2 * (x - j) - 1)[0]
 
     def nodes(self, needed):
         """Values at grid nodes ``needed`` (integers), computing those not yet known."""
@@ -350,6 +445,17 @@ def _ephemeris(tt1, tt2):
     tdb2 = tt2 + erfa.dtdb(tt1, tt2, 0.0, 0.0, 0.0, 0.0) / _DAY
     heliocentric, barycentric = erfa.epv00(tt1, tdb2)
     return np.concatenate([heliocentric["p"], barycentric["p"], barycentric["v"]], axis=-1)
+
+
+def _velocity(tt1, tt2):
+    """The Earth's heliocentric position and barycentric velocity (au, au/d) at TDB = TT.
+
+    Enough for sources without a distance: over the 1.7 ms of TDB - TT the
+    velocity changes by 1e-5 m/s (7e-6 mas of aberration) and the
+    heliocentric direction by 3e-10 rad.
+    """
+    heliocentric, barycentric = erfa.epv00(tt1, tt2)
+    return np.concatenate([heliocentric["p"], barycentric["v"]], axis=-1)
 
 
 def _chebyshev(degree):
@@ -395,7 +501,7 @@ class EarthOrientation:
     >>> times = Time("2023-01-25T00:00") + np.arange(1000) * u.min
     >>> orientation = EarthOrientation(times)
     >>> orientation.nodes.size  # nodes of the nutation series, a day apart around the epochs
-    12
+    16
     """
 
     def __init__(self, obstime, step=DEFAULT_STEP):
@@ -411,8 +517,14 @@ class EarthOrientation:
         if flat.masked:
             flat = flat.unmasked
         self._days = days = _Days(flat)
-        self._cip = _Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
-        self._velocity = _Series(_ephemeris, *_VELOCITY_GRID, days.tt1, days.tt2)
+        self._sun_cip = _Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
+        self._cip = self._sun_cip
+        self._velocity = _Series(_velocity, *_VELOCITY_GRID, days.tt1, days.tt2)
+        if (self.size < _SPARSE * _node_count(days.days.size, _CIP_GRID)
+                and _node_count(days.days.size, _SPARSE_CIP_GRID, _SPARSE_VELOCITY_GRID)
+                < _node_count(days.days.size, _CIP_GRID, _VELOCITY_GRID)):
+            self._cip = _Series(_cip, *_SPARSE_CIP_GRID, days.tt1, days.tt2)
+            self._velocity = _Series(_velocity, *_SPARSE_VELOCITY_GRID, days.tt1, days.tt2)
         self._position = _Series(_ephemeris, *_POSITION_GRID, days.tt1, days.tt2)
         self._epochs = None
 
@@ -435,16 +547,16 @@ class EarthOrientation:
 
     @property
     def nodes(self):
-        """`~astropy.time.Time`: The instants (TT) at which ERFA's nutation series is evaluated.
+        """`~astropy.time.Time`: Instants (TT) at which slow quantities are evaluated exactly.
 
-        Days of TT around the epochs, or the epochs themselves where they are
-        fewer; `interpolate` takes values given there to the epochs.
+        Days of TT around the epochs (those at which ERFA's nutation series is
+        evaluated for the Sun, and for sources unless the epochs are sparse),
+        or the epochs themselves where they are fewer; `interpolate` takes
+        values given there to the epochs.
         """
         tt = self._at_epochs().tt
-        if tt.size <= self._cip.node_count(tt):
-            offsets = tt
-        else:
-            offsets = self._cip.stencils(tt)[0] * self._cip.spacing
+        needed = self._sun_cip.plan(tt)
+        offsets = tt if needed is None else needed * self._sun_cip.spacing
         return Time(self._days.tt1, self._days.tt2 + offsets, format="jd", scale="tt")
 
     def interpolate(self, node_values):
@@ -458,7 +570,7 @@ class EarthOrientation:
         Returns
         -------
         ndarray, shape (..., N, C)
-            At the flattened epochs: the Lagrange polynomial through 10 nodes
+            At the flattened epochs: the Lagrange polynomial through 16 nodes
             a day apart (or the values themselves where the nodes are the
             epochs).
 
@@ -477,32 +589,20 @@ class EarthOrientation:
         True
         """
         node_values = np.asarray(node_values, dtype=float)
+        series = self._sun_cip
         tt = self._at_epochs().tt
-        if tt.size <= self._cip.node_count(tt):
+        needed = series.plan(tt)
+        if needed is None:
             return node_values.copy()
-        _, index, weights = self._cip.stencils(tt)
-        out = weights[:, 0, np.newaxis] * node_values[..., index[:, 0], :]
-        for k in range(1, self._cip.order):
-            out += weights[:, k, np.newaxis] * node_values[..., index[:, k], :]
-        return out
+        x = tt / series.spacing
+        j = np.floor(x)
+        start = np.searchsorted(needed, j + series.offsets[0])
+        weights = _lagrange_weights(x - j, series.offsets.astype(float))
+        return np.moveaxis(_combine(np.moveaxis(node_values, -2, 0), start,
+                                    weights[(...,) + (np.newaxis,) * (node_values.ndim - 2)]),
+                           0, -2)
 
     # --- rotations at each epoch -------------------------------------------
-
-    def _rotate(self, vectors, angle, sp):
-        vectors = np.asarray(vectors, dtype=float)
-        epochs = self._at_epochs()
-        c, s = np.cos(angle + sp), np.sin(angle + sp)
-        x = c * vectors[..., 0] + s * vectors[..., 1]
-        y = c * vectors[..., 1] - s * vectors[..., 0]
-        z = vectors[..., 2]
-        # W = R_x(-y_p) R_y(-x_p) (ERFA pom00); polar motion is below 1e-5 rad,
-        # so that cos = 1 - a**2 / 2 and sin = a are exact to 1e-17.
-        xp, yp = epochs.xp, epochs.yp
-        cx = 1 - 0.5 * xp * xp
-        x, z = cx * x + xp * z, cx * z - xp * x
-        cy = 1 - 0.5 * yp * yp
-        y, z = cy * y - yp * z, cy * z + yp * y
-        return np.stack([x, y, z], axis=-1)
 
     def cirs_to_itrs(self, vectors):
         """Rotate CIRS vectors to ITRS at each epoch.
@@ -528,8 +628,7 @@ class EarthOrientation:
         >>> bool(np.allclose(z, [0, 0, 1], atol=1e-5))  # polar motion: below 1 arcsec
         True
         """
-        epochs = self._at_epochs()
-        return self._rotate(vectors, epochs.era, epochs.sp)
+        return self._at_epochs().to_itrs(vectors)
 
     def teme_to_itrs(self, vectors):
         """Rotate TEME vectors (SGP4 output) to ITRS at each epoch.
@@ -554,7 +653,8 @@ class EarthOrientation:
         >>> float(np.linalg.norm(orientation.teme_to_itrs([[7000.0, 0, 0]])))  # doctest: +FLOAT_CMP
         7000.0
         """
-        return self._rotate(vectors, self._at_epochs().gmst82, 0.0)
+        epochs = self._at_epochs()
+        return _terrestrial(vectors, epochs.gmst82, epochs.xp, epochs.yp)
 
     # --- directions and the Sun at each epoch ------------------------------
 
@@ -609,8 +709,9 @@ class EarthOrientation:
         distance = None
         if not _distance_less(data):
             distance = icrs.spherical.distance.to_value(u.au).reshape(-1)
+        # As ERFA's pvtob inside apco, from astropy's WGS84 geodetic coordinates.
         lon, lat, height = location.to_geodetic("WGS84")
-        site = (lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+        site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
 
         def evaluate(instants):
             return self._directions_at(instants, pco, distance, site)
@@ -642,32 +743,41 @@ class EarthOrientation:
         return self._per_epoch(self._sun_at, 1)[0]
 
     def _sun_at(self, instants):
-        x, y, s = self._cip.at(instants.tt).T
+        x, y, s = self._sun_cip.at(instants.tt).T
         sun = -self._position.at(instants.tt)[:, 0:3] * _AU
-        cirs = erfa.rxp(erfa.c2ixys(x, y, s), sun)
-        return erfa.rxp(instants.celestial_to_terrestrial(), cirs)[np.newaxis]
+        return instants.to_itrs(erfa.rxp(erfa.c2ixys(x, y, s), sun))[np.newaxis]
 
     def _directions_at(self, instants, pco, distance, site):
-        """Astropy's ICRS -> ITRS(location) at instants, with ERFA inputs interpolated."""
+        """Astropy's ICRS -> ITRS(location) at instants (ERFA apco and astropy's atciqz).
+
+        ``pco`` are the (S, 3) ICRS unit vectors, ``distance`` their distances
+        in au or None, ``site`` the ITRS position of the site in metres.
+        """
         x, y, s = self._cip.at(instants.tt).T
-        ephemeris = (self._velocity if distance is None else self._position).at(instants.tt)
-        pv = np.empty(instants.size, erfa.dt_pv)
-        pv["p"], pv["v"] = ephemeris[:, 3:6], ephemeris[:, 6:9]
-        astrom = erfa.apco(instants.tt1, instants.tt2, pv, ephemeris[:, 0:3], x, y, s,
-                           instants.era, *site, instants.xp, instants.yp, instants.sp,
-                           0.0, 0.0)
-        eh, em = astrom["eh"], astrom["em"]
+        bpn = erfa.c2ixys(x, y, s)
+        position, velocity = instants.site(site)
+        # The site in GCRS, in au and in au/day (ERFA apco, apcs).
+        dp = erfa.trxp(bpn, position) / _AU
+        dv = erfa.trxp(bpn, velocity) / _AU_PER_DAY
+        if distance is None:
+            ephemeris = self._velocity.at(instants.tt)
+            heliocentric, barycentric_v = ephemeris[:, 0:3], ephemeris[:, 3:6]
+        else:
+            ephemeris = self._position.at(instants.tt)
+            heliocentric, barycentric_v = ephemeris[:, 0:3], ephemeris[:, 6:9]
+        em, eh = erfa.pn(heliocentric + dp)
+        v = (barycentric_v + dv) * _C_AU_PER_DAY
+        bm1 = np.sqrt(1.0 - np.einsum("...i,...i->...", v, v))
         if distance is None:
             p = q = pco[:, np.newaxis, :]
         else:  # astropy's atciqz: parallax first, then deflection from the Sun
-            offset = distance[:, np.newaxis, np.newaxis] * pco[:, np.newaxis, :] - astrom["eb"]
-            r, p = erfa.pn(offset)
+            eb = ephemeris[:, 3:6] + dp
+            r, p = erfa.pn(distance[:, np.newaxis, np.newaxis] * pco[:, np.newaxis, :] - eb)
             sun_distance, q = erfa.pn(em[:, np.newaxis] * eh + r[..., np.newaxis] * p)
             q = np.where(sun_distance[..., np.newaxis] > 1e-10, q, p)
         natural = erfa.ld(1.0, p, q, eh, em, 1e-6)
-        proper = erfa.ab(natural, astrom["v"], em, astrom["bm1"])
-        cirs = erfa.rxp(astrom["bpn"], proper)
-        return erfa.rxp(instants.celestial_to_terrestrial(), cirs)
+        proper = erfa.ab(natural, v, em, bm1)
+        return instants.to_itrs(erfa.rxp(bpn, proper))
 
     def _per_epoch(self, evaluate, count):
         """``evaluate`` (instants -> (count, P, 3)) at every epoch, through cells where they pay."""
