@@ -5,32 +5,32 @@ Astropy's transformation from a celestial frame to the topocentric ITRS
 (``ITRS(location=...)``) spends nearly all its time on two series that change
 over days: precession-nutation (ERFA ``pnm06a``, whose CIP coordinates X, Y
 and CIO locator s set the GCRS to CIRS rotation) and the Earth's ephemeris
-(``epv00``: barycentric position and velocity, heliocentric position, which
-set the annual aberration and the light deflection). `EarthOrientation`
-evaluates exactly what astropy evaluates (ERFA ``apco`` with astropy's
-``atciqz``: deflection ``ld``, aberration ``ab``, then the CIO-based rotation
-to ITRS), but takes each input where it is cheap:
+(``epv00``: barycentric velocity and heliocentric position, which set the
+annual aberration and the light deflection by the Sun). `EarthOrientation`
+computes what astropy computes (ERFA ``apco`` and astropy's ``atciqz``:
+deflection ``ld``, aberration ``ab`` with the site's velocity, the CIO-based
+rotation to ITRS), but takes each input where it is cheap:
 
 * UT1 - UTC, polar motion and TT - UTC are linear within each UTC day (the
-  IERS values are daily and astropy interpolates them linearly; UTC days are
-  86,401 s long across a leap second): they are looked up once at the start
-  and the middle of each day with epochs, and the Earth rotation angle, GMST
-  1982, the TIO locator s' and polar motion follow exactly at any instant;
-* X, Y and s come from ERFA every day of TT and the ephemeris every two days,
-  interpolated by Lagrange polynomials through 10 and 8 nodes (below 0.001
-  mas and 1 mm/s), or from ERFA at the instants themselves when they are
-  fewer than the nodes;
-* the diurnal aberration (the site's velocity), the Earth's rotation and polar
-  motion are computed at each instant.
+  IERS values are daily and astropy interpolates them linearly; ERFA spreads
+  a leap second over its day): astropy gives them once at the start of each
+  day with epochs and of the next, and the Earth rotation angle, GMST 1982,
+  TT and polar motion follow exactly at any instant;
+* X, Y and s come from ERFA every day of TT, the ephemeris every 1.5 days,
+  through Lagrange polynomials of 16 and 10 nodes (1e-13 rad and 5e-5 m/s);
+  for sparse epochs over long spans (fewer than 100 per node) every 1.5 and
+  2.5 days through 24 and 20 nodes (0.002 mas and 0.0012 m/s); or from ERFA
+  at the instants themselves when they are fewer than the nodes;
+* the site's position and velocity (diurnal aberration), the Earth's
+  rotation and polar motion are computed at each instant.
 
 Many epochs close together share the work: within each cell of a fixed grid
 of UTC (15 min to 4 h, chosen by the density of the epochs, never across a
-UTC midnight) the ITRS direction is evaluated exactly at the Chebyshev points
-of the cell and is a polynomial (degree 5 to 11) in time at every epoch, good
-to about 1e-13 rad; cells with too few epochs are evaluated at the epochs.
-The cost is a few ERFA series per day of the span plus about 0.1 us per epoch,
-and at no number of epochs more than astropy's own transformation (see
-`fast_path_applies`).
+UTC midnight) the ITRS direction is computed at the Chebyshev points of the
+cell and is a polynomial (degree 5 to 10) in time at every epoch, to 3e-5 mas;
+cells with too few epochs are computed at the epochs. The cost is a few ERFA
+series per day of the span and under 0.1 us per epoch, and at no number of
+epochs more than astropy's own transformation (see `fast_path_applies`).
 """
 
 import math
@@ -114,8 +114,8 @@ _CELLS = ((96, 5), (48, 6), (24, 7), (12, 8), (6, 10))
 # Cost model of the choice between cells and evaluation at the epochs, in
 # units of one exact evaluation at an instant: a polynomial of degree m costs
 # (_HORNER_BASE + _HORNER_PER_DEGREE * m) per epoch.
-_HORNER_BASE = 0.01
-_HORNER_PER_DEGREE = 0.006
+_HORNER_BASE = 0.05
+_HORNER_PER_DEGREE = 0.015
 
 
 def fast_path_applies(target, obstime):
@@ -123,9 +123,10 @@ def fast_path_applies(target, obstime):
 
     This is the one rule of the package for its fast path. Where it holds,
     directions, rotations and the Sun come from `EarthOrientation`, which
-    agrees with astropy's transformation at every epoch to about 0.001 mas
-    and costs less at any number of epochs; elsewhere astropy's frames are
-    used at every epoch.
+    agrees with astropy's transformation at every epoch to 0.0001 mas (0.003
+    mas for sparse epochs over long spans) and costs less at any number of
+    epochs (``benchmarks/natural.py`` measures it); elsewhere astropy's frames
+    are used at every epoch.
 
     Parameters
     ----------
@@ -144,6 +145,13 @@ def fast_path_applies(target, obstime):
         (or has no distance), and its shape and that of ``obstime`` pair every
         target with every epoch (or there is one target); the shapes (3, 1)
         and (24,) do, (24,) and (24,) do not.
+
+    Raises
+    ------
+    TypeError
+        If ``obstime`` is not a time or ``target`` not a coordinate (see
+        `~astropy_feedrot.inputs.as_time` and
+        `~astropy_feedrot.inputs.as_skycoord`).
 
     Examples
     --------
