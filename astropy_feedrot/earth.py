@@ -418,14 +418,11 @@ class _Series:
             return _combine(values, first[slot], _lagrange_weights(x - j, offsets))
         points, inverse = _chebyshev(_PIECE_DEGREE)
         weights = _lagrange_weights((points + 1) / 2, offsets)  # (K, order), every interval
-        at_points = [_combine(values, first, np.broadcast_to(w, (first.size, w.size)))
-                     for w in weights]  # K arrays (intervals, C)
-        coefficients = np.empty((_PIECE_DEGREE + 1, 1) + at_points[0].shape)
-        for k in range(_PIECE_DEGREE + 1):
-            total = inverse[k, 0] * at_points[0]
-            for i in range(1, len(at_points)):
-                total += inverse[k, i] * at_points[i]
-            coefficients[k, 0] = total
+        # The interpolant at the K Chebyshev points of each interval: (K, intervals, C).
+        at_points = weights[:, 0, np.newaxis, np.newaxis] * values[first]
+        for k in range(1, self.order):
+            at_points += weights[:, k, np.newaxis, np.newaxis] * values[first + k]
+        coefficients = _monomials(inverse, at_points)[:, np.newaxis]
         return _horner(coefficients, slot.reshape(-1), 2 * (x - j) - 1)[0]
 
     def nodes(self, needed):
@@ -838,13 +835,20 @@ class EarthOrientation:
         frac = (within[:, np.newaxis] + (points + 1) / 2) / per_day
         instants = days.at(np.repeat(days.slot_of(day), points.size), frac.ravel())
         values = evaluate(instants).reshape(count, cells.size, points.size, 3)
-        coefficients = np.empty((degree + 1, count, cells.size, 3))
-        for k in range(degree + 1):
-            total = inverse[k, 0] * values[:, :, 0]
-            for j in range(1, points.size):
-                total += inverse[k, j] * values[:, :, j]
-            coefficients[k] = total
-        return coefficients
+        return _monomials(inverse, np.moveaxis(values, 2, 0))
+
+
+def _monomials(inverse, values):
+    """Monomial coefficients (K, ...) from values (K, ...) at the Chebyshev points.
+
+    ``inverse`` is the inverse Vandermonde matrix of `_chebyshev`; the sums run
+    element by element (not through BLAS), so that each coefficient is the same
+    whatever else is computed with it.
+    """
+    out = inverse[:, 0].reshape((-1,) + (1,) * (values.ndim - 1)) * values[0]
+    for j in range(1, values.shape[0]):
+        out += inverse[:, j].reshape((-1,) + (1,) * (values.ndim - 1)) * values[j]
+    return out
 
 
 def _horner_cost(degree):
