@@ -81,10 +81,10 @@ _DAY = 86400.0
 # d(ERA)/d(UT1) in radians per day (ERFA era00).
 _ERA_RATE = 2 * np.pi * 1.00273781191135448
 # The Earth's angular velocity in rad/s, as ERFA's pvtob.
-_OMEGA = _ERA_RATE / 86400.0
+_OMEGA = _ERA_RATE / _DAY
 # Metres per second in au per day, and au per day in units of c (ERFA apcs).
-_AU_PER_DAY = erfa.DAU / 86400.0
-_C_AU_PER_DAY = erfa.DAU / erfa.CMPS / 86400.0
+_AU_PER_DAY = erfa.DAU / _DAY
+_C_AU_PER_DAY = erfa.DAU / erfa.CMPS / _DAY
 _AU = erfa.DAU  # metres
 
 # Slow series: (node spacing in days of TT, number of nodes per Lagrange polynomial).
@@ -211,11 +211,11 @@ class _Days:
     """The UTC days of some epochs and the quantities linear within each day.
 
     Every epoch is a day number ``day`` (UTC midnights counted from ``ref``)
-    and a fraction ``frac`` of that day. At the start and the middle of each
-    day, astropy gives TT, UT1 and polar motion; between them they are linear
-    (astropy interpolates the daily IERS values linearly in UTC, and ERFA
-    spreads a leap second over its day), so the tables hold the value at the
-    start of the day and the rate per day.
+    and a fraction ``frac`` of that day. At the start of each day with epochs
+    and of the next, astropy gives TT, UT1 and polar motion; between them they
+    are linear (astropy interpolates the daily IERS values linearly in UTC,
+    and ERFA spreads a leap second over its day), so the tables hold the value
+    at the start of the day and the change over the day.
     """
 
     def __init__(self, obstime):
