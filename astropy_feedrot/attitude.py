@@ -11,7 +11,6 @@ import os
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import (
-    CIRS,
     GCRS,
     ITRS,
     CartesianRepresentation,
@@ -266,12 +265,12 @@ def _sun_gcrs(obstime):
 
 
 def interpolated_sun_position(orientation):
-    """Geocentric ITRS position of the Sun at many epochs, from a few exact nodes.
+    """Geocentric ITRS position of the Sun at many epochs, at the cost of a few.
 
-    The Sun's position in the celestial intermediate frame (CIRS) changes
-    slowly: it is computed as in `sun_position` at the nodes of an
-    `~astropy_feedrot.earth.EarthOrientation`, interpolated (cubic) to every
-    epoch and rotated to ITRS with the Earth's rotation at that epoch.
+    The Sun's position changes slowly in the celestial frames: ERFA's
+    ``epv00`` is evaluated once a day and interpolated, and the Earth's
+    rotation is applied at every epoch (see
+    `~astropy_feedrot.earth.EarthOrientation.sun_position`).
 
     Parameters
     ----------
@@ -281,9 +280,9 @@ def interpolated_sun_position(orientation):
     Returns
     -------
     ndarray, shape (N, 3)
-        Metres, at the N flattened epochs of ``orientation``; within 1e-10 rad
-        of `sun_position` in direction at the default node spacing of 15 min
-        (about 5e-14 rad).
+        Metres, at the N flattened epochs of ``orientation``; within 1e-11 rad
+        of `sun_position` in direction and 1e-11 in relative distance (about
+        1e-12 for both).
 
     Examples
     --------
@@ -299,11 +298,7 @@ def interpolated_sun_position(orientation):
     >>> bool(np.all(sine / np.linalg.norm(exact, axis=-1) ** 2 < 1e-12))  # radians
     True
     """
-    nodes = orientation.nodes
-    with iers_context(nodes):
-        cirs = _sun_gcrs(nodes).transform_to(CIRS(obstime=nodes))
-    at_nodes = np.moveaxis(cirs.cartesian.xyz.to_value(u.m), 0, -1)
-    return orientation.cirs_to_itrs(orientation.interpolate(at_nodes))
+    return orientation.sun_position()
 
 
 def nominal_dipoles(position, sun):

@@ -18,17 +18,19 @@ class Conf(_config.ConfigNamespace):
     )
     fast_path = _config.ConfigItem(
         True,
-        "Whether the directions of fixed celestial sources at many epochs come from "
-        "Earth orientation evaluated exactly every fast_path_step and interpolated "
-        "(astropy_feedrot.earth; within 0.0002 mas of astropy's transformation at the "
-        "default step) instead of astropy's transformation at every epoch. Set False "
-        "for the rigorous path.",
+        "Whether Earth orientation at the epochs of a call (the directions of sources "
+        "fixed in a celestial frame, the TEME to ITRS rotation of SGP4 orbits, the Sun) "
+        "comes from astropy_feedrot.earth.EarthOrientation, which evaluates ERFA's "
+        "slow series a few times a day and the Earth's rotation at every epoch (within "
+        "0.001 mas of astropy's transformation, and faster at any number of epochs), "
+        "instead of astropy's transformation at every epoch. Set False for the "
+        "rigorous path.",
     )
     fast_path_step = _config.ConfigItem(
         15.0,
-        "Node spacing of the fast path in minutes. The interpolation error grows as "
-        "its fourth power: about 0.0002 mas at 15 min, 0.002 mas at 30 min and "
-        "0.02 mas at 60 min.",
+        "No longer used (kept so that existing settings still load): the fast path "
+        "chooses the spacing of its exact evaluations per quantity and by the density "
+        "of the epochs.",
     )
 
 

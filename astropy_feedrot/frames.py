@@ -19,25 +19,11 @@ from typing import NamedTuple
 import erfa
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import (
-    FK4,
-    FK5,
-    ICRS,
-    ITRS,
-    BarycentricMeanEcliptic,
-    BarycentricTrueEcliptic,
-    BaseCoordinateFrame,
-    EarthLocation,
-    FK4NoETerms,
-    Galactic,
-    SkyCoord,
-    Supergalactic,
-    UnitSphericalRepresentation,
-)
-from astropy.time import Time, TimeDelta
+from astropy.coordinates import ITRS, SkyCoord
 
-from .config import conf
+from .earth import EarthOrientation, fast_path_applies
 from .eop import iers_context
+from .inputs import as_location, as_skycoord, as_time, broadcast_shape
 from .kernel import dot, unit
 
 __all__ = [
@@ -83,103 +69,6 @@ class LocalFrame(NamedTuple):
     east: np.ndarray
     north: np.ndarray
     up: np.ndarray
-
-
-def as_location(location, name="location"):
-    """Check that ``location`` is an `~astropy.coordinates.EarthLocation`.
-
-    Parameters
-    ----------
-    location : `~astropy.coordinates.EarthLocation`
-        The object to check.
-    name : str, optional
-        How to call it in the error message.
-
-    Returns
-    -------
-    `~astropy.coordinates.EarthLocation`
-
-    Raises
-    ------
-    TypeError
-        If ``location`` is anything else.
-
-    Examples
-    --------
-    >>> import astropy.units as u
-    >>> from astropy.coordinates import EarthLocation
-    >>> from astropy_feedrot.frames import as_location
-    >>> loc = as_location(EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg))
-    """
-    if not isinstance(location, EarthLocation):
-        raise TypeError(
-            f"{name} must be an astropy EarthLocation, got {type(location).__name__}; "
-            "build one with EarthLocation.from_geocentric(x, y, z, unit=u.m) or "
-            "EarthLocation.from_geodetic(lon, lat, height)"
-        )
-    return location
-
-
-def as_time(obstime):
-    """Coerce ``obstime`` to `~astropy.time.Time`.
-
-    Parameters
-    ----------
-    obstime : `~astropy.time.Time` or str or sequence of str
-        Epoch(s) of observation; anything else `~astropy.time.Time` parses
-        without a ``format`` argument (ISO strings, `datetime.datetime`).
-
-    Returns
-    -------
-    `~astropy.time.Time`
-
-    Raises
-    ------
-    TypeError
-        If ``obstime`` cannot be read as a time: plain numbers (their format,
-        MJD, JD or seconds, cannot be guessed), a `~astropy.time.TimeDelta`
-        (a duration, not an epoch) or unreadable strings.
-
-    Notes
-    -----
-    A masked `~astropy.time.Time` is returned as it is; see `fill_masked`.
-
-    Examples
-    --------
-    >>> from astropy_feedrot.frames import as_time
-    >>> as_time("2023-01-25T08:00").isot
-    '2023-01-25T08:00:00.000'
-    """
-    if isinstance(obstime, Time):
-        return obstime
-    if isinstance(obstime, TimeDelta):
-        raise TypeError(
-            "obstime must be an astropy Time (an epoch), got a TimeDelta (a duration); "
-            "add it to a start epoch, e.g. Time('2023-01-25T08:00') + offsets"
-        )
-    if isinstance(obstime, u.Quantity):
-        raise TypeError(
-            f"obstime must be an astropy Time, got a Quantity in {obstime.unit}; "
-            "add durations to a start epoch, e.g. Time('2023-01-25T08:00') + offsets"
-        )
-    try:
-        kind = "U" if isinstance(obstime, str) else np.asarray(obstime).dtype.kind
-    except ValueError:  # ragged nested sequences
-        kind = "O"
-    if kind in "biufc":
-        raise TypeError(
-            f"obstime must be an astropy Time (or ISO strings that Time() reads), "
-            f"got {type(obstime).__name__} of plain numbers; their format cannot be "
-            "guessed: say it, e.g. Time(values, format='mjd', scale='utc')"
-        )
-    try:
-        return Time(obstime)
-    except Exception as exc:
-        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise TypeError(
-            f"obstime must be an astropy Time (or ISO strings that Time() reads), "
-            f"got {type(obstime).__name__}: {reason}"
-        ) from None
 
 
 def fill_masked(obstime):
@@ -407,80 +296,6 @@ def check_station_xyz(xyz, name="location"):
     return xyz
 
 
-def as_skycoord(target):
-    """Coerce a celestial ``target`` to `~astropy.coordinates.SkyCoord`.
-
-    Parameters
-    ----------
-    target : `~astropy.coordinates.SkyCoord` or coordinate frame with data
-        The observed direction, in any celestial frame.
-
-    Returns
-    -------
-    `~astropy.coordinates.SkyCoord`
-
-    Raises
-    ------
-    TypeError
-        If ``target`` is not a coordinate.
-    ValueError
-        If ``target`` is a frame without coordinate data.
-
-    Examples
-    --------
-    >>> from astropy_feedrot.frames import as_skycoord
-    >>> as_skycoord(SkyCoord("03h19m48.16s +41d30m42.1s")).shape
-    ()
-    """
-    if isinstance(target, SkyCoord):
-        return target
-    if isinstance(target, BaseCoordinateFrame):
-        if not target.has_data:
-            raise ValueError(
-                f"target is a {type(target).__name__} frame without a direction; "
-                "give coordinates, e.g. SkyCoord(ra=..., dec=..., frame='icrs')"
-            )
-        return SkyCoord(target)
-    raise TypeError(
-        f"target must be an astropy SkyCoord (or a coordinate frame with data), got "
-        f"{type(target).__name__}; e.g. SkyCoord('03h19m48.16s +41d30m42.1s')"
-    )
-
-
-def broadcast_shape(**shapes):
-    """Broadcast named shapes, naming them all when they do not fit.
-
-    Parameters
-    ----------
-    **shapes : tuple of int
-        The shapes, keyed by the name of the argument they belong to.
-
-    Returns
-    -------
-    tuple of int
-        The broadcast shape.
-
-    Raises
-    ------
-    ValueError
-        If the shapes do not broadcast.
-
-    Examples
-    --------
-    >>> from astropy_feedrot.frames import broadcast_shape
-    >>> broadcast_shape(target=(3, 1), obstime=(24,))
-    (3, 24)
-    """
-    try:
-        return np.broadcast_shapes(*shapes.values())
-    except ValueError:
-        described = ", ".join(f"{key} has shape {value}" for key, value in shapes.items())
-        raise ValueError(
-            f"shapes do not broadcast: {described}; add axes so that they do, e.g. "
-            "target[:, np.newaxis] for every target at every time"
-        ) from None
-
-
 def local_frame(location, vertical="geodetic"):
     """East, north and up unit vectors of a site in ITRS.
 
@@ -688,8 +503,7 @@ def _apparent_direction(target, location, obstime):
     if isinstance(target.frame, ITRS):
         xyz = _earth_fixed_offset(target, location)
     elif _fast_path_applies(target, obstime, shape):
-        with iers_context(obstime):  # one check of the tables for all the nodes
-            return _interpolated_direction(target, location, obstime, shape)
+        return _interpolated_direction(target, location, obstime, shape)
     else:
         # NaN coordinates propagate as NaN; ERFA's ufuncs need not warn about them.
         with iers_context(obstime), np.errstate(invalid="ignore"):
@@ -698,40 +512,18 @@ def _apparent_direction(target, location, obstime):
     return np.broadcast_to(unit(xyz), shape + (3,))
 
 
-#: Celestial frames whose transformation to ICRS does not depend on the time
-#: of observation (their own equinox or obstime attributes are fixed).
-FIXED_FRAMES = (ICRS, FK5, FK4, FK4NoETerms, Galactic, Supergalactic,
-                BarycentricMeanEcliptic, BarycentricTrueEcliptic)
-
-# Below this many epochs the exact nodes of the fast path cost as much as the
-# rigorous transformation at every epoch.
-_FAST_PATH_MIN_EPOCHS = 16
-
-# Nearer sources have a diurnal parallax the cubic interpolation would not
-# follow to 0.1 mas (1 au: 8.8 arcsec, interpolated to 0.007 mas).
-_FAST_PATH_MIN_DISTANCE = 1 * u.au
-
-
 def _fast_path_applies(target, obstime, shape):
-    """Whether `source_direction` may interpolate Earth orientation (see `earth`)."""
-    if not conf.fast_path or obstime.size < _FAST_PATH_MIN_EPOCHS:
-        return False
-    if not isinstance(target.frame, FIXED_FRAMES) or target.data.differentials:
-        return False
-    if not isinstance(target.data, UnitSphericalRepresentation):
-        distance = target.spherical.distance
-        if distance.unit.physical_type != "length" or not np.all(
-                np.abs(distance) >= _FAST_PATH_MIN_DISTANCE):
-            return False
-    # Targets and epochs must pair as an outer product (or a single target).
-    return int(np.prod(shape)) == target.size * obstime.size
+    """Whether `source_direction` takes `~astropy_feedrot.earth.EarthOrientation`.
+
+    The rule is `~astropy_feedrot.earth.fast_path_applies`; ``shape`` is the
+    shape of the result, which must pair every target with every epoch.
+    """
+    pairs = target.size == 1 or int(np.prod(shape)) == target.size * obstime.size
+    return pairs and fast_path_applies(target, obstime)
 
 
 def _interpolated_direction(target, location, obstime, shape):
-    from .earth import EarthOrientation
-
-    orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
-    s = orientation.source_directions(target.icrs, location)
+    s = EarthOrientation(obstime).source_directions(target.icrs, location)
     if target.size == 1:
         return np.broadcast_to(s.reshape(obstime.shape + (3,)), shape + (3,))
     full = s.reshape(target.size, obstime.size, 3)

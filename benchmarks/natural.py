@@ -1,25 +1,34 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Benchmark: feed rotation of an alt-az telescope observing a natural source.
+"""Benchmark: feed rotation of a natural source in every sampling regime.
 
 One antenna (WETTZ13S, alt-az Cassegrain, so its feed rotation is the
-parallactic angle), one source (3C 84) and N epochs 1 s apart from
-2023-01-25T00:00 UTC. For each N the time per epoch, from `~astropy.time.Time`
-and `~astropy.coordinates.SkyCoord` inputs to angles, of
+parallactic angle) and one source (3C 84), in the sampling regimes of
+radio astronomy and geodesy: 1 s for a day, 1 min for a week, 2.6 s for 30
+days (a million epochs), 30 s for a year, 1 h for a year; single epochs and a
+few (N = 1, 2, 5, 10, 16, 100, one minute apart); and 100 epochs at random
+over ten years. For each, the time per epoch, from `~astropy.time.Time` and
+`~astropy.coordinates.SkyCoord` inputs to angles, of
 
-* ``fast``: ``antenna.feed_rotation(source, times)`` (the default fast path);
+* ``fast``: ``antenna.feed_rotation(source, times)`` (the default fast path,
+  `astropy_feedrot.earth.EarthOrientation`);
 * ``rigorous``: the same with ``astropy_feedrot.conf.fast_path = False``
   (astropy's topocentric ITRS transformation at every epoch);
 * ``astroplan``: ``Observer(location=...).parallactic_angle(times, source)``;
 * ``astropy+hd2pa``: ``source.transform_to(HADec(...))`` and ``erfa.hd2pa``;
 
-their ratios to the fast path, and the largest angle differences against the
-rigorous path. The targets of the fast path are checked on the N = 1e6 row
-(or the largest N run) and printed as PASS/FAIL lines; the exit status is 1
-if one fails.
+their ratios to the fast path, the largest angle differences against the
+rigorous path, and PASS/FAIL lines for the targets of the fast path:
 
-Everything runs offline on the Earth orientation tables bundled with astropy.
+* the first four regimes in at most astroplan's time, and at most 0.4 us per
+  epoch at a million epochs;
+* 1 h for a year in at most 3 us per epoch, at least 20 times faster than the
+  rigorous path;
+* no regime, number of epochs or span slower than the rigorous path;
+* every regime within 0.1 mas of the rigorous path.
 
-Run ``python benchmarks/natural.py --help`` for the options.
+The exit status is 1 if one fails. Everything runs offline on the Earth
+orientation tables bundled with astropy. Run ``python benchmarks/natural.py
+--help`` for the options.
 """
 
 # Offline before anything else imports astropy's IERS machinery.
@@ -48,6 +57,7 @@ from astropy.coordinates import HADec, SkyCoord  # noqa: E402
 from astropy.time import Time  # noqa: E402
 
 import astropy_feedrot  # noqa: E402
+from astropy_feedrot.eop import iers_context  # noqa: E402
 from astropy_feedrot.stations import get_antenna  # noqa: E402
 
 
@@ -76,19 +86,57 @@ with warnings.catch_warnings():
 ASTROPLAN_PATCHED_UT1 = Time._get_delta_ut1_utc is not _DELTA_UT1_UTC
 Time._get_delta_ut1_utc = _DELTA_UT1_UTC
 
-START = "2023-01-25T00:00"
 SOURCE_RA, SOURCE_DEC = "03h19m48.16s", "+41d30m42.1s"  # 3C 84
 STATION = "WETTZ13S"
 PATHS = ("fast", "rigorous", "astroplan", "astropy+hd2pa")
 COMPARED = ("fast", "astroplan", "astropy+hd2pa")
-# The paths that --max-slow may cap (astroplan only when slower than this).
-ALWAYS_SLOW = ("rigorous", "astropy+hd2pa")
-SLOW_US = 10.0
-TARGET_FAST_US = 1.5
-TARGET_RATIO = 80.0
-TARGET_MAS = 0.1
+# The paths that --max-slow caps.
+SLOW = ("rigorous", "astropy+hd2pa")
 WARMUP_EPOCHS = 64
 MAS_PER_DEG = 3.6e6
+DAY = 86400.0
+
+# Targets of the fast path.
+TARGET_ASTROPLAN_RATIO = 1.0   # first four regimes: at most astroplan's time
+TARGET_MILLION_US = 0.4        # at a million epochs
+TARGET_HOURLY_US = 3.0         # 1 h for a year
+TARGET_HOURLY_RATIO = 20.0     # rigorous / fast, 1 h for a year
+TARGET_MAS = 0.1
+
+
+class Regime:
+    """A sampling: ``count`` epochs ``step`` seconds apart from ``start`` (UTC),
+    or, with ``seed``, at random over ``span`` days."""
+
+    def __init__(self, name, count, step=None, start="2023-01-25T00:00", span=None,
+                 seed=None, target=None):
+        self.name, self.count, self.step, self.target = name, count, step, target
+        begin = Time(start, scale="utc")
+        if seed is None:
+            offsets = np.arange(count, dtype=float) * step / DAY
+        else:
+            offsets = np.sort(np.random.default_rng(seed).uniform(0, span, count))
+        # Exact sums of whole days and fractions: jd1 + jd2 is the epoch.
+        whole = np.floor(offsets)
+        self.jd1 = begin.jd1 + whole
+        self.jd2 = begin.jd2 + (offsets - whole)
+
+    def make(self, stride=1):
+        """Fresh Time and SkyCoord objects for every call, so that no run
+        profits from the scale conversions astropy caches on a Time."""
+        times = Time(self.jd1[::stride], self.jd2[::stride], format="jd", scale="utc")
+        return SkyCoord(SOURCE_RA, SOURCE_DEC, frame="icrs"), times
+
+
+REGIMES = [
+    Regime("1 s x 1 day", 86400, 1.0, target="astroplan"),
+    Regime("1 min x 1 week", 10080, 60.0, target="astroplan"),
+    Regime("2.6 s x 30 days", 1000000, 2.592, target="astroplan"),
+    Regime("30 s x 1 year", 1051200, 30.0, start="2023-01-01T00:00", target="astroplan"),
+    Regime("1 h x 1 year", 8760, 3600.0, start="2023-01-01T00:00", target="hourly"),
+] + [Regime(f"N = {n}", n, 60.0) for n in (1, 2, 5, 10, 16, 100)] + [
+    Regime("100 over 10 years", 100, start="2013-01-01T00:00", span=3652.0, seed=1),
+]
 
 
 # --------------------------------------------------------------------------
@@ -128,28 +176,12 @@ def max_difference_mas(a, b):
     return float(np.nanmax(np.abs(d))) * MAS_PER_DEG
 
 
-class Inputs:
-    """Fresh `Time` and `SkyCoord` objects for every call, so that no run
-    profits from the scale conversions astropy caches on a `Time`."""
-
-    def __init__(self, n):
-        start = Time(START, scale="utc")
-        seconds = np.arange(n, dtype=float)
-        # Exact sums of whole days and fractions: jd1 + jd2 is the epoch.
-        self.jd1 = np.full(n, start.jd1)
-        self.jd2 = start.jd2 + seconds / 86400.0
-
-    def make(self, step=1):
-        times = Time(self.jd1[::step], self.jd2[::step], format="jd", scale="utc")
-        source = SkyCoord(SOURCE_RA, SOURCE_DEC, frame="icrs")
-        return source, times
-
-
-def measure(runner, antenna, inputs, repeats, budget):
-    """Best time of up to ``repeats`` calls (stopping once ``budget`` s are spent)."""
-    best, spent, result = math.inf, 0.0, None
+def measure(runner, antenna, regime, stride, repeats, budget):
+    """Best time per epoch (us) of up to ``repeats`` calls within ``budget`` s, and the result."""
+    best, spent, result, count = math.inf, 0.0, None, 0
     for _ in range(repeats):
-        source, times = inputs.make()
+        source, times = regime.make(stride)
+        count = times.size
         result = None
         gc.collect()
         t0 = time.perf_counter()
@@ -158,7 +190,7 @@ def measure(runner, antenna, inputs, repeats, budget):
         best, spent = min(best, elapsed), spent + elapsed
         if spent >= budget:
             break
-    return best, degrees(result)
+    return best / count * 1e6, degrees(result)
 
 
 # --------------------------------------------------------------------------
@@ -194,25 +226,22 @@ def print_environment():
           f"{astropy.utils.data.conf.allow_internet}, astropy-iers-data {iers_data})")
     print(f"erfa              pyerfa {erfa.__version__}, ERFA {erfa.version.erfa_version}")
     print(f"astroplan         {astroplan.__version__ if astroplan else 'not installed'}")
-    print(f"astropy_feedrot   {astropy_feedrot.__version__}"
-          f"  (fast_path_step {astropy_feedrot.conf.fast_path_step} min)")
+    print(f"astropy_feedrot   {astropy_feedrot.__version__} "
+          f"({os.path.dirname(astropy_feedrot.__file__)})")
     print(f"platform          {platform.platform()}")
-    print(f"CPU               {cpu_model()}; {os.cpu_count()} CPUs, {usable} usable")
+    print(f"CPU               {cpu_model()}; {os.cpu_count()} CPUs, {usable} usable; "
+          f"load average {' '.join(f'{x:.1f}' for x in os.getloadavg())} at the start")
     if ASTROPLAN_PATCHED_UT1:
         print("note              astroplan replaced Time._get_delta_ut1_utc on import "
               "(no IERS table); the original was restored")
     print()
 
 
-def fmt_n(n):
-    exponent = math.log10(n)
-    return f"1e{int(exponent)}" if exponent.is_integer() else str(n)
-
-
-def fmt_value(value, estimated, digits):
+def fmt_value(value, estimated, digits=2):
     if value is None or not math.isfinite(value):
         return "-"
-    return f"{value:.{digits}f}" + ("*" if estimated else "")
+    text = f"{value:.{digits}f}" if value < 1000 else f"{value:.0f}"
+    return text + ("*" if estimated else "")
 
 
 def fmt_mas(value):
@@ -220,62 +249,75 @@ def fmt_mas(value):
         return "-"
     if value < 1e-3:
         return f"{value:.1e}"
-    return f"{value:.5f}" if value < 1 else f"{value:.2f}" if value < 1e4 else f"{value:.0f}"
+    return f"{value:.4f}" if value < 1 else f"{value:.2f}" if value < 1e4 else f"{value:.0f}"
 
 
-def print_tables(rows, args, stride_used):
+def print_tables(rows, args):
     paths = [p for p in PATHS if any(p in row["us"] for row in rows)]
     ratios = [p for p in paths if p != "fast"]
+    width = max(len(row["name"]) for row in rows) + 2
     columns = paths + [p.split("+")[0] + "/fast" for p in ratios]
     widths = [max(len(c) + 2, 10) for c in columns]
     print(f"Time per epoch (us): best of up to {args.repeats} runs within {args.budget:g} s "
-          "per path and N, all transformations included")
-    print(f"{'N':>8}" + "".join(f"{c:>{w}}" for c, w in zip(columns, widths)))
+          "per path and regime, all transformations included")
+    print(f"{'regime':<{width}}{'epochs':>9}"
+          + "".join(f"{c:>{w}}" for c, w in zip(columns, widths)))
     for row in rows:
-        cells = [fmt_value(row["us"].get(p), p in row["estimated"], 2) for p in paths]
+        cells = [fmt_value(row["us"].get(p), p in row["estimated"]) for p in paths]
         for p in ratios:
             value = row["us"].get(p)
             ratio = value / row["us"]["fast"] if value is not None else None
-            digits = 2 if ratio is not None and ratio < 10 else 1
-            cells.append(fmt_value(ratio, p in row["estimated"], digits))
-        print(f"{fmt_n(row['n']):>8}" + "".join(f"{c:>{w}}" for c, w in zip(cells, widths)))
+            cells.append(fmt_value(ratio, p in row["estimated"], 2 if ratio and ratio < 10 else 1))
+        print(f"{row['name']:<{width}}{row['count']:>9}"
+              + "".join(f"{c:>{w}}" for c, w in zip(cells, widths)))
     if any(row["estimated"] for row in rows):
-        source = max(row["n"] for row in rows if row["n"] <= args.max_slow)
-        print(f"* not run at this N (--max-slow {fmt_n(args.max_slow)}): time per epoch "
-              f"taken from N = {fmt_n(source)}")
+        print(f"* above --max-slow {args.max_slow:g} epochs: run on every k-th epoch (at most "
+              f"{args.max_slow:g}); the time per epoch there is extrapolated to the full series")
     print()
-
     print("Largest |difference| against the rigorous path (mas, wrapped to +-180 deg)")
-    print(f"{'N':>8}{'epochs compared':>17}" + "".join(f"{p:>15}" for p in COMPARED))
+    print(f"{'regime':<{width}}{'compared':>9}" + "".join(f"{p:>15}" for p in COMPARED))
     for row in rows:
-        line = f"{fmt_n(row['n']):>8}{row['compared']:>16}" + ("+" if row["sub"] else " ")
-        for p in COMPARED:
-            line += f"{fmt_mas(row['mas'].get(p)):>15}"
-        print(line)
-    if stride_used:
-        print(f"+ N above --max-slow: the rigorous path (and each path not run) computed at "
-              f"every {args.stride}th epoch,\n  compared with the same epochs of the full runs")
+        line = f"{row['name']:<{width}}{row['compared']:>9}"
+        line += "".join(f"{fmt_mas(row['mas'].get(p)):>15}" for p in COMPARED)
+        print(line + ("  (every %dth epoch)" % row["stride"] if row["stride"] > 1 else ""))
     print()
 
 
-def check_targets(row):
-    us, mas = row["us"], row["mas"]
-    fast = us["fast"]
-    star = {p: "*" if p in row["estimated"] else "" for p in PATHS}
-    checks = [
-        (fast <= TARGET_FAST_US,
-         f"fast path <= {TARGET_FAST_US} us/epoch: {fast:.3f} us"),
-        (us["rigorous"] / fast >= TARGET_RATIO,
-         f"rigorous/fast >= {TARGET_RATIO:g}: {us['rigorous'] / fast:.1f}{star['rigorous']}"),
-    ]
-    if "astroplan" in us:
-        checks.append((fast <= us["astroplan"],
-                       f"fast no slower than astroplan: {fast:.3f} us vs "
-                       f"{us['astroplan']:.3f}{star['astroplan']} us"))
-    checks.append((mas["fast"] <= TARGET_MAS,
-                   f"fast within {TARGET_MAS} mas of rigorous: {fmt_mas(mas['fast'])} mas"
-                   + (" (subsample)" if row["sub"] else "")))
-    print(f"Targets of the fast path (N = {fmt_n(row['n'])} row)")
+def check_targets(rows):
+    """The PASS/FAIL lines; True if all pass."""
+    checks = []
+    star = {True: "*", False: ""}
+    for row in rows:
+        us, fast = row["us"], row["us"]["fast"]
+        if row["target"] == "astroplan" and "astroplan" in us:
+            checks.append((fast <= TARGET_ASTROPLAN_RATIO * us["astroplan"],
+                           f"{row['name']}: fast {fast:.3f} us/epoch <= "
+                           f"{TARGET_ASTROPLAN_RATIO:g} x astroplan {us['astroplan']:.3f}"))
+        if row["count"] >= 10**6:
+            checks.append((fast <= TARGET_MILLION_US,
+                           f"{row['name']}: fast {fast:.3f} <= {TARGET_MILLION_US} us/epoch "
+                           f"at {row['count']} epochs"))
+        if row["target"] == "hourly":
+            ratio = us["rigorous"] / fast
+            checks.append((fast <= TARGET_HOURLY_US,
+                           f"{row['name']}: fast {fast:.2f} <= {TARGET_HOURLY_US} us/epoch"))
+            checks.append((ratio >= TARGET_HOURLY_RATIO,
+                           f"{row['name']}: rigorous/fast {ratio:.1f}"
+                           f"{star['rigorous' in row['estimated']]} >= {TARGET_HOURLY_RATIO:g}"))
+    slower = [row["name"] for row in rows if row["us"]["fast"] > row["us"]["rigorous"]]
+    worst = min(rows, key=lambda row: row["us"]["rigorous"] / row["us"]["fast"])
+    checks.append((not slower,
+                   "fast no slower than rigorous in every regime: "
+                   + (f"slower in {', '.join(slower)}" if slower else
+                      f"smallest ratio {worst['us']['rigorous'] / worst['us']['fast']:.2f} "
+                      f"({worst['name']})")))
+    far = [row["name"] for row in rows if not row["mas"]["fast"] <= TARGET_MAS]
+    largest = max(rows, key=lambda row: row["mas"]["fast"])
+    checks.append((not far,
+                   f"fast within {TARGET_MAS} mas of rigorous in every regime: "
+                   + (f"not in {', '.join(far)}" if far else
+                      f"largest {fmt_mas(largest['mas']['fast'])} mas ({largest['name']})")))
+    print("Targets of the fast path")
     for ok, text in checks:
         print(f"  {'PASS' if ok else 'FAIL'}  {text}")
     return all(ok for ok, _ in checks)
@@ -283,36 +325,37 @@ def check_targets(row):
 
 # --------------------------------------------------------------------------
 
-def parse_sizes(text):
-    sizes = sorted({int(float(s)) for s in text.split(",") if s.strip()})
-    if not sizes or sizes[0] < 16:
-        raise argparse.ArgumentTypeError("sizes must be at least 16 epochs")
-    return sizes
-
-
 def parse_args(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--sizes", type=parse_sizes, default=parse_sizes("1e3,1e4,1e5,1e6"),
-                        help="comma-separated numbers of epochs (default 1e3,1e4,1e5,1e6)")
-    parser.add_argument("--max-slow", type=lambda s: int(float(s)), default=10**6,
-                        help="largest N at which the slow paths (rigorous, astropy+hd2pa, and "
-                             f"astroplan if slower than {SLOW_US:g} us/epoch) are run; above "
-                             "it their time per epoch is taken from the largest N run and the "
-                             "accuracy comes from a subsample (default 1e6: run everything)")
-    parser.add_argument("--stride", type=int, default=100,
-                        help="subsample step of the accuracy comparison above --max-slow "
-                             "(default 100)")
+    names = [r.name for r in REGIMES]
+    parser.add_argument("--regimes", default=None,
+                        help="comma-separated regime numbers to run (1-based, in the order "
+                             "of the table; default all): " + "; ".join(
+                                 f"{k + 1} = {n}" for k, n in enumerate(names)))
+    parser.add_argument("--max-slow", type=lambda s: int(float(s)), default=2 * 10**6,
+                        help="largest number of epochs at which the slow paths (rigorous, "
+                             "astropy+hd2pa) run; larger regimes run them on every k-th epoch "
+                             "and extrapolate the time per epoch (default 2e6: everything; "
+                             "1e5 makes the run a few times shorter)")
     parser.add_argument("--repeats", type=int, default=5,
-                        help="largest number of timed runs per path and N (default 5)")
+                        help="largest number of timed runs per path and regime (default 5)")
     parser.add_argument("--budget", type=float, default=2.0,
                         help="stop repeating a path once this many seconds are spent "
                              "(default 2)")
     args = parser.parse_args(argv)
-    if args.max_slow < args.sizes[0]:
-        parser.error("--max-slow must be at least the smallest of --sizes")
-    if args.stride < 1 or args.repeats < 1:
-        parser.error("--stride and --repeats must be positive")
+    if args.max_slow < 1 or args.repeats < 1:
+        parser.error("--max-slow and --repeats must be positive")
+    if args.regimes:
+        try:
+            chosen = sorted({int(k) for k in args.regimes.split(",")})
+        except ValueError:
+            parser.error("--regimes takes numbers, e.g. 1,5,6")
+        if chosen[0] < 1 or chosen[-1] > len(REGIMES):
+            parser.error(f"--regimes must be within 1..{len(REGIMES)}")
+        args.regimes = [REGIMES[k - 1] for k in chosen]
+    else:
+        args.regimes = REGIMES
     return args
 
 
@@ -327,7 +370,7 @@ def main(argv=None):
     paths = [p for p in PATHS if p != "astroplan" or Observer is not None]
     print(f"Antenna {antenna.name}: {antenna.mount!r}, {antenna.focus!r} at "
           f"lat {antenna.location.lat.deg:.4f} deg, lon {antenna.location.lon.deg:.4f} deg")
-    print(f"Source 3C 84, ICRS {SOURCE_RA} {SOURCE_DEC}; epochs 1 s apart from {START} UTC")
+    print(f"Source 3C 84, ICRS {SOURCE_RA} {SOURCE_DEC}")
     print("  fast           antenna.feed_rotation(source, times)")
     print("  rigorous       the same within conf.set_temp('fast_path', False)")
     print("  astroplan      Observer(location=antenna.location).parallactic_angle(times, source)")
@@ -335,53 +378,40 @@ def main(argv=None):
           "erfa.hd2pa(ha, dec, lat)")
     print()
 
-    # Warm up imports, transformation graphs and caches.
-    warm = Inputs(WARMUP_EPOCHS)
+    # Warm up imports, transformation graphs, IERS tables and caches.
+    warm = Regime("warm-up", WARMUP_EPOCHS, 60.0)
+    with iers_context():
+        Time("2023-01-25").ut1
     for p in paths:
         RUNNERS[p](antenna, *warm.make())
 
-    rows, per_epoch, slow, stride_used = [], {}, set(ALWAYS_SLOW), False
-    for n in args.sizes:
-        inputs = Inputs(n)
-        row = {"n": n, "us": {}, "mas": {}, "estimated": set(), "sub": False}
+    rows = []
+    for regime in args.regimes:
+        row = {"name": regime.name, "count": regime.count, "target": regime.target,
+               "us": {}, "mas": {}, "estimated": set()}
+        stride = max(1, math.ceil(regime.count / args.max_slow))
+        row["stride"] = stride
         results = {}
         for p in paths:
-            if p in slow and n > args.max_slow:
-                row["us"][p] = per_epoch[p]
+            step = stride if p in SLOW else 1
+            row["us"][p], results[p] = measure(RUNNERS[p], antenna, regime, step,
+                                               args.repeats, args.budget)
+            if step > 1:
                 row["estimated"].add(p)
-                continue
-            best, results[p] = measure(RUNNERS[p], antenna, inputs, args.repeats, args.budget)
-            row["us"][p] = per_epoch[p] = best / n * 1e6
-            if p == "astroplan" and per_epoch[p] > SLOW_US:
-                slow.add(p)
-        if "rigorous" in results:
-            reference = results["rigorous"]
-            compare = {p: results[p] for p in COMPARED if p in results}
-            row["compared"] = n
-        else:
-            # Subsample: the rigorous path (and any capped path) at every stride-th epoch.
-            row["sub"] = stride_used = True
-            source, times = inputs.make(args.stride)
-            reference = degrees(run_rigorous(antenna, source, times))
-            compare = {}
-            for p in COMPARED:
-                if p in results:
-                    compare[p] = results[p][::args.stride]
-                elif p in paths:
-                    compare[p] = degrees(RUNNERS[p](antenna, *inputs.make(args.stride)))
-            row["compared"] = reference.size
-        for p, values in compare.items():
-            row["mas"][p] = max_difference_mas(values, reference)
-        del results, compare, reference
+        reference = results["rigorous"]
+        row["compared"] = reference.size
+        for p in COMPARED:
+            if p in results:
+                values = results[p] if p in SLOW else results[p][::stride]
+                row["mas"][p] = max_difference_mas(values, reference)
         rows.append(row)
-        measured = ", ".join(f"{p} {row['us'][p]:.2f}" for p in paths
-                             if p not in row["estimated"])
-        print(f"  N = {fmt_n(n)} done ({measured} us/epoch)")
+        measured = ", ".join(f"{p} {row['us'][p]:.2f}" for p in paths)
+        print(f"  {regime.name}: {measured} us/epoch")
+        del results, reference
     print()
 
-    print_tables(rows, args, stride_used)
-    target_rows = [row for row in rows if row["n"] == 10**6] or rows[-1:]
-    ok = check_targets(target_rows[0])
+    print_tables(rows, args)
+    ok = check_targets(rows)
     print()
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     print(f"Total run time {time.perf_counter() - wall:.0f} s; peak memory {peak:.0f} MB")

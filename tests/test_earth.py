@@ -1,0 +1,193 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""EarthOrientation, the epochs object, against ERFA and astropy at every epoch.
+
+References: ERFA's ``era00`` and ``gmst82`` at astropy's UT1, astropy's CIRS to
+ITRS transformation, `astropy_feedrot.attitude.sun_position` (astropy's
+ephemeris and frames), and the structure of the package's own source files.
+"""
+
+import ast
+import pathlib
+import subprocess
+import sys
+
+import erfa
+import numpy as np
+import pytest
+from astropy import units as u
+from astropy.coordinates import CIRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
+from astropy.time import Time
+from helpers import SITES
+
+import astropy_feedrot
+from astropy_feedrot import conf
+from astropy_feedrot.attitude import interpolated_sun_position, sun_position
+from astropy_feedrot.earth import EarthOrientation
+from astropy_feedrot.frames import source_direction
+
+PACKAGE = pathlib.Path(astropy_feedrot.__file__).parent
+
+
+def series(start, step, count):
+    return Time(start, scale="utc") + np.arange(count) * step
+
+
+#: Epochs that take each road through EarthOrientation: dense ones (polynomial
+#: cells), hourly ones (daily ERFA nodes), a few (ERFA at the epochs), sparse
+#: ones over years, a leap second, and other time scales.
+EPOCHS = {
+    "dense": series("2023-01-25T00:00", 7 * u.s, 6000),
+    "hourly": series("2022-06-01T00:00", 1 * u.hour, 2000),
+    "few": series("2023-01-25T00:00", 1 * u.min, 3),
+    "scalar": Time("2023-01-25T17:31:07.25"),
+    "sparse": Time("2012-01-01") + np.sort(np.random.default_rng(2).uniform(0, 3650, 50)) * u.day,
+    # Not at 00:00:00.0 after the leap second: astropy's Time arithmetic gives that
+    # epoch as jd2 = 0.5 - 2e-16, where astropy's UT1 jumps 1 s ahead (UT1 - UTC of
+    # the new day with TAI - UTC of the old one) and falls back half a second later.
+    "leap second": series("2016-12-31T23:59:00.25", 0.5 * u.s, 240),
+    "tt": series("2023-01-25T00:00", 9 * u.s, 3000).tt,
+    "tdb": series("2023-01-25T00:00", 9 * u.s, 3000).tdb,
+}
+
+
+def angle_between(a, b):
+    return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))
+
+
+def wrapped(a):
+    return np.angle(np.exp(1j * a))
+
+
+@pytest.mark.parametrize("name", list(EPOCHS))
+def test_rotation_angles_against_erfa(name):
+    # Reference: ERFA at astropy's UT1 of each epoch.
+    times = EPOCHS[name]
+    orientation = EarthOrientation(times)
+    ut1 = times.ravel().ut1
+    assert orientation.era.shape == (times.size,)
+    assert np.abs(wrapped(orientation.era - erfa.era00(ut1.jd1, ut1.jd2))).max() < 1e-12
+    assert np.abs(wrapped(orientation.gmst82 - erfa.gmst82(ut1.jd1, ut1.jd2))).max() < 1e-12
+
+
+@pytest.mark.parametrize("name", list(EPOCHS))
+def test_cirs_to_itrs_against_astropy(name):
+    # Reference: astropy's CIRS -> ITRS transformation (geocentric), at every epoch.
+    times = EPOCHS[name].ravel()
+    rng = np.random.default_rng(7)
+    cirs = rng.normal(size=(times.size, 3)) * 7.0e6
+    rep = CartesianRepresentation(np.moveaxis(cirs, -1, 0) * u.m)
+    reference = CIRS(rep, obstime=times).transform_to(ITRS(obstime=times))
+    reference = np.moveaxis(reference.cartesian.xyz.to_value(u.m), 0, -1)
+    result = EarthOrientation(times).cirs_to_itrs(cirs)
+    assert np.abs(result - reference).max() < 1e-5  # 10 um at 20 000 km: 1e-4 mas
+
+
+@pytest.mark.parametrize("name", list(EPOCHS))
+def test_sun_against_sun_position(name):
+    # Reference: attitude.sun_position, astropy's ephemeris and frames at every epoch.
+    times = EPOCHS[name]
+    sun = interpolated_sun_position(EarthOrientation(times))
+    exact = sun_position(times).reshape(-1, 3)
+    assert sun.shape == exact.shape
+    assert angle_between(sun, exact).max() < 1e-11
+    assert np.abs(np.linalg.norm(sun, axis=-1) / np.linalg.norm(exact, axis=-1) - 1).max() < (
+        1e-11)
+
+
+@pytest.mark.parametrize("name", ["dense", "hourly", "few", "sparse"])
+def test_interpolate_reproduces_polynomials(name):
+    # The nodes are TT instants and interpolate() is exact for polynomials of low degree.
+    orientation = EarthOrientation(EPOCHS[name])
+    nodes = orientation.nodes
+    assert nodes.scale == "tt"
+    days = (nodes - nodes[0]).jd
+    values = np.stack([days, days ** 2, np.ones_like(days)], axis=-1)
+    epochs = (orientation.obstime.ravel() - nodes[0]).jd
+    expected = np.stack([epochs, epochs ** 2, np.ones_like(epochs)], axis=-1)
+    assert np.allclose(orientation.interpolate(values), expected, rtol=0, atol=1e-9)
+    assert np.allclose(orientation.interpolate(values[np.newaxis])[0], expected, atol=1e-9)
+
+
+def test_nodes_are_few():
+    # One day of 1-s epochs needs sixteen evaluations of the nutation series
+    # (one 16-node polynomial); sparse epochs never more than there are epochs.
+    assert EarthOrientation(series("2023-01-25T00:00", 1 * u.s, 86400)).nodes.size == 16
+    sparse = EPOCHS["sparse"]
+    assert EarthOrientation(sparse).nodes.size == sparse.size
+
+
+def test_step_is_accepted_and_changes_nothing():
+    # conf.fast_path_step and step no longer set the accuracy.
+    times = series("2023-01-25T00:00", 61 * u.s, 2000)
+    source = SkyCoord(ra=80 * u.deg, dec=-10 * u.deg)
+    reference = EarthOrientation(times).source_directions(source, SITES["YEBES"])
+    for step in (1 * u.s, 60 * u.min, 3 * u.day):
+        result = EarthOrientation(times, step=step).source_directions(source, SITES["YEBES"])
+        assert np.array_equal(result, reference)
+    with conf.set_temp("fast_path_step", 60):
+        assert np.array_equal(source_direction(source, SITES["YEBES"], times), reference)
+
+
+@pytest.mark.parametrize("step, error", [(0 * u.min, "step must be positive"),
+                                         (-1 * u.min, "step must be positive")])
+def test_bad_step(step, error):
+    with pytest.raises(ValueError, match=error):
+        EarthOrientation(Time("2023-01-25") + np.arange(3) * u.min, step=step)
+
+
+def test_bad_inputs():
+    times = Time("2023-01-25") + np.arange(3) * u.min
+    with pytest.raises(TypeError, match="obstime must be an astropy Time"):
+        EarthOrientation([59969.0, 59970.0])
+    orientation = EarthOrientation(times)
+    sites = EarthLocation.from_geodetic([0, 10] * u.deg, [40, 50] * u.deg)
+    source = SkyCoord(ra=10 * u.deg, dec=20 * u.deg)
+    with pytest.raises(ValueError, match="location must be a single site"):
+        orientation.source_directions(source, sites)
+    with pytest.raises(TypeError, match="location must be an astropy EarthLocation"):
+        orientation.source_directions(source, "Yebes")
+    with pytest.raises(TypeError, match="target must be an astropy SkyCoord"):
+        orientation.source_directions("3C 84", SITES["YEBES"])
+
+
+def test_shapes_of_targets_and_epochs():
+    times = (Time("2023-01-25") + np.arange(12) * u.hour).reshape(3, 4)
+    orientation = EarthOrientation(times)
+    sources = SkyCoord(ra=[[10, 20], [30, 40]] * u.deg, dec=[[0, 10], [20, 30]] * u.deg)
+    s = orientation.source_directions(sources, SITES["YEBES"])
+    assert s.shape == (2, 2, 12, 3)
+    assert orientation.sun_position().shape == (12, 3)
+    assert orientation.era.shape == (12,)
+
+
+# --- the layers: inputs at the bottom, no cycle, no hidden imports ---------------
+
+@pytest.mark.parametrize("module", ["inputs", "earth", "frames"])
+def test_modules_import_first(module):
+    # In a fresh interpreter, each module imports without a cycle.
+    subprocess.run([sys.executable, "-c", f"import astropy_feedrot.{module}"],
+                   cwd=PACKAGE.parent, check=True)
+
+
+def imports(path):
+    """Package modules imported by a source file: (module, at top level?)."""
+    tree = ast.parse(path.read_text())
+    top = {id(node) for node in tree.body}
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            found.append((node.module or "", id(node) in top))
+    return found
+
+
+def test_inputs_is_the_bottom_layer():
+    assert imports(PACKAGE / "inputs.py") == []
+
+
+@pytest.mark.parametrize("module", ["inputs.py", "earth.py", "frames.py"])
+def test_no_function_level_imports(module):
+    assert all(top for _, top in imports(PACKAGE / module))
+
+
+def test_earth_does_not_import_frames():
+    assert "frames" not in {name for name, _ in imports(PACKAGE / "earth.py")}
