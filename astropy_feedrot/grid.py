@@ -34,12 +34,11 @@ from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 from . import engine
 from .antenna import Antenna
 from .attitude import Attitude, nominal_dipoles
-from .config import conf
 from .continuity import delay_of_difference, frequency_hz
+from .earth import EarthOrientation, fast_path_applies
 from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
 from .frames import (
-    _fast_path_applies,
     as_elevation_limit,
     as_skycoord,
     as_time,
@@ -511,10 +510,8 @@ def _check_targets_objects(targets):
 
 def _earth_orientation(obstime):
     """The one Earth orientation of the grid, or None where orbits use astropy's frames."""
-    if conf.fast_path and obstime.size >= 16:  # the rule of orbits.teme_to_itrs
-        from .earth import EarthOrientation
-
-        return EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    if fast_path_applies(None, obstime):
+        return EarthOrientation(obstime)
     return None
 
 
@@ -561,10 +558,8 @@ def _source_directions(sources, antennas, obstime):
     out = np.empty((n_t, len(antennas), n_s, 3))
     column = sources.reshape((n_s, 1))
     orientation = None
-    if _fast_path_applies(column, obstime, (n_s, n_t)):
-        from .earth import EarthOrientation
-
-        orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    if fast_path_applies(column, obstime):  # every source at every epoch
+        orientation = EarthOrientation(obstime)
         icrs = sources.icrs
     for i, antenna in enumerate(antennas):
         if orientation is not None:
@@ -694,10 +689,10 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     ``SatrecArray``) and rotated from TEME to ITRS with one
     `~astropy_feedrot.earth.EarthOrientation`; the Sun of the nominal
     attitude is computed once per epoch for all satellites
-    (`~astropy_feedrot.attitude.interpolated_sun_position`). With fewer than
-    16 epochs, or ``conf.fast_path`` off, the rigorous astropy
-    transformations are used, as `~astropy_feedrot.Antenna.feed_rotation`
-    does. The per-epoch arrays take 72 bytes per epoch and satellite (natural
+    (`~astropy_feedrot.attitude.interpolated_sun_position`). With
+    ``conf.fast_path`` off the rigorous astropy transformations are used, as
+    `~astropy_feedrot.Antenna.feed_rotation` does
+    (`~astropy_feedrot.earth.fast_path_applies`). The per-epoch arrays take 72 bytes per epoch and satellite (natural
     sources: 24 bytes per epoch, antenna and source), the result 8 bytes per
     grid point; the wind-up itself is evaluated in blocks of
     `BLOCK_POINTS` grid points. See `feed_rotation_grid_dask` for grids

@@ -22,7 +22,7 @@ from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
 from .config import conf
-from .earth import EarthOrientation
+from .earth import EarthOrientation, fast_path_applies
 from .eop import iers_context
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
@@ -254,11 +254,12 @@ def _sgp4():
 def teme_to_itrs(position, obstime, orientation=None):
     """Rotate TEME positions (SGP4's frame) to geocentric ITRS.
 
-    With an ``orientation``, or with ``conf.fast_path`` (the default) and 16
-    or more epochs, the rotation is computed once per epoch from interpolated
-    Earth orientation (`~astropy_feedrot.earth.EarthOrientation`: GMST 1982
-    from UT1 and polar motion, as astropy's ``TEME`` to ``ITRS``
-    transformation); otherwise through astropy's frames.
+    With an ``orientation``, or where the fast path applies
+    (`~astropy_feedrot.earth.fast_path_applies`), the rotation is computed
+    once per epoch from interpolated Earth orientation
+    (`~astropy_feedrot.earth.EarthOrientation`: GMST 1982 from UT1 and polar
+    motion, as astropy's ``TEME`` to ``ITRS`` transformation); otherwise
+    through astropy's frames.
 
     Parameters
     ----------
@@ -285,8 +286,8 @@ def teme_to_itrs(position, obstime, orientation=None):
     """
     position = np.asarray(position, dtype=float)
     check_orientation(orientation, obstime)
-    if orientation is None and conf.fast_path and obstime.size >= 16:
-        orientation = EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    if orientation is None and fast_path_applies(None, obstime):
+        orientation = EarthOrientation(obstime)
     if orientation is not None:
         flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)

@@ -2,12 +2,10 @@
 """A transmitting satellite: an orbit, an attitude and a circular polarization."""
 
 import numpy as np
-from astropy import units as u
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .config import conf
-from .earth import EarthOrientation
+from .earth import EarthOrientation, fast_path_applies
 from .eop import iers_context
 from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit, check_orientation
@@ -209,7 +207,7 @@ class Satellite:
 
         Notes
         -----
-        With the fast path (``conf.fast_path``, 16 epochs or more) one
+        Where the fast path applies (`~astropy_feedrot.earth.fast_path_applies`) one
         `~astropy_feedrot.earth.EarthOrientation` of the epochs serves the
         orbit (TEME to ITRS, for orbits with ``uses_orientation``) and the
         attitude (the Sun, interpolated from its nodes, for models with
@@ -247,6 +245,6 @@ class Satellite:
 
 def _earth_orientation(obstime):
     """The Earth orientation shared by orbit and attitude, or None off the fast path."""
-    if conf.fast_path and obstime.size >= 16:
-        return EarthOrientation(obstime, step=conf.fast_path_step * u.min)
+    if fast_path_applies(None, obstime):
+        return EarthOrientation(obstime)
     return None
