@@ -692,8 +692,9 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     (`~astropy_feedrot.attitude.interpolated_sun_position`). With
     ``conf.fast_path`` off the rigorous astropy transformations are used, as
     `~astropy_feedrot.Antenna.feed_rotation` does
-    (`~astropy_feedrot.earth.fast_path_applies`). The per-epoch arrays take 72 bytes per epoch and satellite (natural
-    sources: 24 bytes per epoch, antenna and source), the result 8 bytes per
+    (`~astropy_feedrot.earth.fast_path_applies`). The per-epoch arrays take
+    72 bytes per epoch and satellite (natural sources: 24 bytes per epoch,
+    antenna and source), the result 8 bytes per
     grid point; the wind-up itself is evaluated in blocks of
     `BLOCK_POINTS` grid points. See `feed_rotation_grid_dask` for grids
     larger than memory.
