@@ -282,7 +282,7 @@ def interpolated_sun_position(orientation):
     ndarray, shape (N, 3)
         Metres, at the N flattened epochs of ``orientation``; within 1e-11 rad
         of `sun_position` in direction and 1e-11 in relative distance (about
-        1e-12 for both).
+        2e-13 for both).
 
     Examples
     --------

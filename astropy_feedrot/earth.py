@@ -734,7 +734,7 @@ class EarthOrientation:
         -------
         ndarray, shape (N, 3)
             At the flattened epochs, as `astropy_feedrot.attitude.sun_position`
-            (ERFA ``epv00`` in GCRS, rotated to ITRS) to about 1e-12 rad.
+            (ERFA ``epv00`` in GCRS, rotated to ITRS) to about 2e-13 rad.
 
         Examples
         --------
