@@ -275,7 +275,8 @@ def _natural_target(args):
             raise CommandError("give the source either with --source or with --ra and --dec")
         for kwargs in ({}, {"unit": (u.hourangle, u.deg)}):
             try:
-                coord = SkyCoord(args.source, frame=frame, **kwargs)
+                with np.errstate(all="ignore"):  # absurd numbers: refused below, not warned
+                    coord = SkyCoord(args.source, frame=frame, **kwargs)
             except (ValueError, TypeError, u.UnitsError) as error:
                 reason = _one_line(error)
                 continue
@@ -288,7 +289,8 @@ def _natural_target(args):
     plain = re.fullmatch(r"\s*[-+]?\d+(\.\d*)?\s*", args.ra) is not None
     ra_unit = u.deg if plain else u.hourangle
     try:
-        coord = SkyCoord(args.ra, args.dec, unit=(ra_unit, u.deg), frame=frame)
+        with np.errstate(all="ignore"):  # absurd numbers: refused below, not warned
+            coord = SkyCoord(args.ra, args.dec, unit=(ra_unit, u.deg), frame=frame)
     except (ValueError, TypeError, u.UnitsError) as error:
         raise CommandError(f"--ra/--dec: cannot read {args.ra!r} {args.dec!r} as coordinates "
                            f"({_one_line(error)}); e.g. --ra 03:19:48.16 --dec +41:30:42.1 "

@@ -142,6 +142,9 @@ NATURAL_CASES = [
     (["--source", "3C 84"], r"--source: cannot read '3C 84' as coordinates .*needs the internet"),
     (["--source", "1d 200d"], r"--source: cannot read '1d 200d' as coordinates \(.*200d.*dec\)"),
     (["--source", "nan nan"], r"--source: cannot read 'nan nan'"),
+    (["--source", "1.E400"], r"--source: cannot read '1.E400' as coordinates"),
+    (["--source", "1e400 1e400"], r"--source: (cannot read|the coordinates '1e400 1e400' are "
+                                  r"not finite)"),
     (["--source", "[1, 2] [3, 4]"], r"--source: cannot read|--source: give one source"),
     (["--source", ""], r"--source: cannot read ''"),
     (["--source", SOURCE, "--tle", "{TLE}"], r"give one target: a natural source or a satellite, "
