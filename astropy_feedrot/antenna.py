@@ -13,7 +13,7 @@ from astropy import units as u
 from astropy.coordinates import Angle
 
 from . import engine, kernel, rates
-from .earth import EarthOrientation
+from .earth import orientation_of
 from .eop import iers_context
 from .focus import CassegrainFocus, as_focus
 from .frames import (
@@ -624,7 +624,7 @@ class Antenna:
         pole = rates.celestial_pole(obstime)
         sun = np.empty(filled.shape + (3,))  # the Sun: for the rate of the annual aberration
         if filled.size:
-            sun[...] = EarthOrientation(filled).sun_position().reshape(sun.shape)
+            sun[...] = orientation_of(filled).sun_position().reshape(sun.shape)
         s_rate = rates.source_direction_rate(s, pole, location_xyz(self.location), sun)
         rate = sign * engine.feed_rotation_rate(
             self._receivers, s[..., np.newaxis, np.newaxis, :],

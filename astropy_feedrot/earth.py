@@ -33,7 +33,10 @@ series per day of the span and under 0.1 us per epoch, and at no number of
 epochs more than astropy's own transformation (see `fast_path_applies`).
 """
 
+import collections
+import hashlib
 import math
+import threading
 
 import erfa
 import numpy as np
@@ -51,6 +54,7 @@ from astropy.coordinates import (
 )
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
+from astropy.utils import iers
 
 from .config import conf
 from .eop import iers_context
@@ -58,6 +62,7 @@ from .inputs import as_location, as_skycoord, as_time
 
 __all__ = [
     "EarthOrientation",
+    "orientation_of",
     "fast_path_applies",
     "FIXED_FRAMES",
     "FAST_PATH_MIN_DISTANCE",
@@ -864,3 +869,61 @@ def _horner(coefficients, slot, x):
         out *= x
         out += np.take(coefficients[k], slot, axis=1)
     return out
+
+
+#: How many `EarthOrientation` objects `orientation_of` keeps.
+ORIENTATION_CACHE_SIZE = 4
+
+_ORIENTATIONS = collections.OrderedDict()
+_ORIENTATIONS_LOCK = threading.Lock()
+
+
+def orientation_of(obstime):
+    """The `EarthOrientation` of these epochs, shared by every computation at them.
+
+    Several antennas observing at the same epochs (`~astropy_feedrot.Antenna`
+    methods called one antenna at a time, tables of baselines) need the same
+    Earth orientation and the same Sun. The last `ORIENTATION_CACHE_SIZE`
+    of them are kept, keyed on the epochs' values, scale and shape and on the
+    IERS table in use, so that the first computation builds it and the others
+    reuse it.
+
+    Parameters
+    ----------
+    obstime : `~astropy.time.Time`
+        The epochs (unmasked; a masked Time is built anew, never cached).
+
+    Returns
+    -------
+    EarthOrientation
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.earth import orientation_of
+    >>> times = Time("2023-01-25") + np.arange(100) * u.min
+    >>> orientation_of(times) is orientation_of(times.copy())  # the same epochs
+    True
+    """
+    obstime = as_time(obstime)
+    if obstime.masked:
+        return EarthOrientation(obstime)
+    table = iers.earth_orientation_table.get()
+    digest = hashlib.blake2b(np.ascontiguousarray(obstime.jd1, dtype=float).tobytes())
+    digest.update(np.ascontiguousarray(obstime.jd2, dtype=float).tobytes())
+    key = (obstime.scale, obstime.shape, digest.digest(), id(table))
+    with _ORIENTATIONS_LOCK:
+        hit = _ORIENTATIONS.get(key)
+        if hit is not None and hit[0] is table:  # the entry keeps its table alive
+            _ORIENTATIONS.move_to_end(key)
+    if hit is not None and hit[0] is table:
+        with iers_context(obstime):  # the same check of the tables as a new one makes
+            return hit[1]
+    orientation = EarthOrientation(obstime)
+    with _ORIENTATIONS_LOCK:
+        _ORIENTATIONS[key] = (table, orientation)
+        while len(_ORIENTATIONS) > ORIENTATION_CACHE_SIZE:
+            _ORIENTATIONS.popitem(last=False)
+    return orientation

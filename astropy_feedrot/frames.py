@@ -21,7 +21,7 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import ITRS, SkyCoord
 
-from .earth import EarthOrientation, fast_path_applies
+from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
 from .inputs import as_location, as_skycoord, as_time, broadcast_shape
 from .kernel import dot, unit
@@ -523,7 +523,7 @@ def _fast_path_applies(target, obstime, shape):
 
 
 def _interpolated_direction(target, location, obstime, shape):
-    s = EarthOrientation(obstime).source_directions(target.icrs, location)
+    s = orientation_of(obstime).source_directions(target.icrs, location)
     if target.size == 1:
         return np.broadcast_to(s.reshape(obstime.shape + (3,)), shape + (3,))
     full = s.reshape(target.size, obstime.size, 3)

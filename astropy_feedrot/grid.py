@@ -35,7 +35,7 @@ from . import engine
 from .antenna import Antenna
 from .attitude import Attitude, nominal_dipoles
 from .continuity import delay_of_difference, frequency_hz
-from .earth import EarthOrientation, fast_path_applies
+from .earth import fast_path_applies, orientation_of
 from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
 from .frames import (
@@ -511,7 +511,7 @@ def _check_targets_objects(targets):
 def _earth_orientation(obstime):
     """The one Earth orientation of the grid, or None where orbits use astropy's frames."""
     if fast_path_applies(None, obstime):
-        return EarthOrientation(obstime)
+        return orientation_of(obstime)
     return None
 
 
@@ -559,7 +559,7 @@ def _source_directions(sources, antennas, obstime):
     column = sources.reshape((n_s, 1))
     orientation = None
     if fast_path_applies(column, obstime):  # every source at every epoch
-        orientation = EarthOrientation(obstime)
+        orientation = orientation_of(obstime)
         icrs = sources.icrs
     for i, antenna in enumerate(antennas):
         if orientation is not None:

@@ -22,7 +22,7 @@ from astropy.coordinates import ITRS, TEME, CartesianRepresentation, SkyCoord
 from astropy.time import Time
 
 from .config import conf
-from .earth import EarthOrientation, fast_path_applies
+from .earth import EarthOrientation, fast_path_applies, orientation_of
 from .eop import iers_context
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
@@ -287,7 +287,7 @@ def teme_to_itrs(position, obstime, orientation=None):
     position = np.asarray(position, dtype=float)
     check_orientation(orientation, obstime)
     if orientation is None and fast_path_applies(None, obstime):
-        orientation = EarthOrientation(obstime)
+        orientation = orientation_of(obstime)
     if orientation is not None:
         flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)

@@ -5,7 +5,7 @@ import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .earth import EarthOrientation, fast_path_applies
+from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
 from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit, check_orientation
@@ -246,5 +246,5 @@ class Satellite:
 def _earth_orientation(obstime):
     """The Earth orientation shared by orbit and attitude, or None off the fast path."""
     if fast_path_applies(None, obstime):
-        return EarthOrientation(obstime)
+        return orientation_of(obstime)
     return None

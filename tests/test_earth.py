@@ -191,3 +191,27 @@ def test_no_function_level_imports(module):
 
 def test_earth_does_not_import_frames():
     assert "frames" not in {name for name, _ in imports(PACKAGE / "earth.py")}
+
+
+def test_orientation_of_is_shared_and_follows_the_tables():
+    from astropy.utils import iers
+
+    from astropy_feedrot.earth import orientation_of
+
+    times = Time("2023-01-25") + np.arange(50) * 10 * u.min
+    first = orientation_of(times)
+    assert orientation_of(times.copy()) is first  # the same epochs: one object
+    assert orientation_of(times + 1 * u.s) is not first
+    # Another IERS table (UT1 - UTC shifted by 0.5 s) is another orientation,
+    # whose Earth rotation angle leads by 0.5 s of rotation (the ERA's rate,
+    # 7.292e-5 rad/s: ERFA era00).
+    shifted = iers.IERS_Auto.open().copy()
+    shifted["UT1_UTC"] = shifted["UT1_UTC"] + 0.5 * u.s
+    with iers.earth_orientation_table.set(shifted):
+        other = orientation_of(Time(times.jd1, times.jd2, format="jd", scale="utc"))
+        assert other is not first
+    lead = np.angle(np.exp(1j * (other.era - first.era)))
+    assert np.allclose(lead, 0.5 * 7.2921151467e-5, rtol=1e-6)
+    masked = times.copy()
+    masked[3] = np.ma.masked
+    assert orientation_of(masked) is not orientation_of(masked)  # never cached

@@ -279,3 +279,12 @@ def test_every_front_end_warns_once(stale_tables, n_epochs):
         stale = [w for w in caught if w.category is StaleEarthOrientationWarning]
         assert len(stale) == 1, (target, name, len(stale))
         assert stale[0].filename == __file__, (target, name)
+
+
+def test_a_second_call_at_the_same_epochs_warns_again(stale_tables):
+    # The Earth orientation of these epochs is reused (earth.orientation_of);
+    # the tables are checked again all the same.
+    times = LATER + np.arange(40) * 15 * u.min
+    for _ in range(2):
+        _, caught = _caught(ANTENNA.feed_rotation, SOURCE, times)
+        assert [w.category for w in caught] == [StaleEarthOrientationWarning]
