@@ -25,6 +25,7 @@ large the UT1 error may be and what that does to hour and parallactic angles
 
 import contextlib
 import contextvars
+import time
 import warnings
 from typing import NamedTuple
 
@@ -104,6 +105,31 @@ class EarthOrientationStatus(NamedTuple):
 
 def _table():
     return iers.earth_orientation_table.get()
+
+
+_FACTS = {}
+
+
+def _table_facts():
+    """(start, end of the predictions, last measured) MJD of the tables in use."""
+    table = _table()
+    facts = _FACTS.get(id(table))
+    if facts is None or facts[0] is not table:  # the entry keeps its table alive
+        mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
+        start, end = float(mjd[0]), float(mjd[-1])
+        measured = min(float(table.meta.get("predictive_mjd", end + 1)) - 1, end)
+        facts = (table, start, end, measured)
+        _FACTS.clear()
+        _FACTS[id(table)] = facts
+    return facts[1:]
+
+
+def _covered(low, high):
+    """Whether epochs from MJD ``low`` to ``high`` need no warning (the quick check)."""
+    start, end, measured = _table_facts()
+    age = time.time() / 86400.0 + 40587.0 - measured  # the clock, as Time.now()
+    stale = high > measured and age > MAX_TABLE_AGE.to_value(u.day)
+    return not (stale or high > end or low < start)
 
 
 def _mjd_range(obstime):
@@ -190,10 +216,7 @@ def earth_orientation_status(obstime=None, now=None):
 
 def _status(obstime, now):
     table = _table()
-    mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
-    start, end = mjd[0], mjd[-1]
-    measured = float(table.meta.get("predictive_mjd", end + 1)) - 1
-    measured = min(measured, end)
+    start, end, measured = _table_facts()
     now_mjd = (Time.now() if now is None else Time(now)).utc.mjd
     expires = Time(erfa.leap_seconds.expires)
     age = now_mjd - measured
@@ -334,7 +357,7 @@ def iers_context(obstime=None):
     finally:
         if outermost:
             _SCOPE.reset(token)
-    if outermost:
+    if outermost and scope.high >= scope.low and not _covered(scope.low, scope.high):
         message = earth_orientation_status(scope.epochs()).message
         if message is not None:
             warn_caller(message, StaleEarthOrientationWarning)
