@@ -63,6 +63,7 @@ from .inputs import as_location, as_skycoord, as_time
 __all__ = [
     "EarthOrientation",
     "orientation_of",
+    "clear_orientation_cache",
     "fast_path_applies",
     "FIXED_FRAMES",
     "FAST_PATH_MIN_DISTANCE",
@@ -927,3 +928,18 @@ def orientation_of(obstime):
         while len(_ORIENTATIONS) > ORIENTATION_CACHE_SIZE:
             _ORIENTATIONS.popitem(last=False)
     return orientation
+
+
+def clear_orientation_cache():
+    """Forget the Earth orientations `orientation_of` keeps.
+
+    For timing a computation from nothing (the benchmarks), or to free their
+    memory.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.earth import clear_orientation_cache
+    >>> clear_orientation_cache()
+    """
+    with _ORIENTATIONS_LOCK:
+        _ORIENTATIONS.clear()

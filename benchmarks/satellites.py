@@ -18,7 +18,8 @@ Three measurements, all in the same run:
 Each time is the best of ``--repeat`` runs (the machine may be shared). A
 profile (cProfile) of one run of each shows how the time splits between Earth
 orientation, the Sun, SGP4, the TEME to ITRS rotation, the attitude and the
-rest. PASS/FAIL lines close the output; the exit status is 1 if one fails.
+rest. PASS/FAIL lines close the output; with ``--strict`` the exit status is 1 if
+one fails.
 
 Run from the repository root with::
 
@@ -42,6 +43,7 @@ from astropy.time import Time
 from sgp4.api import Satrec
 
 from astropy_feedrot import Satellite, TLEOrbit
+from astropy_feedrot.earth import clear_orientation_cache
 from astropy_feedrot.eop import iers_context
 from astropy_feedrot.grid import feed_rotation_grid, rotation_delay_grid
 from astropy_feedrot.propagation import propagate
@@ -93,6 +95,7 @@ def best_of(repeat, function):
     """The smallest wall time of ``repeat`` calls, and the last result."""
     best = np.inf
     for _ in range(repeat):
+        clear_orientation_cache()  # every run from nothing, as a first call
         start = time.perf_counter()
         result = function()
         best = min(best, time.perf_counter() - start)
@@ -134,6 +137,8 @@ def main(argv=None):
     parser.add_argument("--no-check", action="store_true",
                         help="skip the comparison with Antenna.feed_rotation")
     parser.add_argument("--no-profile", action="store_true", help="skip the profiles")
+    parser.add_argument("--strict", action="store_true",
+                        help="exit with status 1 if a target is missed (default: report only)")
     args = parser.parse_args(argv)
 
     start = time.perf_counter()
@@ -225,7 +230,7 @@ def main(argv=None):
     print()
     for label, passed in results:
         print(f"{'PASS' if passed else 'FAIL'}: {label}")
-    return 0 if all(passed for _, passed in results) else 1
+    return 1 if args.strict and not all(passed for _, passed in results) else 0
 
 
 if __name__ == "__main__":
