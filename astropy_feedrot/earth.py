@@ -34,6 +34,7 @@ epochs more than astropy's own transformation (see `fast_path_applies`).
 """
 
 import collections
+import concurrent.futures
 import hashlib
 import math
 import threading
@@ -378,6 +379,26 @@ def _combine(values, start, weights):
     return out
 
 
+#: Nodes from which `_in_parallel` splits an ERFA evaluation between threads.
+_PARALLEL_NODES = 64
+
+
+def _in_parallel(evaluate, tt1, tt2):
+    """``evaluate(tt1, tt2)`` on halves of the nodes in two threads, where there are many.
+
+    pyerfa's functions release the GIL, so the nutation series and the
+    ephemeris of long sparse series (a year of hourly epochs needs a few
+    hundred nodes) take half the time on two cores.
+    """
+    if tt2.size < _PARALLEL_NODES:
+        return evaluate(tt1, tt2)
+    half = tt2.size // 2
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        first = pool.submit(evaluate, tt1, tt2[:half])
+        second = evaluate(tt1, tt2[half:])
+        return np.concatenate([first.result(), second])
+
+
 class _Series:
     """A slow quantity from ERFA on a grid of TT, interpolated to instants.
 
@@ -436,7 +457,7 @@ class _Series:
         missing = [j for j in needed.tolist() if j not in self._nodes]
         if missing:
             tt = np.array(missing) * self.spacing
-            for j, row in zip(missing, self.evaluate(self.tt1, self.tt2 + tt)):
+            for j, row in zip(missing, _in_parallel(self.evaluate, self.tt1, self.tt2 + tt)):
                 self._nodes[j] = row
         return np.array([self._nodes[j] for j in needed.tolist()])
 
