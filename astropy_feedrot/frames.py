@@ -280,7 +280,8 @@ def check_station_xyz(xyz, name="location"):
         where = tuple(np.argwhere(~finite)[0])
         raise ValueError(f"{name}{_index(where)} has a NaN or infinite coordinate: "
                          f"{xyz[where].tolist()}; give finite geocentric coordinates")
-    height = erfa.gc2gd(1, xyz)[2]  # 1: WGS84
+    with np.errstate(all="ignore"):  # ERFA overflows far from the Earth: NaN, refused below
+        height = erfa.gc2gd(1, xyz)[2]  # 1: WGS84
     low, high = STATION_HEIGHTS
     bad = ~((height >= low) & (height <= high))  # NaN where ERFA overflows: bad too
     if np.any(bad):

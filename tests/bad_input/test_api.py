@@ -509,6 +509,7 @@ def test_tables_refuse_unsorted_epochs_masked_aside():
                                     r"coordinates in metres\?\)"),
     ((-6.6e25, -6.6e25, 7.7e25), r"location is .* m from the geocentre.* an Earth station"),
     ((1.18e26, 0, 0), r"location is .* m from the geocentre.* an Earth station"),
+    ((0, 0, 1.18e26), r"location is .* m from the geocentre.* an Earth station"),
 ])
 def test_antenna_refuses_sites_off_the_earth(xyz, match):
     with pytest.raises(ValueError, match=match):
