@@ -1,12 +1,15 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """A transmitting satellite: an orbit, an attitude and a circular polarization."""
 
+import warnings
+
 import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
 from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
+from .exceptions import warn_caller
 from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit, check_orientation
 from .polarization import polarization_sign
@@ -105,6 +108,8 @@ class Satellite:
         self.sign = polarization_sign(polarization)
         self.polarization = "RCP" if self.sign > 0 else "LCP"
         self.name = name
+        # The last positions and dipoles, for other antennas at the same epochs.
+        self._transmitter = None
 
     def __repr__(self):
         label = f"{self.name!r} " if self.name else ""
@@ -233,14 +238,40 @@ class Satellite:
         orientation = None
         if self.orbit.uses_orientation or self.attitude.needs_sun:
             orientation = _earth_orientation(filled)
-        position = self._position(filled, masked, orientation)
+        position, aligned, transverse = self._transmitter_at(filled, masked, orientation)
         s = kernel.unit(position - location_xyz(location))
-        aligned, transverse = (v[0] for v in Attitude.dipoles_many(
-            [self.attitude], filled, position[np.newaxis], orientation))
         if masked is not None:
             aligned = np.where(masked[..., np.newaxis], np.nan, aligned)
             transverse = np.where(masked[..., np.newaxis], np.nan, transverse)
         return LineOfSight(s, aligned, transverse)
+
+    def _transmitter_at(self, filled, masked, orientation):
+        """Positions and dipoles at the epochs, shared by the antennas that ask in turn.
+
+        With an Earth orientation (`~astropy_feedrot.earth.orientation_of`
+        gives one object per set of epochs and IERS table) the last result is
+        kept; another antenna at the same epochs reuses it, and the warnings
+        of the orbit and the attitude are given again, as a new computation
+        would give them. Copies are returned, so the kept arrays stay as
+        computed.
+        """
+        key = (orientation, self.orbit, self.attitude)
+        kept = self._transmitter
+        if orientation is None or kept is None or any(a is not b for a, b in zip(kept[0], key)) \
+                or not np.array_equal(kept[1], masked if masked is not None else False):
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                position = self._position(filled, masked, orientation)
+                aligned, transverse = (v[0] for v in Attitude.dipoles_many(
+                    [self.attitude], filled, position[np.newaxis], orientation))
+            said = [(str(w.message), w.category) for w in caught]
+            kept = (key, masked if masked is not None else False, position, aligned,
+                    transverse, said)
+            if orientation is not None:
+                self._transmitter = kept
+        for message, category in kept[5]:
+            warn_caller(message, category)
+        return tuple(np.array(v) for v in kept[2:5])
 
 
 def _earth_orientation(obstime):

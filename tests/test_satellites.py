@@ -806,3 +806,29 @@ def test_no_earth_orientation_unless_used():
             with pytest.warns(StaleEarthOrientationWarning, match="past the predictions") as w:
                 antenna.feed_rotation(satellite, times)
             assert len(w) == 1
+
+
+def test_antennas_in_turn_share_the_transmitter_and_its_warnings():
+    """A second antenna at the same epochs reuses the satellite's positions and
+    dipoles, gets the same numbers as a satellite computed afresh, and gets the
+    orbit's warnings again (here: an element set 40 days from its epoch)."""
+    from astropy_feedrot import OrbitWarning
+
+    times = Time("2023-03-06T00:00") + np.arange(0, 3600, 60) * u.s  # 40 days on
+    shared = Satellite(TLEOrbit(*GPS_SVN76_TLE))
+    first = Antenna(SITES["DBR205"], StationaryMount())
+    second = Antenna(SITES["FD-VLBA"], AltAzMount())
+    with pytest.warns(OrbitWarning, match="days from the epoch of their element set"):
+        first.feed_rotation(shared, times)
+    with pytest.warns(OrbitWarning, match="days from the epoch of their element set") as caught:
+        reused = second.feed_rotation(shared, times)
+    assert [w.filename for w in caught] == [__file__]
+    with pytest.warns(OrbitWarning):
+        fresh = second.feed_rotation(Satellite(TLEOrbit(*GPS_SVN76_TLE)), times)
+    assert np.array_equal(reused, fresh, equal_nan=True)
+    with pytest.warns(OrbitWarning):
+        los = shared.line_of_sight(second.location, times)
+    los.aligned[:] = 0  # the returned arrays are the caller's: what is kept stays
+    with pytest.warns(OrbitWarning):
+        again = second.feed_rotation(shared, times)
+    assert np.array_equal(again, fresh, equal_nan=True)
