@@ -393,10 +393,22 @@ def _in_parallel(evaluate, tt1, tt2):
     if tt2.size < _PARALLEL_NODES:
         return evaluate(tt1, tt2)
     half = tt2.size // 2
-    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        first = pool.submit(evaluate, tt1, tt2[:half])
-        second = evaluate(tt1, tt2[half:])
-        return np.concatenate([first.result(), second])
+    first = _helper_thread().submit(evaluate, tt1, tt2[:half])
+    second = evaluate(tt1, tt2[half:])
+    return np.concatenate([first.result(), second])
+
+
+_HELPER = []
+_HELPER_LOCK = threading.Lock()
+
+
+def _helper_thread():
+    """One worker thread, started on first use and kept (starting one costs ~2 ms)."""
+    with _HELPER_LOCK:
+        if not _HELPER:
+            _HELPER.append(concurrent.futures.ThreadPoolExecutor(
+                max_workers=1, thread_name_prefix="astropy_feedrot-erfa"))
+        return _HELPER[0]
 
 
 class _Series:
