@@ -608,19 +608,16 @@ class Antenna:
         limit = as_elevation_limit(min_elevation)
         form = engine.check_form(form)
         if isinstance(target, Satellite):
-            los = self._line_of_sight(target, obstime)  # for the elevation mask
-
             def phase(epochs):
                 return self.feed_rotation(target, epochs, polarization, form)
 
             rate = rates.difference_rate(phase, obstime, span=target.orbit.coverage)
-            below = None
             if limit is not None:
-                below = kernel.dot(los.s, self._local.up) < engine.min_sine(limit)
+                below = self._below(self._line_of_sight(target, obstime).s, limit)
                 rate = np.where(below, np.nan, rate)
             return self._rate(rate)
         s = source_direction(target, self.location, obstime)
-        filled, masked = fill_masked(obstime)
+        filled, _ = fill_masked(obstime)
         pole = rates.celestial_pole(obstime)
         sun = np.empty(filled.shape + (3,))  # the Sun: for the rate of the annual aberration
         if filled.size:
@@ -629,15 +626,17 @@ class Antenna:
         rate = sign * engine.feed_rotation_rate(
             self._receivers, s[..., np.newaxis, np.newaxis, :],
             s_rate[..., np.newaxis, np.newaxis, :])[..., 0, 0]
-        below = None
-        if limit is not None:
-            below = kernel.dot(s, self._local.up) < engine.min_sine(limit)
+        below = None if limit is None else self._below(s, limit)
         count = int(np.count_nonzero(engine.degenerate(rate, s, below)))
         engine.warn_degenerate(count, np.size(rate), "feed rotation rate", "epochs",
                                f"{self.mount!r} with {self.focus!r}")
         if below is not None:
             rate = np.where(below, np.nan, rate)
         return self._rate(rate)
+
+    def _below(self, s, limit):
+        """Where the lines of sight ``s`` are below the elevation ``limit`` (radians)."""
+        return kernel.dot(s, self._local.up) < engine.min_sine(limit)
 
     @staticmethod
     def _rate(radians_per_second):
