@@ -28,6 +28,7 @@ from .frames import (
     source_direction,
 )
 from .mounts import as_mount
+from .receptors import Receptors
 from .satellite import Satellite
 
 __all__ = ["Antenna", "FeedRotationTerms", "AntennaAngles"]
@@ -138,6 +139,15 @@ class Antenna:
         the reference of azimuth and elevation). ``'geodetic'`` (default) is
         the ellipsoid normal, which a levelled antenna follows; ``'geocentric'``
         is :math:`r_\\mathrm{ant}/|r_\\mathrm{ant}|` as printed in Eq 28.
+        CASA and casacore compute parallactic angles with the geocentric
+        vertical (their ``AZEL`` frame); pass ``'geocentric'`` to reproduce
+        them (see :doc:`/correcting`).
+    receptors : `~astropy_feedrot.receptors.Receptors`, optional
+        The receptors of the feed and their angles in the antenna, as
+        visibility files give them; used to correct visibilities (see
+        `~astropy_feedrot.correction.correct_receptor_visibilities`). They
+        do not change `feed_rotation`, which is that of the antenna's
+        reference direction.
 
     Raises
     ------
@@ -165,7 +175,8 @@ class Antenna:
     <Angle 59.12271470 deg>
     """
 
-    def __init__(self, location, mount, focus=None, name=None, vertical="geodetic"):
+    def __init__(self, location, mount, focus=None, name=None, vertical="geodetic",
+                 receptors=None):
         self.location = as_location(location)
         if not self.location.isscalar:
             raise ValueError(
@@ -180,6 +191,10 @@ class Antenna:
             raise ValueError(f"vertical must be one of {VERTICALS}, got {vertical!r}")
         self.vertical = vertical
         self.name = name
+        if receptors is not None and not isinstance(receptors, Receptors):
+            raise TypeError(f"receptors must be a Receptors object (e.g. Receptors('RL')), "
+                            f"got {type(receptors).__name__}")
+        self.receptors = receptors
         self._local = local_frame(self.location, vertical=vertical)
         if self.mount.tracks:
             self.focus.check_mount(self.mount, self._local)
@@ -192,7 +207,8 @@ class Antenna:
         label = f"{self.name!r}, " if self.name else ""
         x, y, z = location_xyz(self.location)
         return (
-            f"<Antenna {label}({x:.3f}, {y:.3f}, {z:.3f}) m, {self.mount!r}, {self.focus!r}>"
+            f"<Antenna {label}({x:.3f}, {y:.3f}, {z:.3f}) m, {self.mount!r}, {self.focus!r}"
+            + ("" if self.receptors is None else f", {self.receptors!r}") + ">"
         )
 
     @property

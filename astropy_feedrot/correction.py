@@ -37,6 +37,7 @@ from .antenna import Antenna
 from .continuity import unwrap
 from .frames import as_time, broadcast_shape, time_axis
 from .polarization import polarization_sign
+from .receptors import RECEPTOR_TYPES, basis_of
 from .satellite import Satellite
 
 __all__ = [
@@ -44,6 +45,7 @@ __all__ = [
     "correct_visibilities",
     "rotation_matrix",
     "correct_linear_visibilities",
+    "correct_receptor_visibilities",
     "rr_minus_ll",
     "baseline_rr_ll",
 ]
@@ -445,6 +447,187 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
     out = np.empty(values.shape, dtype=np.result_type(values.dtype, corrected.dtype))
     out[..., order] = corrected.reshape(values.shape)
     return _finish(out, values.dtype, unit, mask)
+
+
+# --- receptor by receptor --------------------------------------------------------
+
+
+def _product_names(products):
+    """Upper-case two-letter product names, their basis, checked."""
+    if isinstance(products, str):
+        raise TypeError(f"products must be a sequence of names such as ('RR', 'LL'), not "
+                        f"the single string {products!r}")
+    try:
+        names = tuple(str(name).strip().upper() for name in products)
+    except TypeError:
+        raise TypeError(f"products must be a sequence of names such as ('RR', 'LL'), got "
+                        f"{products!r}") from None
+    if not names or any(len(name) != 2 for name in names):
+        raise ValueError(f"products are pairs of receptor letters such as 'RR', 'RL', "
+                         f"'XY'; got {products!r}")
+    basis = basis_of(names)
+    duplicates = sorted({name for name in names if names.count(name) > 1})
+    if duplicates:
+        raise ValueError(f"products names {duplicates} more than once")
+    return names, basis
+
+
+def _linear_inverse(theta):
+    """Inverse (..., 2, 2) of the linear feed's rows at position angles (X, Y) ``theta``."""
+    a, b = theta[..., 0], theta[..., 1]
+    det = np.sin(b - a)
+    if np.any(np.abs(det[np.isfinite(det)]) < 1e-6):
+        raise ValueError("the X and Y receptors of a feed are parallel in position_angles; "
+                         "their signals cannot be separated")
+    inverse = np.empty(theta.shape[:-1] + (2, 2))
+    inverse[..., 0, 0], inverse[..., 0, 1] = np.sin(b) / det, -np.sin(a) / det
+    inverse[..., 1, 0], inverse[..., 1, 1] = -np.cos(b) / det, np.cos(a) / det
+    return inverse
+
+
+def correct_receptor_visibilities(visibilities, position_angles1, position_angles2, products,
+                                  *, conjugate=False, out=None):
+    """Remove the feed rotation from visibilities, receptor by receptor.
+
+    The general form of `correct_visibilities` and
+    `correct_linear_visibilities`: each receptor has its own position angle
+    on the sky (feed rotation plus receptor angle, see
+    `~astropy_feedrot.receptors`), the two linear receptors need not be 90 deg
+    apart nor in the order X then Y, and the visibilities may follow
+    pyuvdata's conjugation.
+
+    Parameters
+    ----------
+    visibilities : `~numpy.ndarray`, complex
+        Correlation products along the last axis.
+    position_angles1, position_angles2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        Position angles :math:`\\theta` of the receptors of antenna 1 and 2,
+        shape ``(..., 2)`` with the last axis in the order ``(R, L)`` or
+        ``(X, Y)`` (whatever the order of the file), broadcasting to
+        ``visibilities[..., 0]``; for example
+        `~astropy_feedrot.receptors.Receptors.position_angles`.
+    products : sequence of str
+        The products along the last axis: any subset of ``RR``, ``RL``,
+        ``LR``, ``LL``, or all four of ``XX``, ``XY``, ``YX``, ``YY``, in any
+        order; the first letter is antenna 1's receptor.
+    conjugate : bool, optional
+        False (default) for :math:`V_{pq} = \\langle v_{1p} v_{2q}^* \\rangle`,
+        the convention of UVFITS, FITS-IDI and Measurement Sets; True for
+        their complex conjugate, the convention of pyuvdata's
+        ``data_array``.
+    out : `~numpy.ndarray`, optional
+        Where to write the result, of the shape of ``visibilities``; it may
+        be ``visibilities`` itself, to correct in place.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        The visibilities of receptors fixed on the sky, in the same
+        convention and dtype: circular R and L of the sky, or linear X toward
+        north and Y toward east (IAU). NaN where an angle is NaN.
+
+    Raises
+    ------
+    TypeError
+        If ``visibilities`` is not complex, an angle is not a Quantity, or
+        ``products`` is not a sequence of names.
+    astropy.units.UnitsError
+        If an angle is not an angle.
+    ValueError
+        For unknown, repeated or mixed products; linear products without all
+        four (the correction mixes them, so parallel hands alone cannot be
+        corrected per visibility: rotate Stokes Q and U by twice the feed
+        rotation instead); angles whose last axis is not 2 or that do not
+        broadcast; parallel linear receptors; ``out`` of another shape.
+
+    Notes
+    -----
+    With receptor rows :math:`J_i` (`~astropy_feedrot.receptors.Receptors.jones`)
+    the observed coherency is :math:`V = J_1 B J_2^H`. For circular
+    receptors :math:`J_i` is diagonal in the circular basis and
+    :math:`B_{pq} = V_{pq}\\, e^{i(s_p\\theta_{1p} - s_q\\theta_{2q})}`
+    (:math:`s_R = 1`, :math:`s_L = -1`), one product at a time; for linear
+    receptors :math:`B = J_1^{-1} V J_2^{-T}`. Conjugated data take the
+    conjugate factor (the linear rows are real, so they are unchanged).
+
+    Examples
+    --------
+    An ATA-like feed (X horizontal at 90 deg, Y vertical at 0 deg) turned by a
+    parallactic angle of 30 deg sees an unpolarized source as XX = YY = 1:
+    that stays so, and the cross hands stay empty:
+
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.correction import correct_receptor_visibilities
+    >>> theta = [30 + 90, 30 + 0] * u.deg  # (X, Y)
+    >>> v = np.array([1, 0, 0, 1], dtype=complex)
+    >>> out = correct_receptor_visibilities(v, theta, theta, ["XX", "XY", "YX", "YY"])
+    >>> np.allclose(out, [1, 0, 0, 1], rtol=0, atol=1e-15)
+    True
+
+    RR of a source of phase 10 deg, seen with position angles 50 deg and
+    20 deg, has phase 10 + (20 - 50) deg; pyuvdata stores its conjugate:
+
+    >>> theta1, theta2 = [50, -50] * u.deg, [20, -20] * u.deg
+    >>> rr = np.exp(1j * np.radians([10 - 30]))
+    >>> out = correct_receptor_visibilities(rr.conj(), theta1, theta2, ["RR"], conjugate=True)
+    >>> np.degrees(np.angle(out.conj()))  # doctest: +FLOAT_CMP
+    array([10.])
+    """
+    names, basis = _product_names(products)
+    values = np.asarray(visibilities)
+    if not np.issubdtype(values.dtype, np.complexfloating):
+        raise TypeError(f"visibilities must be complex, got dtype {values.dtype}")
+    if values.ndim == 0 or values.shape[-1] != len(names):
+        raise ValueError(f"the last axis of visibilities must hold the {len(names)} products "
+                         f"{names}, got shape {values.shape}")
+    theta1 = _radians(position_angles1, "position_angles1")
+    theta2 = _radians(position_angles2, "position_angles2")
+    for name, theta in (("position_angles1", theta1), ("position_angles2", theta2)):
+        if theta.ndim == 0 or theta.shape[-1] != 2:
+            raise ValueError(f"{name} must have a last axis of 2 (the receptors "
+                             f"{RECEPTOR_TYPES[basis]}), got shape {theta.shape}")
+    _fit(values.shape[:-1], position_angles1=theta1.shape[:-1],
+         position_angles2=theta2.shape[:-1])
+    if out is None:
+        out = np.empty_like(values)
+    elif out.shape != values.shape:
+        raise ValueError(f"out has shape {out.shape}, visibilities {values.shape}")
+    sign = -1.0 if conjugate else 1.0
+    if basis == "circular":
+        index = {letter: k for k, letter in enumerate(RECEPTOR_TYPES["circular"])}
+        for k, name in enumerate(names):
+            p, q = name
+            angle = (polarization_sign(p) * theta1[..., index[p]]
+                     - polarization_sign(q) * theta2[..., index[q]])
+            np.multiply(values[..., k], np.exp(1j * sign * angle), out=out[..., k],
+                        casting="same_kind")
+        return out
+    missing = [name for name in LINEAR_PRODUCTS if name not in names]
+    if missing:
+        raise ValueError(
+            f"linear products {names} lack {missing}: the feed rotation of linear feeds "
+            "mixes XX, XY, YX and YY, so it cannot be removed visibility by visibility "
+            "without all four. With parallel hands only, rotate Stokes Q + iU by minus "
+            "twice the feed rotation after imaging instead"
+        )
+    inverse1, inverse2 = _linear_inverse(theta1), _linear_inverse(theta2)
+    order = [names.index(name) for name in LINEAR_PRODUCTS]
+    v = [values[..., k] for k in order]  # XX, XY, YX, YY
+    m1, m2 = inverse1, inverse2
+    # M1 V: rows of V mixed.
+    a00 = m1[..., 0, 0] * v[0] + m1[..., 0, 1] * v[2]
+    a01 = m1[..., 0, 0] * v[1] + m1[..., 0, 1] * v[3]
+    a10 = m1[..., 1, 0] * v[0] + m1[..., 1, 1] * v[2]
+    a11 = m1[..., 1, 0] * v[1] + m1[..., 1, 1] * v[3]
+    # (M1 V) M2^T: columns mixed.
+    result = (a00 * m2[..., 0, 0] + a01 * m2[..., 0, 1],
+              a00 * m2[..., 1, 0] + a01 * m2[..., 1, 1],
+              a10 * m2[..., 0, 0] + a11 * m2[..., 0, 1],
+              a10 * m2[..., 1, 0] + a11 * m2[..., 1, 1])
+    for k, value in zip(order, result):
+        out[..., k] = value
+    return out
 
 
 # --- the dual-polarization check (Eq 46) ----------------------------------------

@@ -482,9 +482,12 @@ def _check_targets_objects(targets):
     """('satellites', list) or ('sources', 1-d SkyCoord)."""
     if isinstance(targets, (SkyCoord, BaseCoordinateFrame)):
         sources = as_skycoord(targets)
-        if sources.ndim > 1:
-            raise ValueError(f"natural sources must be a scalar or 1-d SkyCoord, got shape "
-                             f"{sources.shape}; flatten it with .ravel()")
+        if sources.ndim > 2:
+            raise ValueError(f"natural sources must be a scalar or 1-d SkyCoord (or 2-d for "
+                             f"moving sources), got shape {sources.shape}; flatten it with "
+                             ".ravel()")
+        if sources.ndim == 2:  # moving sources: [epoch, source]
+            return "sources", sources
         return "sources", sources.reshape((sources.size,))
     if isinstance(targets, Satellite):
         raise TypeError("targets must be a sequence of Satellite objects or a SkyCoord of "
@@ -553,9 +556,16 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
 
 
 def _source_directions(sources, antennas, obstime):
-    """Apparent topocentric directions (T, A, S, 3) of natural sources at each antenna."""
-    n_t, n_s = obstime.size, sources.size
+    """Apparent topocentric directions (T, A, S, 3) of natural sources at each antenna.
+
+    A 2-d ``sources`` (T, S) moves: element [k, j] is source j at epoch k.
+    """
+    n_t, n_s = obstime.size, sources.shape[-1] if sources.ndim else 1
     out = np.empty((n_t, len(antennas), n_s, 3))
+    if sources.ndim == 2:
+        for i, antenna in enumerate(antennas):
+            out[:, i] = source_direction(sources, antenna.location, obstime[:, np.newaxis])
+        return out
     column = sources.reshape((n_s, 1))
     orientation = None
     if fast_path_applies(column, obstime):  # every source at every epoch
@@ -582,15 +592,18 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
     form = check_form(form)
     min_sine = engine.min_sine(as_elevation_limit(min_elevation))
     receivers = _receivers(antennas)
+    if kind == "sources" and targets.ndim == 2 and targets.shape[0] != obstime.size:
+        raise ValueError(f"moving sources (a 2-d SkyCoord) need one row per epoch: shape "
+                         f"{targets.shape} for {obstime.size} epochs")
     if kind == "satellites":
         target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization,
                                                               masked)
         positions = True
     else:
-        sign = np.full(targets.size, polarization_sign(
+        sign = np.full(targets.shape[-1] if targets.ndim else 1, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
         if masked is not None and masked.all():
-            target = np.full((obstime.size, len(antennas), targets.size, 3), np.nan)
+            target = np.full((obstime.size, len(antennas), len(sign), 3), np.nan)
         else:
             target = _source_directions(targets, antennas, obstime)
         if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
@@ -642,7 +655,10 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
         The receivers (A of them), of any mount and focus type.
     targets : sequence of `~astropy_feedrot.Satellite`, or `~astropy.coordinates.SkyCoord`
         S satellites (TLE, SP3 or coordinate orbits; nominal or quaternion
-        attitude), or natural sources as one scalar or 1-d coordinate.
+        attitude), or natural sources as one scalar or 1-d coordinate; or
+        moving natural sources (an ephemeris, a direction fixed in the local
+        frame) as a 2-d coordinate of shape (T, S), whose element ``[k, j]``
+        is source ``j`` at epoch ``k``.
     obstime : `~astropy.time.Time`
         The epochs, scalar or 1-d (T of them); masked epochs give NaN, without
         a warning.
