@@ -58,8 +58,8 @@ SKY = coherency(1.0, 0.1 * np.cos(np.radians(53.2)), 0.1 * np.sin(np.radians(53.
 def test_jones_rows_follow_the_definitions():
     for theta in np.radians([0.0, 17.0, 123.0, -80.0]):
         phi = np.degrees(theta) * u.deg
-        np.testing.assert_allclose(Receptors("XY").jones(phi), linear_rows(theta, theta + np.pi / 2),
-                                   atol=1e-15)
+        np.testing.assert_allclose(Receptors("XY").jones(phi),
+                                   linear_rows(theta, theta + np.pi / 2), atol=1e-15)
         np.testing.assert_allclose(Receptors("RL").jones(phi), circular_rows(theta, theta),
                                    atol=1e-15)
         # An RCP voltage rotated by Phi is multiplied by exp(-i Phi) (Appendix D).
@@ -213,7 +213,8 @@ def test_receptor_accessors():
     feed = Receptors(["y", "x"], [0, 90] * u.deg)
     assert feed.types == "YX" and feed.basis == "linear"
     assert feed.angle("x") == 90 * u.deg
-    assert feed == Receptors("YX", [0, 90] * u.deg) and len({feed, Receptors("YX", [0, 90] * u.deg)}) == 1
+    same = Receptors("YX", [0, 90] * u.deg)
+    assert feed == same and len({feed, same}) == 1
     assert feed != Receptors("XY")
     assert eval(repr(feed), {"Receptors": Receptors, "u": u}) == feed
     with pytest.raises(ValueError, match="not 'R'"):
