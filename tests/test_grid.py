@@ -559,8 +559,12 @@ def test_bad_options(antennas, satellites):
         feed_rotation_grid(antennas, satellites, TIMES, polarization="LCP")
     with pytest.raises(ValueError, match="polarization must be one of"):
         feed_rotation_grid(antennas, sky_grid(2), TIMES, polarization="X")
-    with pytest.raises(ValueError, match=r"natural sources must be a scalar or 1-d SkyCoord, "
-                                         r"got shape \(2, 2\)"):
+    with pytest.raises(ValueError, match=r"natural sources must be a scalar or 1-d SkyCoord "
+                                         r"\(or 2-d for moving sources\), got shape "
+                                         r"\(2, 2, 1\)"):
+        feed_rotation_grid(antennas, sky_grid(4).reshape(2, 2, 1), TIMES)
+    with pytest.raises(ValueError, match=r"moving sources \(a 2-d SkyCoord\) need one row per "
+                                         r"epoch: shape \(2, 2\) for 100 epochs"):
         feed_rotation_grid(antennas, sky_grid(4).reshape(2, 2), TIMES)
     x = np.full((TIMES.size, 1), 2e7) * u.m
     column = Satellite(SkyCoord(ITRS(x=x, y=0 * x, z=x / 2, representation_type="cartesian")))
