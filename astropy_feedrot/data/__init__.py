@@ -10,6 +10,12 @@
 ``stations.ecsv``
     The station catalogue of `astropy_feedrot.stations` (positions cited in
     its header).
+``vla_day2_8chan.uvfits``
+    Real data: two 10-s integrations of the VLA (19 antennas, 153 baselines,
+    RR, LL, RL and LR, 8 channels at 36.3 GHz) from the VLA tutorial data set
+    of CASA, as exported to UVFITS by casacore and distributed with pyuvdata's
+    test data; cut down from 64 channels by
+    ``tests/data/uvdata/scripts/make_package_sample.py``.
 """
 
 from pathlib import Path
@@ -17,7 +23,7 @@ from pathlib import Path
 __all__ = ["sample_file", "SAMPLES"]
 
 #: Names of the shipped sample files.
-SAMPLES = ("sample.sp3", "sample.obx", "stations.ecsv")
+SAMPLES = ("sample.sp3", "sample.obx", "stations.ecsv", "vla_day2_8chan.uvfits")
 
 
 def sample_file(name):
@@ -25,7 +31,7 @@ def sample_file(name):
 
     Parameters
     ----------
-    name : {'sample.sp3', 'sample.obx', 'stations.ecsv'}
+    name : {'sample.sp3', 'sample.obx', 'stations.ecsv', 'vla_day2_8chan.uvfits'}
 
     Returns
     -------
