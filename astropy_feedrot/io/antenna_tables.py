@@ -185,7 +185,7 @@ def _table(hdul, name, extname):
     """The one extension ``extname``; FITSFormatError if missing or repeated."""
     found = [hdu for hdu in hdul if hdu.name == extname]
     if not found:
-        raise FITSFormatError(name, extname, f"a {extname} table", None)
+        raise FITSFormatError(name, extname, f"the {extname} table", None)
     if len(found) > 1:
         raise FITSFormatError(name, extname, f"one {extname} table (several arrays or "
                               "subarrays are not supported; split the file)",
