@@ -140,3 +140,35 @@ def test_bad_arguments(tmp_path):
         uvfits_antennas(path, vertical="up")
     with pytest.raises(ValueError, match="software must be a MNTSTA convention"):
         uvfits_antennas(path, software=3)
+
+
+# ------------------------------------------------------------------ real files
+
+DATA = __import__("pathlib").Path(__file__).parent / "data" / "uvfits"
+
+
+def test_real_aips_vlba_file():
+    # tests/data/uvfits/README.rst: AIPS-written VLBA file from pyuvdata's test data.
+    path = DATA / "mojave.uvfits"
+    assert writing_program(path).program == "aips"
+    antennas = uvfits_antennas(path)
+    names = [a.name for a in antennas.values()]
+    assert names == ["BR", "FD", "HN", "KP", "LA", "MK", "NL", "OV", "PT", "SC"]
+    assert all(a.mount == AltAzMount() and a.receptors == Receptors("RL") for a in
+               antennas.values())
+    # Fort Davis within 1 m of the paper's Table 1 position (different epochs
+    # and solutions, 2006 against the paper's).
+    fd = antennas[names.index("FD") + 1]
+    assert np.linalg.norm(xyz_of(fd) - station_xyz("FD-VLBA")) < 1.0
+
+
+def test_real_casacore_evla_file():
+    # tests/data/uvfits/README.rst: CASA exportuvfits of EVLA data.
+    path = DATA / "day2_TDEM0003_10s_norx_1src_1spw_2ints.uvfits"
+    assert writing_program(path)[:2] == ("casacore", "fits-idi:casacore")
+    antennas = uvfits_antennas(path)
+    assert len(antennas) == 19
+    assert antennas[1].name == "W09"
+    assert antennas[1].receptors == Receptors("R")  # empty POLTYB: one receptor
+    # The VLA's antennas lie within 25 km of its centre (the VLA_CENTRE above).
+    assert all(np.linalg.norm(xyz_of(a) - VLA_CENTRE) < 25e3 for a in antennas.values())

@@ -330,6 +330,8 @@ def _positions(hdu, name, program):
         raise FITSFormatError(name, table, "a finite array centre", str(list(centre)),
                               column="ARRAYX")
     frame = _text(header, "FRAME").upper()
+    if frame and set(frame) == {"?"} and np.all(centre == 0):
+        frame = ""  # AIPS writes '?????' for an unset frame
     if frame and frame not in _FRAMES:
         raise FITSFormatError(name, table, f"FRAME one of {_FRAMES} (Earth-fixed positions "
                               "in m); positions in another frame or on another body are "
@@ -477,8 +479,9 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
         geometry = _table(hdul, name, FORMATS[kind])
         program = _detect(hdul, name, kind)
         numbers = np.asarray(_column(geometry, name, "NOSTA")).astype(int)
-        names = [_letter(n) if isinstance(n, bytes) else str(n).strip()
-                 for n in _column(geometry, name, "ANNAME")]
+        # Names end at the first NUL (casacore pads with NUL and garbage).
+        names = [(n.decode("ascii", "replace") if isinstance(n, bytes) else str(n))
+                 .split("\x00")[0].strip() for n in _column(geometry, name, "ANNAME")]
         codes = np.asarray(_column(geometry, name, "MNTSTA"))
         if len(set(numbers.tolist())) != numbers.size:
             raise FITSFormatError(name, geometry.name, "one row per antenna number",
