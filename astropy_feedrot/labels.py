@@ -26,6 +26,15 @@ copied):
     (``setAntennaMount``: the strings it accepts, each in upper or lower case,
     ``""`` and ``ALT-AZ+ROTATOR`` as alt-az; ``parAngle``: the sign of each
     term), the ``MOUNT`` strings written by the FITS readers above.
+``fits-idi:casacore<3.7``, ``fits-idi:casacore<3.2``
+    The same files at the commits that changed the codes: ``21dd9c182``
+    (2019, first in casacore 3.2.0: Nasmyth written as 4 and 5, ``BIZARRE``
+    moved from 4 to 6) and ``d08694031`` / ``66d4316b9`` (2025, first in
+    3.7.0: beam waveguides 6 and 7, ``BIZARRE`` 8, ``SPACE-HALCA`` and
+    unrecognised mounts 9). Before 3.7 casacore wrote 7 for an orbiting or
+    unrecognised mount; before 3.2 it wrote Nasmyth mounts as 0 and
+    ``BIZARRE`` as 4. Such codes have no model here: a 6 or 7 of an old
+    casacore is never read as a beam waveguide.
 ``fits-idi:difx``, ``difx``
     difx/difx (commit 9027301): ``libraries/difxio/difxio/difx_input.h``
     (``enum AntennaMountType``), ``libraries/difxio/difxio/difx_antenna.c``
@@ -75,12 +84,43 @@ sources add:
 * pyuvdata reads codes 7 and 8 of a UVFITS file it did not write as
   ``other``; ``fits-idi:pyuvdata`` follows the codes pyuvdata writes
   (7 = ``fixed``).
+* casacore's FITS-IDI reader swapped codes 2 and 3 (read 2 as ``X-Y`` and 3
+  as ``ORBITING``) before 3.5.0 (fixed in ``0fddd85cb``, 2021). That changes
+  the ``MOUNT`` of a Measurement Set made from FITS-IDI by an older casacore,
+  not the meaning of the codes in a FITS-IDI file, which DiFX writes as
+  ``fits-idi:difx`` (2 orbiting, 3 X-Y east-west).
 * The geodetic ``BWG`` code has no handedness, and VTD's feed angle for it is
   ``Psi - A``, without the elevation term of Eq 39 (and VTD's ``X-YE`` and
   ``X-YN`` feed angles are not the X-Y forms either). The codes are read as
   geometry (the fixed axes of ``vtd_axof.f``) and ``BWG`` as the paper's
   WARK30M, for which PIMA introduced it: a right-handed beam waveguide,
   ``Psi + E - A`` (Eq 39, Appendix C.2), as casacore's ``ALT-AZ+BWG-R``.
+
+Traps
+-----
+The same label can give different feed rotations in different programs:
+
+* Case and blanks. This package matches mount strings case-insensitively
+  and strips blanks. casacore's ``MSDerivedValues::setAntennaMount``
+  (``ms/MSOper/MSDerivedValues.cc``, used by CASA for its parallactic
+  angles) compares exactly, with one upper- and one lower-case spelling
+  each: ``"Alt-Az"`` or ``"ALT-AZ "`` (a trailing blank) is an unhandled
+  mount there, whose parallactic angle is 0 with a warning.
+* TaQL ``mscal.pa1()``/``pa2()`` (``derivedmscal/DerivedMC/MSCalEngine.cc``)
+  lower-cases ``MOUNT`` and tests only the prefix ``alt-az``: it accepts
+  ``"Alt-Az"``, but gives every ``ALT-AZ+NASMYTH-*`` and ``ALT-AZ+BWG-*``
+  antenna the plain parallactic angle, without the Nasmyth or beam-waveguide
+  terms, and gives 0 for every other mount.
+* pyuvdata reads ``MNTSTA`` 6 of a UVFITS file it did not write as
+  ``phased`` (``src/pyuvdata/uvdata/uvfits.py``), DiFX writes 6 for XYNS and
+  7 for any other mount (``fitsAG.c``), and casacore 3.7 and later read 6 and
+  7 as ``ALT-AZ+BWG-R`` and ``ALT-AZ+BWG-L`` (``FitsIDItoMS.cc``,
+  ``MSFitsInput.cc``): a DiFX file imported by a recent casacore turns its
+  X-Y north-south and "other" antennas into beam waveguides.
+* casacore's UVFITS reader (``MSFitsInput::fillAntennaTable``) makes every
+  antenna of a file whose ``TELESCOP`` is ``'SMA'`` alt-az, whatever its
+  ``MNTSTA``, while pyuvdata describes the SMA antennas as left-handed
+  Nasmyth (``alt-az+nasmyth-l``).
 """
 
 import numbers
@@ -114,6 +154,8 @@ SOFTWARE = (
     "fits-idi:casacore",
     "fits-idi:difx",
     "fits-idi:pyuvdata",
+    "fits-idi:casacore<3.7",
+    "fits-idi:casacore<3.2",
     "casacore",
     "difx",
     "vex",
@@ -179,11 +221,22 @@ _CASACORE_9 = (
     "casacore writes MNTSTA 9 for an orbiting antenna (SPACE-HALCA) and for any mount it "
     "does not recognise; give the mount and focus explicitly"
 )
+_CASACORE_OLD_7 = (
+    "casacore before 3.7 writes MNTSTA 7 for an orbiting antenna (SPACE-HALCA) and for any "
+    "mount it does not recognise, beam waveguides included (BWG codes 6 and 7 arrived in "
+    "casacore 3.7); give the mount and focus explicitly"
+)
+_CASACORE_BIZARRE = (
+    "casacore before 3.7 writes this code for a 'BIZARRE' mount, not for a beam waveguide "
+    "(BWG codes 6 and 7 arrived in casacore 3.7); give the mount and focus explicitly"
+)
 _NO_MODEL = {
     "orbiting": _ORBITING,
     "phased": _PHASED,
     "other": _OTHER,
     "casacore-9": _CASACORE_9,
+    "casacore-old-7": _CASACORE_OLD_7,
+    "casacore-bizarre": _CASACORE_BIZARRE,
 }
 
 # Each convention: (label, kind) in order; the first label of a kind is the
@@ -193,6 +246,20 @@ _TABLES = {
         (0, "alt-az"), (1, "equatorial"), (2, "orbiting"), (3, "xy-east"),
         (4, "nasmyth-right"), (5, "nasmyth-left"), (6, "bwg-right"), (7, "bwg-left"),
         (8, "other"), (9, "casacore-9"),
+    ),
+    # casacore 3.2-3.6: MSFitsOutput writes BIZARRE as 6 and everything it does
+    # not recognise (SPACE-HALCA, BWG) as 7.
+    "fits-idi:casacore<3.7": (
+        (0, "alt-az"), (1, "equatorial"), (2, "orbiting"), (3, "xy-east"),
+        (4, "nasmyth-right"), (5, "nasmyth-left"), (6, "casacore-bizarre"),
+        (7, "casacore-old-7"),
+    ),
+    # casacore 2.0-3.1: no Nasmyth codes (written as 0); BIZARRE is 4 (read
+    # back from 4, 5 or 6), everything else 7.
+    "fits-idi:casacore<3.2": (
+        (0, "alt-az"), (1, "equatorial"), (2, "orbiting"), (3, "xy-east"),
+        (4, "casacore-bizarre"), (5, "casacore-bizarre"), (6, "casacore-bizarre"),
+        (7, "casacore-old-7"),
     ),
     "fits-idi:difx": (
         (0, "alt-az"), (1, "equatorial"), (2, "orbiting"), (3, "xy-east"),
@@ -257,6 +324,14 @@ _VEX_NASMYTH = {"none": None, "right": "right", "left": "left"}
 _NOTES = {
     ("fits-idi:casacore", "xy-north"): "its code 3 (X-Y) is the east-west form",
     ("fits-idi:pyuvdata", "xy-north"): "its code 3 (x-y) is the east-west form",
+    ("fits-idi:casacore<3.7", "xy-north"): "its code 3 (X-Y) is the east-west form",
+    ("fits-idi:casacore<3.2", "xy-north"): "its code 3 (X-Y) is the east-west form",
+    ("fits-idi:casacore<3.7", "bwg-right"): "casacore before 3.7 wrote it as 0 (ALT-AZ)",
+    ("fits-idi:casacore<3.7", "bwg-left"): "casacore before 3.7 wrote it as 0 (ALT-AZ)",
+    ("fits-idi:casacore<3.2", "bwg-right"): "casacore before 3.7 wrote it as 0 (ALT-AZ)",
+    ("fits-idi:casacore<3.2", "bwg-left"): "casacore before 3.7 wrote it as 0 (ALT-AZ)",
+    ("fits-idi:casacore<3.2", "nasmyth-right"): "casacore before 3.2 wrote it as 0 (ALT-AZ)",
+    ("fits-idi:casacore<3.2", "nasmyth-left"): "casacore before 3.2 wrote it as 0 (ALT-AZ)",
     ("casacore", "xy-north"): "its 'X-Y' is the east-west form",
     ("pyuvdata", "xy-north"): "its 'x-y' is the east-west form",
     ("geodetic", "bwg-left"): "its one code 'BWG' is the right-handed form of WARK30M",
@@ -392,11 +467,15 @@ def _shown(software, label):
     return repr(label)
 
 
+# Older eras of a convention, not named in hints about other conventions.
+_OLD_ERAS = ("fits-idi:casacore<3.7", "fits-idi:casacore<3.2")
+
+
 def _elsewhere(label, software):
     """A hint naming the other conventions that know ``label``, or ''."""
     others = []
     for other in SOFTWARE:
-        if other == software:
+        if other == software or other in _OLD_ERAS:
             continue
         try:
             key = _key(other, label)
@@ -468,8 +547,10 @@ def mount_from_label(label, software, *, nasmyth=None):
 
     Parameters
     ----------
-    label : int or str
-        For the ``fits-idi:*`` conventions, the ``MNTSTA`` code of the
+    label : int, str, or a 1-d sequence or array of them
+        One label, or a column of labels (a list, tuple or 1-d numpy array
+        of strings or integers, e.g. the ``MNTSTA`` column of an antenna
+        table). For the ``fits-idi:*`` conventions, the ``MNTSTA`` code of the
         antenna table (an integer, a numpy integer or an integer-valued
         string such as ``"4"``). Otherwise the mount string, matched
         case-insensitively after stripping blanks: a Measurement Set
@@ -486,6 +567,9 @@ def mount_from_label(label, software, *, nasmyth=None):
 
     Returns
     -------
+    tuple or list of tuple
+        For one label, the pair ``(mount, focus)`` below; for a column, a
+        list with one such pair per label.
     mount : `~astropy_feedrot.mounts.Mount`
         `~astropy_feedrot.AltAzMount`, `~astropy_feedrot.EquatorialMount`,
         `~astropy_feedrot.XYMount`, `~astropy_feedrot.StationaryMount` (pyuvdata
@@ -507,8 +591,10 @@ def mount_from_label(label, software, *, nasmyth=None):
         that is not a whole number; for a bad ``nasmyth``, or one given for
         another axis type or another software.
     TypeError
-        For a label of the wrong kind (a bool, an array, a float for a mount
-        string).
+        For a label of the wrong kind (a bool, a float for a mount string, a
+        column of more than one dimension).
+
+    The errors of a column name the row (``labels[3]: ...``).
 
     Notes
     -----
@@ -535,12 +621,52 @@ def mount_from_label(label, software, *, nasmyth=None):
     (AltAzMount(), BeamWaveguideFocus(handedness='right'))
     >>> mount_from_label(6, "fits-idi:difx")
     (XYMount(axis='north'), None)
+
+    and, for casacore, on its version (6 was ``BIZARRE`` before 3.7):
+
+    >>> mount_from_label(6, "fits-idi:casacore<3.7")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: 6 (fits-idi:casacore<3.7) has no feed-rotation model here: ... 'BIZARRE' ...
+
+    A column of labels gives a list of pairs:
+
+    >>> import numpy as np
+    >>> mount_from_label(np.array([0, 4]), "fits-idi:difx")
+    [(AltAzMount(), None), (AltAzMount(), NasmythFocus(handedness='right'))]
     """
     software = _check_software(software)
-    label = _one_scalar(label)
     if nasmyth is not None and software != "vex":
         raise ValueError(f"nasmyth is the VEX 2 per-band value, for software='vex' only; "
                          f"the {software} label carries the focus itself")
+    if _is_column(label):
+        return _column(label, software, nasmyth)
+    return _one(_one_scalar(label), software, nasmyth)
+
+
+def _is_column(label):
+    """Whether ``label`` is a column of labels (a list, tuple or array with axes)."""
+    return isinstance(label, (list, tuple)) or (isinstance(label, np.ndarray) and label.ndim)
+
+
+def _column(labels, software, nasmyth):
+    """``[(mount, focus), ...]`` for a 1-d column of labels; errors name the row."""
+    if isinstance(labels, np.ndarray) and labels.ndim != 1:
+        raise TypeError(f"a column of labels is 1-d, got an array of shape {labels.shape}")
+    pairs = []
+    for row, label in enumerate(labels):
+        if _is_column(label):
+            raise TypeError(f"labels[{row}] is itself a sequence ({label!r}); give a flat "
+                            "column of labels")
+        try:
+            pairs.append(_one(_one_scalar(label), software, nasmyth))
+        except (TypeError, ValueError) as error:
+            raise type(error)(f"labels[{row}]: {error}") from None
+    return pairs
+
+
+def _one(label, software, nasmyth):
+    """The (mount, focus) of one scalar label."""
     _, kind = _lookup(software, label)
     if kind not in _MAKERS:
         raise ValueError(f"{label!r} ({software}) has no feed-rotation model here: "
@@ -679,7 +805,8 @@ def label_from_mount(mount, focus=None, software=None):
         return label
     note = _NOTES.get((software, kind))
     note = f"; {note}" if note else ""
-    others = [(other, _written(other, kind)) for other in SOFTWARE if other != software]
+    others = [(other, _written(other, kind)) for other in SOFTWARE
+              if other != software and other not in _OLD_ERAS]
     others = [f"{other} ({_shown(other, label)})" for other, label in others
               if label is not None]
     raise ValueError(f"{software} has no mount label for {_DESCRIPTIONS[kind]}{note}. It can "

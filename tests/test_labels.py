@@ -72,6 +72,16 @@ READ = [
     ("fits-idi:casacore", 5, ALTAZ, NAS_L),
     ("fits-idi:casacore", 6, ALTAZ, BWG_R),
     ("fits-idi:casacore", 7, ALTAZ, BWG_L),
+    # casacore 3.2-3.6 (MSFitsOutput.cc after 21dd9c182, before d08694031).
+    ("fits-idi:casacore<3.7", 0, ALTAZ, None),
+    ("fits-idi:casacore<3.7", 1, EQUA, None),
+    ("fits-idi:casacore<3.7", 3, XYE, None),
+    ("fits-idi:casacore<3.7", 4, ALTAZ, NAS_R),
+    ("fits-idi:casacore<3.7", 5, ALTAZ, NAS_L),
+    # casacore 2.0-3.1 (MSFitsOutput.cc after a490fd0a6, before 21dd9c182).
+    ("fits-idi:casacore<3.2", 0, ALTAZ, None),
+    ("fits-idi:casacore<3.2", 1, EQUA, None),
+    ("fits-idi:casacore<3.2", 3, XYE, None),
     # DiFX enum AntennaMountType, written as MNTSTA by difx2fits.
     ("fits-idi:difx", 0, ALTAZ, None),
     ("fits-idi:difx", 1, EQUA, None),
@@ -142,6 +152,14 @@ NO_MODEL = [
     ("fits-idi:casacore", 2, "attitude model"),
     ("fits-idi:casacore", 8, "unknown or unusual"),
     ("fits-idi:casacore", 9, "SPACE-HALCA"),
+    ("fits-idi:casacore<3.7", 2, "attitude model"),
+    ("fits-idi:casacore<3.7", 6, "'BIZARRE' mount, not for a beam waveguide"),
+    ("fits-idi:casacore<3.7", 7, "SPACE-HALCA.*beam waveguides included"),
+    ("fits-idi:casacore<3.2", 2, "attitude model"),
+    ("fits-idi:casacore<3.2", 4, "'BIZARRE' mount"),
+    ("fits-idi:casacore<3.2", 5, "'BIZARRE' mount"),
+    ("fits-idi:casacore<3.2", 6, "'BIZARRE' mount"),
+    ("fits-idi:casacore<3.2", 7, "SPACE-HALCA"),
     ("fits-idi:difx", 2, "attitude model"),
     ("fits-idi:difx", 7, "unknown or unusual"),
     ("fits-idi:pyuvdata", 2, "attitude model"),
@@ -225,6 +243,16 @@ WRITE = [
 CANNOT_WRITE = [
     ("fits-idi:casacore", XYN, None, r"east-west form.*fits-idi:difx \(6\)"),
     ("fits-idi:casacore", FIXED, None, r"fits-idi:pyuvdata \(7\)"),
+    ("fits-idi:casacore<3.7", XYN, None, r"east-west form.*fits-idi:difx \(6\)"),
+    ("fits-idi:casacore<3.7", FIXED, None, r"fits-idi:pyuvdata \(7\)"),
+    ("fits-idi:casacore<3.7", ALTAZ, BWG_R, r"before 3.7 wrote it as 0.*fits-idi:casacore \(6\)"),
+    ("fits-idi:casacore<3.7", ALTAZ, BWG_L, r"before 3.7 wrote it as 0.*fits-idi:casacore \(7\)"),
+    ("fits-idi:casacore<3.2", XYN, None, r"east-west form.*fits-idi:difx \(6\)"),
+    ("fits-idi:casacore<3.2", FIXED, None, r"fits-idi:pyuvdata \(7\)"),
+    ("fits-idi:casacore<3.2", ALTAZ, NAS_R, r"before 3.2 wrote it as 0.*fits-idi:casacore \(4\)"),
+    ("fits-idi:casacore<3.2", ALTAZ, NAS_L, r"before 3.2 wrote it as 0.*fits-idi:casacore \(5\)"),
+    ("fits-idi:casacore<3.2", ALTAZ, BWG_R, r"before 3.7 wrote it as 0"),
+    ("fits-idi:casacore<3.2", ALTAZ, BWG_L, r"before 3.7 wrote it as 0"),
     ("fits-idi:difx", ALTAZ, BWG_R, r"fits-idi:casacore \(6\)"),
     ("fits-idi:difx", ALTAZ, BWG_L, r"fits-idi:casacore \(7\)"),
     ("fits-idi:difx", FIXED, None, r"pyuvdata \('fixed'\)"),
@@ -530,11 +558,11 @@ def test_bools_are_not_codes(code):
 
 @pytest.mark.parametrize(("label", "software", "match"), [
     (None, "fits-idi:casacore", "a MNTSTA code is an integer, got NoneType"),
-    ([4], "fits-idi:casacore", "a MNTSTA code is an integer, got list"),
-    (np.array([4, 5]), "fits-idi:difx", r"one label at a time.*shape \(2,\)"),
+    ([[4]], "fits-idi:casacore", r"labels\[0\] is itself a sequence"),
+    (np.array([[4, 5]]), "fits-idi:difx", r"a column of labels is 1-d.*shape \(1, 2\)"),
     (None, "casacore", "a mount label is a string, got NoneType"),
     (4.5, "difx", "a mount label is a string, got float"),
-    (np.array(["AZEL", "EQUA"]), "difx", "one label at a time"),
+    (["AZEL", 4.5], "difx", r"labels\[1\]: a mount label is a string, got float"),
 ])
 def test_labels_of_the_wrong_type(label, software, match):
     with pytest.raises(TypeError, match=match):
@@ -714,3 +742,49 @@ def test_gnss_and_fixed_are_stationary_antennas():
         antenna = _antenna("DBR205", label, software)
         assert max_angle_difference(antenna.feed_rotation(SOURCES, TIMES).rad,
                                     reference.rad) == 0
+
+
+# ---------------------------------------------------------------- columns of labels
+
+
+@pytest.mark.parametrize("column", [
+    [0, 4, 6],
+    (0, 4, 6),
+    np.array([0, 4, 6], dtype=np.int32),
+    np.array(["0", "4", "6"]),
+    np.array([b"0", b"4", b"6"]),
+])
+def test_a_column_gives_one_pair_per_label(column):
+    # Each row as the scalar call reads it (the READ table above, DiFX codes).
+    assert mount_from_label(column, "fits-idi:difx") == [
+        (ALTAZ, None), (ALTAZ, NAS_R), (XYN, None)]
+
+
+def test_a_column_of_strings_and_an_empty_one():
+    assert mount_from_label(np.array(["ALT-AZ", "alt-az+nasmyth-l"]), "casacore") == [
+        (ALTAZ, None), (ALTAZ, NAS_L)]
+    assert mount_from_label([], "casacore") == []
+    # A scalar stays a pair, also as a 0-d array.
+    assert mount_from_label(np.array(4), "fits-idi:difx") == (ALTAZ, NAS_R)
+
+
+def test_a_column_with_vex_nasmyth_applies_it_to_every_row():
+    assert mount_from_label(["az:el", "az:el"], "vex", nasmyth="left") == [
+        (ALTAZ, NAS_L), (ALTAZ, NAS_L)]
+
+
+def test_errors_in_a_column_name_the_row():
+    with pytest.raises(ValueError, match=r"labels\[2\]: 6 \(fits-idi:casacore<3.7\) has no "
+                                         r"feed-rotation model"):
+        mount_from_label([0, 4, 6], "fits-idi:casacore<3.7")
+    with pytest.raises(ValueError, match=r"labels\[1\]: unknown casacore mount label 'ALTAZ'"):
+        mount_from_label(["ALT-AZ", "ALTAZ"], "casacore")
+
+
+def test_casacore_eras_never_read_6_or_7_as_beam_waveguides():
+    # MSFitsOutput.cc: BWG codes exist only from d08694031 (casacore 3.7.0).
+    for software in ("fits-idi:casacore<3.7", "fits-idi:casacore<3.2"):
+        for code in (6, 7):
+            with pytest.raises(ValueError, match="no feed-rotation model"):
+                mount_from_label(code, software)
+    assert mount_from_label([6, 7], "fits-idi:casacore") == [(ALTAZ, BWG_R), (ALTAZ, BWG_L)]
