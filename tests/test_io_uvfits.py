@@ -10,6 +10,8 @@ codes mean them (casacore ``MSFitsOutput.cc`` per version, pyuvdata
 ``utils/antenna.py``).
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from astropy import units as u
@@ -144,11 +146,11 @@ def test_bad_arguments(tmp_path):
 
 # ------------------------------------------------------------------ real files
 
-DATA = __import__("pathlib").Path(__file__).parent / "data" / "uvfits"
+DATA = Path(__file__).parent / "data" / "uvdata"
 
 
 def test_real_aips_vlba_file():
-    # tests/data/uvfits/README.rst: AIPS-written VLBA file from pyuvdata's test data.
+    # tests/data/uvdata/README.md: AIPS-written VLBA file from pyuvdata's test data.
     path = DATA / "mojave.uvfits"
     assert writing_program(path).program == "aips"
     antennas = uvfits_antennas(path)
@@ -163,7 +165,7 @@ def test_real_aips_vlba_file():
 
 
 def test_real_casacore_evla_file():
-    # tests/data/uvfits/README.rst: CASA exportuvfits of EVLA data.
+    # tests/data/uvdata/README.md: CASA exportuvfits of EVLA data.
     path = DATA / "day2_TDEM0003_10s_norx_1src_1spw_2ints.uvfits"
     assert writing_program(path)[:2] == ("casacore", "fits-idi:casacore")
     antennas = uvfits_antennas(path)
