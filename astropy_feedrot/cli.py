@@ -5,7 +5,10 @@
 feed rotation over a span of time (ECSV on standard output, or a file whose
 format follows its extension, and optionally a figure); ``feedrot demo`` runs
 the paper's Section 4.1 simulation on embedded data; ``feedrot stations``
-lists the station catalogue.
+lists the station catalogue. ``feedrot antennas`` lists the antennas of a
+visibility file as read, and ``feedrot correct`` writes a copy of a
+visibility file with the feed rotation removed (see
+`astropy_feedrot.visibility_files`).
 
 Every error is one line on standard error and a non-zero exit status. No file
 is lost: every output is checked before any work is done (format, directory,
@@ -618,6 +621,35 @@ def _run_baseline(args):
     return 0
 
 
+def _run_antennas(args):
+    from .visibility_files import antenna_table, read_antennas
+
+    paths = _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
+                           [("FILE", args.file)], args.overwrite)
+    antennas, software = read_antennas(args.file, vertical=args.vertical)
+    table = antenna_table(antennas, software)
+    table.meta["file"] = str(args.file)
+    table.meta["labels"] = software
+    files = [] if paths[0] is None else [(paths[0], _write_table(table,
+                                                                 _table_format(paths[0])))]
+    then = None if files else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
+    _write_files(files, then)
+    return 0
+
+
+def _run_correct(args):
+    from .visibility_files import correct_file
+
+    try:
+        correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
+                     overwrite=args.overwrite, progress=not args.quiet and sys.stderr.isatty())
+    except FileExistsError as error:
+        raise CommandError(f"-o/--output: {_one_line(error)}") from None
+    except ImportError as error:
+        raise CommandError(_one_line(error)) from None
+    return 0
+
+
 def _run_stations(args):
     catalogue = _catalogue(args)
     table = catalogue.table
@@ -738,6 +770,7 @@ def _parser():
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="examples:\n  feedrot demo\n  feedrot stations\n"
         + "\n".join(text.split("\n", 2)[1] for text in _EXAMPLES.values())
+        + "\n  feedrot antennas vla.uvfits\n  feedrot correct vla.uvfits -o corrected.uvfits"
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
     )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -800,6 +833,47 @@ def _parser():
         formatter_class=argparse.RawDescriptionHelpFormatter)
     stations.add_argument("--catalogue", metavar="FILE", help="an ECSV catalogue of one's own")
     stations.set_defaults(run=_run_stations)
+
+    antennas = commands.add_parser(
+        "antennas", help="the antennas of a visibility file, as read",
+        description="The antennas of a visibility file (FITS-IDI, UVFITS, uvh5, Measurement "
+        "Set, Miriad, SMA Mir) as read for the correction: number, name, ITRF position, "
+        "mount label (in the file's convention), mount, focus, receptors and their angles.",
+        epilog="examples:\n  feedrot antennas experiment.idifits\n"
+        "  feedrot antennas vla.ms -o antennas.ecsv",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    antennas.add_argument("file", metavar="FILE", help="a visibility file or directory")
+    antennas.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
+                          help="the local vertical (geocentric reproduces CASA)")
+    antennas.add_argument("-o", "--output", metavar="FILE",
+                          help="write the table here (format of its extension) instead of "
+                          "standard output")
+    antennas.add_argument("--overwrite", action="store_true",
+                          help="replace an existing output file")
+    antennas.set_defaults(run=_run_antennas)
+
+    correct = commands.add_parser(
+        "correct", help="a copy of a visibility file with the feed rotation removed",
+        description="Write a copy of a visibility file with the feed rotation removed from "
+        "every visibility: FITS-IDI to FITS-IDI (memory-mapped), and every format pyuvdata "
+        "reads to the format of the output's extension (.uvfits, .uvh5, .ms). The input is "
+        "never modified.",
+        epilog="examples:\n  feedrot correct vla.uvfits -o vla_corrected.uvfits\n"
+        "  feedrot correct experiment.idifits -o corrected.idifits --frame icrs\n"
+        "  feedrot correct alma.ms -o alma_corrected.ms --vertical geocentric",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
+    correct.add_argument("-o", "--output", required=True, metavar="OUTPUT",
+                         help="the corrected copy")
+    correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
+                         help="north of the corrected polarization angles: the apparent pole "
+                         "of date (default) or a catalogue frame such as icrs")
+    correct.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
+                         help="the local vertical (geocentric reproduces CASA)")
+    correct.add_argument("--overwrite", action="store_true",
+                         help="replace an existing output (never the input)")
+    correct.add_argument("--quiet", action="store_true", help="no progress bar")
+    correct.set_defaults(run=_run_correct)
     return parser
 
 

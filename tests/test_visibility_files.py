@@ -1,0 +1,147 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Visibility files of every kind: detection, antennas, corrected copies, and the
+``feedrot antennas`` and ``feedrot correct`` commands.
+
+The FITS-IDI files are written by ``fitsidi_writer`` with a polarized source
+injected through a voltage-level model (receptor rows from their definitions,
+feed rotation from ERFA's hd2pa on astropy's HADec); the corrected products
+must come back as that model's sky-fixed products.
+"""
+
+import hashlib
+import tarfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from astropy.io import fits
+from astropy.table import Table
+from fitsidi_writer import write_fitsidi
+
+from astropy_feedrot.cli import main
+from astropy_feedrot.data import sample_file
+from astropy_feedrot.visibility_files import (
+    FILE_KINDS,
+    antenna_table,
+    correct_file,
+    file_kind,
+    read_antennas,
+)
+
+DATA = Path(__file__).parent / "data" / "uvdata"
+VLA = sample_file("vla_day2_8chan.uvfits")
+
+
+def digest(path):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def untar(name, where):
+    with tarfile.open(DATA / name) as archive:
+        top = archive.getnames()[0].split("/")[0]
+        archive.extractall(where, filter="data")
+    return where / top
+
+
+@pytest.fixture
+def idi(tmp_path):
+    path = tmp_path / "experiment.idifits"
+    model = write_fitsidi(path, angles={0: (12.0, 102.0)})
+    return path, model
+
+
+def corrected(path, model):
+    """Products (rows, bands, channels, products) in the <v1 v2*> convention, without
+    the writer's channel gains (as tests/test_io_fitsidi.py reads them)."""
+    with fits.open(path) as hdus:
+        flux = np.asarray(hdus["UV_DATA"].data["FLUX"], dtype=float)
+    flux = flux.reshape(len(model["rows"]), model["n_band"], model["n_chan"],
+                        len(model["products"]), 2)
+    gain = (1.0 + 0.1 * np.arange(model["n_chan"])[None, :]
+            + 0.01 * np.arange(model["n_band"])[:, None])
+    return (flux[..., 0] + 1j * flux[..., 1]).conj() / gain[None, :, :, None]
+
+
+def test_kinds(tmp_path, idi):
+    assert file_kind(VLA) == "uvfits"
+    assert file_kind(DATA / "ata.LoA.C0352.uvh5_60647_62965_9760406_3c286_0001.uvh5") == "uvh5"
+    assert file_kind(idi[0]) == "fits-idi"
+    assert file_kind(untar("lwasv_cor_58342_05_00_14.ms.tar.gz", tmp_path)) == "ms"
+    assert file_kind(untar("sma_test_corrchunk1.mir.tar.gz", tmp_path)) == "mir"
+    assert set(FILE_KINDS) == {"fits-idi", "uvfits", "uvh5", "ms", "miriad", "mir"}
+
+
+def test_kinds_refused(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no such file"):
+        file_kind(tmp_path / "missing.uvfits")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ValueError, match="is a directory but not a Measurement Set"):
+        file_kind(tmp_path / "empty")
+    text = tmp_path / "notes.txt"
+    text.write_text("hello")
+    with pytest.raises(ValueError, match="cannot tell the kind"):
+        file_kind(text)
+    image = tmp_path / "image.fits"
+    fits.HDUList([fits.PrimaryHDU(np.zeros((2, 2)))]).writeto(image)
+    with pytest.raises(ValueError, match="neither random groups"):
+        file_kind(image)
+
+
+def test_antennas_of_the_sample_as_read():
+    # The sample is the VLA (casacore's UVFITS, MNTSTA 0, POLTYA R, POLAA 0).
+    antennas, software = read_antennas(VLA)
+    assert software == "fits-idi:casacore" and len(antennas) == 19
+    table = antenna_table(antennas, software)
+    assert list(table["label"]) == ["0"] * 19
+    assert set(table["mount"]) == {"AltAzMount()"}
+    assert table["x"].unit == "m"
+    # A VLA pad lies some 2 km above the ellipsoid, at latitude 34 deg north.
+    geodetic = antennas[1].location.to_geodetic()
+    assert 2000 < geodetic.height.to_value("m") < 2200 and 33.9 < geodetic.lat.deg < 34.2
+
+
+def test_fitsidi_file_is_corrected_and_input_kept(idi, tmp_path):
+    path, model = idi
+    before = digest(path)
+    out = correct_file(path, tmp_path / "corrected.idifits", frame="apparent")
+    assert digest(path) == before and file_kind(out) == "fits-idi"
+    values = corrected(out, model)
+    np.testing.assert_allclose(values, np.broadcast_to(model["expected"][:, None, None, :],
+                                                       values.shape), atol=2e-6)
+
+
+def test_outputs_refused(idi, tmp_path):
+    path, _ = idi
+    with pytest.raises(ValueError, match="is the input"):
+        correct_file(path, path)
+    existing = tmp_path / "exists.idifits"
+    existing.write_bytes(b"x")
+    with pytest.raises(FileExistsError, match="overwrite=True"):
+        correct_file(path, existing)
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        correct_file(path, tmp_path / "nowhere" / "out.idifits")
+
+
+def test_command_antennas(capsys, idi, tmp_path):
+    assert main(["antennas", str(VLA)]) == 0
+    out, err = capsys.readouterr()
+    table = Table.read(out, format="ascii.ecsv")
+    assert len(table) == 19 and err == "" and table.meta["labels"] == "fits-idi:casacore"
+    output = tmp_path / "antennas.ecsv"
+    assert main(["antennas", str(idi[0]), "-o", str(output)]) == 0
+    assert "label" in Table.read(output).colnames
+    assert main(["antennas", str(idi[0]), "-o", str(output)]) == 1
+    assert "exists; add --overwrite" in capsys.readouterr().err
+
+
+def test_command_correct_fitsidi(capsys, idi, tmp_path):
+    path, model = idi
+    output = tmp_path / "out.idifits"
+    assert main(["correct", str(path), "-o", str(output), "--frame", "icrs", "--quiet"]) == 0
+    assert output.exists() and capsys.readouterr().err == ""
+    assert main(["correct", str(path), "-o", str(output)]) == 1
+    assert "--overwrite" in capsys.readouterr().err
+    assert main(["correct", str(path), "-o", str(path)]) == 1
+    assert "never modified" in capsys.readouterr().err
+    assert main(["correct", str(tmp_path / "missing.uvfits"), "-o", str(output)]) == 1
+    assert "no such file" in capsys.readouterr().err
