@@ -1,0 +1,253 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Benchmark: correcting a visibility data set of more than 1 GiB.
+
+Two paths, each on a synthetic data set built here (a VLBA-like array of
+alt-az antennas observing 3C 84; only the layout matters for the speed):
+
+* ``correct_uvdata``: a pyuvdata ``UVData`` of at least ``--gib`` GiB of
+  ``data_array`` (complex64; four circular products, 64 channels), corrected
+  in place (``inplace=True``, in chunks) and into a copy (``inplace=False``);
+* ``correct_fitsidi``: a FITS-IDI file of at least ``--gib`` GiB (DiFX-like
+  tables from ``tests/fitsidi_writer.py``, its UV_DATA rows repeated over
+  later epochs), corrected into a new file through a memory map.
+
+For each: the wall time, the time per visibility, the largest extra heap
+memory (``tracemalloc``: numpy registers its buffers there) and the peak
+resident memory of the process; and, measured in the same run, the time of
+the least any correction must do, as a ratio:
+
+* for ``correct_uvdata``: one complex multiplication of ``data_array`` in
+  place (``numpy``), and ``UVData.copy`` for the copy;
+* for ``correct_fitsidi``: copying the file (``shutil.copyfile``), which the
+  output needs anyway.
+
+PASS/FAIL lines check the memory bounds the package promises: in place, the
+extra heap stays below a quarter of ``data_array``; a FITS-IDI file is
+corrected with less than 64 MiB of extra heap, whatever its size (it is
+corrected in chunks of 16 MiB through a memory map). With ``--strict``
+the exit status is 1 if one fails. Runs offline. ``python
+benchmarks/correct.py --help`` for the options.
+"""
+
+# Offline before anything else imports astropy's IERS machinery.
+from astropy.utils import iers
+import astropy.utils.data
+
+iers.conf.auto_download = False
+astropy.utils.data.conf.allow_internet = False
+
+import argparse  # noqa: E402
+import gc  # noqa: E402
+import os  # noqa: E402
+import platform  # noqa: E402
+import resource  # noqa: E402
+import shutil  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+import tracemalloc  # noqa: E402
+import warnings  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import astropy.units as u  # noqa: E402
+import numpy as np  # noqa: E402
+from astropy.io import fits  # noqa: E402
+from astropy.time import Time  # noqa: E402
+
+import astropy_feedrot  # noqa: E402
+from astropy_feedrot.io import correct_fitsidi  # noqa: E402
+
+GIB = 2 ** 30
+HERE = Path(__file__).resolve().parent
+
+
+def _peak_rss():
+    """The process's peak resident memory so far, in bytes (Linux: ru_maxrss in KiB)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def _measure(function, *args, **kwargs):
+    """(seconds, result) of a call, then (extra heap peak) of a second, traced call."""
+    gc.collect()
+    start = time.perf_counter()
+    result = function(*args, **kwargs)
+    return time.perf_counter() - start, result
+
+
+def _traced(function, *args, **kwargs):
+    gc.collect()
+    tracemalloc.start()
+    try:
+        function(*args, **kwargs)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    return peak
+
+
+def _line(name, seconds, count, heap=None, ratio=None, reference=""):
+    text = f"{name:<34s} {seconds:9.2f} s  {seconds / count * 1e9:8.2f} ns/visibility"
+    if heap is not None:
+        text += f"  extra heap {heap / 2**20:9.1f} MiB"
+    if ratio is not None:
+        text += f"  {ratio:6.2f}x {reference}"
+    print(text)
+
+
+# --- pyuvdata ----------------------------------------------------------------------------
+
+
+def _uvdata(gib):
+    """A UVData of at least ``gib`` GiB: 10 VLBA antennas, 45 baselines, 64 channels, RR LL RL LR."""
+    from pyuvdata import Telescope, UVData
+
+    from astropy_feedrot.stations import get_antenna
+
+    names = ["BR-VLBA", "FD-VLBA", "HN-VLBA", "KP-VLBA", "LA-VLBA", "MK-VLBA", "NL-VLBA",
+             "OV-VLBA", "PT-VLBA", "SC-VLBA"]
+    available = []
+    for name in names:
+        try:
+            available.append(get_antenna(name))
+        except (KeyError, ValueError):
+            continue
+    if len(available) < 4:  # the embedded catalogue: fall back on the paper's antennas
+        available = [get_antenna(n) for n in ("FD-VLBA", "EFLSBERG", "WETTZ13S", "GGAO12M",
+                                              "YEBES40M")]
+    xyz = np.array([[a.location.x.to_value(u.m), a.location.y.to_value(u.m),
+                     a.location.z.to_value(u.m)] for a in available])
+    centre = astropy.coordinates.EarthLocation.from_geocentric(*xyz.mean(axis=0), u.m)
+    n_ant = len(available)
+    n_freq, n_pol = 64, 4
+    n_bl = n_ant * (n_ant - 1) // 2
+    per_time = n_bl * n_freq * n_pol * 8
+    n_times = int(np.ceil(gib * GIB / per_time))
+    telescope = Telescope.new(
+        name="VLBA-like", location=centre,
+        antenna_positions={i: p - xyz.mean(axis=0) for i, p in enumerate(xyz)},
+        antenna_names=[a.name for a in available], instrument="VLBA-like",
+        mount_type=["alt-az"] * n_ant, feed_array=[["r", "l"]] * n_ant,
+        feed_angle=np.zeros((n_ant, 2)))
+    times = Time("2023-01-25T20:00") + np.arange(n_times) * 2 * u.s
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        uv = UVData.new(freq_array=8.4e9 + np.arange(n_freq) * 0.5e6,
+                        polarization_array=[-1, -2, -3, -4], times=times.jd,
+                        telescope=telescope, antpairs=[(i, j) for i in range(n_ant)
+                                                       for j in range(i + 1, n_ant)],
+                        phase_center_catalog={0: dict(cat_name="3C84", cat_type="sidereal",
+                                                      cat_lon=np.radians(49.9506671),
+                                                      cat_lat=np.radians(41.5116961),
+                                                      cat_frame="icrs", cat_epoch=2000.0)},
+                        data_array=None, do_blt_outer=True, empty=True)
+    uv.data_array = np.ones(uv.data_array.shape, dtype=np.complex64)
+    return uv
+
+
+def bench_uvdata(gib, results):
+    from astropy_feedrot.uvdata import correct_uvdata
+
+    print(f"\ncorrect_uvdata: building a UVData of at least {gib} GiB ...", flush=True)
+    uv = _uvdata(gib)
+    size = uv.data_array.nbytes
+    count = uv.data_array.size
+    print(f"  {uv.Nants_data} antennas, {uv.Nbls} baselines, {uv.Ntimes} epochs, "
+          f"{uv.Nfreqs} channels, {uv.Npols} products: {uv.Nblts} baseline-times, "
+          f"data_array {size / GIB:.2f} GiB ({count / 1e6:.0f} M visibilities)")
+    floor, _ = _measure(np.multiply, uv.data_array, np.complex64(1j), out=uv.data_array)
+    copy_time, copied = _measure(uv.copy)
+    del copied
+    seconds, _ = _measure(correct_uvdata, uv, inplace=True)
+    uv.history = uv.history.split("Feed rotation removed")[0]  # allow a second run
+    heap = _traced(correct_uvdata, uv, inplace=True)
+    uv.history = uv.history.split("Feed rotation removed")[0]
+    _line("numpy: one complex multiply", floor, count)
+    _line("correct_uvdata(inplace=True)", seconds, count, heap, seconds / floor, "the multiply")
+    copy_seconds, out = _measure(correct_uvdata, uv, inplace=False)
+    del out
+    _line("UVData.copy", copy_time, count)
+    _line("correct_uvdata(inplace=False)", copy_seconds, count, None,
+          copy_seconds / (copy_time + floor), "copy + multiply")
+    results.append(("in place: extra heap below a quarter of data_array",
+                     heap < size / 4, f"{heap / 2**20:.0f} MiB < {size / 4 / 2**20:.0f} MiB"))
+    print(f"  peak resident memory of the process so far: {_peak_rss() / GIB:.2f} GiB")
+
+
+# --- FITS-IDI -----------------------------------------------------------------------------
+
+
+def _fitsidi(path, gib):
+    """A FITS-IDI file of at least ``gib`` GiB: a small written file's rows repeated."""
+    sys.path.insert(0, str(HERE.parent / "tests"))
+    from fitsidi_writer import write_fitsidi
+
+    seed = path.with_name("seed.idifits")
+    n_band, n_chan = 8, 64
+    write_fitsidi(seed, n_times=4, step_minutes=0.05, n_band=n_band, n_chan=n_chan,
+                  autocorrelations=False)
+    with fits.open(seed) as hdus:
+        tables = [hdu.copy() for hdu in hdus]
+    uv = tables[-1]
+    rows = uv.data
+    span = 4 * 3.0 / 86400  # four epochs 3 s apart, in days
+    repeats = int(np.ceil(gib * GIB / (rows.itemsize * len(rows))))
+    big = np.empty(len(rows) * repeats, dtype=rows.dtype)
+    for k in range(repeats):
+        block = big[k * len(rows):(k + 1) * len(rows)]
+        block[...] = rows.base if hasattr(rows, "base") and rows.base is not None else rows
+        block["TIME"] += k * span
+    tables[-1] = fits.BinTableHDU(big, header=uv.header, name="UV_DATA")
+    fits.HDUList(tables).writeto(path, overwrite=True)
+    seed.unlink()
+    return len(big), len(big) * n_band * n_chan * 4
+
+
+def bench_fitsidi(gib, results, directory):
+    path = Path(directory) / "big.idifits"
+    print(f"\ncorrect_fitsidi: writing a FITS-IDI file of at least {gib} GiB ...", flush=True)
+    n_rows, count = _fitsidi(path, gib)
+    size = path.stat().st_size
+    print(f"  {n_rows} rows, {size / GIB:.2f} GiB, {count / 1e6:.0f} M visibilities")
+    copy = path.with_name("copy.idifits")
+    copy_time, _ = _measure(shutil.copyfile, path, copy)
+    copy.unlink()
+    out = path.with_name("corrected.idifits")
+    seconds, _ = _measure(correct_fitsidi, path, out)
+    out.unlink()
+    heap = _traced(correct_fitsidi, path, out)
+    out.unlink()
+    _line("shutil.copyfile", copy_time, count)
+    _line("correct_fitsidi", seconds, count, heap, seconds / copy_time, "the copy")
+    results.append(("FITS-IDI: extra heap below 64 MiB, whatever the file's size",
+                    heap < 64 * 2**20, f"{heap / 2**20:.0f} MiB for {size / GIB:.2f} GiB"))
+    print(f"  peak resident memory of the process so far: {_peak_rss() / GIB:.2f} GiB "
+          "(the memory-mapped file's pages count while they are touched)")
+    path.unlink()
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--gib", type=float, default=1.0,
+                        help="size of each data set in GiB (default 1)")
+    parser.add_argument("--only", choices=("uvdata", "fitsidi"), help="run one path only")
+    parser.add_argument("--dir", default=None, help="where to write the FITS-IDI files "
+                        "(default: a temporary directory)")
+    parser.add_argument("--strict", action="store_true", help="exit 1 if a check fails")
+    args = parser.parse_args(argv)
+    print(f"astropy_feedrot {astropy_feedrot.__version__}, astropy {astropy.__version__}, "
+          f"numpy {np.__version__}, Python {platform.python_version()}, "
+          f"{os.cpu_count()} CPUs, {platform.machine()}")
+    results = []
+    if args.only in (None, "uvdata"):
+        bench_uvdata(args.gib, results)
+    if args.only in (None, "fitsidi"):
+        with tempfile.TemporaryDirectory(dir=args.dir) as directory:
+            bench_fitsidi(args.gib, results, directory)
+    print()
+    for name, ok, detail in results:
+        print(f"{'PASS' if ok else 'FAIL'}  {name}: {detail}")
+    return 1 if args.strict and not all(ok for _, ok, _ in results) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
