@@ -98,7 +98,7 @@ def _line(name, seconds, count, heap=None, ratio=None, reference=""):
 
 
 def _uvdata(gib):
-    """A UVData of at least ``gib`` GiB: 10 VLBA antennas, 45 baselines, 64 channels, RR LL RL LR."""
+    """A UVData of at least ``gib`` GiB: VLBA antennas, 64 channels, RR LL RL LR."""
     from pyuvdata import Telescope, UVData
 
     from astropy_feedrot.stations import get_antenna
@@ -169,7 +169,7 @@ def bench_uvdata(gib, results):
     _line("correct_uvdata(inplace=False)", copy_seconds, count, None,
           copy_seconds / (copy_time + floor), "copy + multiply")
     results.append(("in place: extra heap below a quarter of data_array",
-                     heap < size / 4, f"{heap / 2**20:.0f} MiB < {size / 4 / 2**20:.0f} MiB"))
+                    heap < size / 4, f"{heap / 2**20:.0f} MiB < {size / 4 / 2**20:.0f} MiB"))
     print(f"  peak resident memory of the process so far: {_peak_rss() / GIB:.2f} GiB")
 
 
