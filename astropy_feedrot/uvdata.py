@@ -144,7 +144,13 @@ def _antennas(uv, vertical, numbers=None):
                 "uv.telescope.mount_type, or pass antennas={number: Antenna}") from None
         receptors = None
         if tel.feed_array is not None and tel.feed_angle is not None:
-            receptors = _receptors(tel.feed_array[k], tel.feed_angle[k], not mount.tracks)
+            try:
+                receptors = _receptors(tel.feed_array[k], tel.feed_angle[k], not mount.tracks)
+            except ValueError as err:
+                raise ValueError(
+                    f"antenna {name} (number {number}): {err}. Files often give 0 for both "
+                    "linear receptors; if you know the angles, set uv.telescope.feed_angle "
+                    "(radians, e.g. [0, pi/2] for x and y)") from None
         xyz = centre + np.asarray(tel.antenna_positions[k], dtype=float)
         location = EarthLocation.from_geocentric(*xyz, unit=u.m)
         antennas[number] = Antenna(location, mount, focus, name=name, vertical=vertical,
