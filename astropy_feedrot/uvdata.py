@@ -695,8 +695,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         for done, start in enumerate(starts, 1):
             chunk = slice(start, min(start + step, n_rows))
             block = data[chunk]
-            correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
-                                          conjugate=True, out=block)
+            with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
+                correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
+                                              conjugate=True, out=block)
             if basis == "linear":
                 for row in np.flatnonzero(auto[chunk]):
                     for k in parallel:
