@@ -217,8 +217,10 @@ def antennas_from_uvdata(uv, *, vertical="geodetic"):
     ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
     ...                     feed_array=["x", "y"], feed_angle=[np.pi / 2, 0.0],
     ...                     mount_type="alt-az")
-    >>> uv = UVData.new(freq_array=np.array([1.4e9]), polarization_array=["xx", "yy", "xy", "yx"],
-    ...                 times=[2460000.5], telescope=tel, antpairs=[(0, 1)], empty=True)
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["xx", "yy", "xy", "yx"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True)
     >>> antennas = antennas_from_uvdata(uv)
     >>> antennas[1].mount, antennas[1].receptors
     (AltAzMount(), Receptors('XY', [90.0, 0.0] * u.deg))
@@ -513,11 +515,13 @@ def feed_rotation_uvdata(uv, *, frame="apparent", vertical="geodetic", antennas=
     ...                     mount_type="alt-az")
     >>> centre = {0: dict(cat_name="3C286", cat_type="sidereal", cat_lon=np.radians(202.78),
     ...                   cat_lat=np.radians(30.51), cat_frame="icrs", cat_epoch=2000.0)}
-    >>> uv = UVData.new(freq_array=np.array([1.4e9]), polarization_array=["rr", "ll", "rl", "lr"],
-    ...                 times=np.array([2460000.9]), telescope=tel, antpairs=[(0, 1)], empty=True,
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll", "rl", "lr"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True,
     ...                 phase_center_catalog=centre)  # doctest: +IGNORE_WARNINGS
     >>> feed_rotation_uvdata(uv)  # doctest: +FLOAT_CMP
-    <Angle [[-52.91418786, -52.91419917]] deg>
+    <Angle [[-66.44957886, -66.44738958]] deg>
     """
     _check_uvdata(uv)
     theta1, theta2, _, undefined = _position_angles(uv, antennas, frame, vertical)
@@ -658,8 +662,10 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     ...                     mount_type="alt-az")
     >>> centre = {0: dict(cat_name="3C286", cat_type="sidereal", cat_lon=np.radians(202.78),
     ...                   cat_lat=np.radians(30.51), cat_frame="icrs", cat_epoch=2000.0)}
-    >>> uv = UVData.new(freq_array=np.array([1.4e9]), polarization_array=["rr", "ll", "rl", "lr"],
-    ...                 times=np.array([2460000.9]), telescope=tel, antpairs=[(0, 1)], empty=True,
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll", "rl", "lr"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True,
     ...                 phase_center_catalog=centre)  # doctest: +IGNORE_WARNINGS
     >>> uv.data_array[:] = 1.0
     >>> fixed = correct_uvdata(uv)
@@ -805,11 +811,14 @@ def read_uvdata(path, **kwargs):
     ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
     ...                     feed_array=["r", "l"], feed_angle=[0.0, 0.0],
     ...                     mount_type="alt-az")
-    >>> uv = UVData.new(freq_array=np.array([1.4e9]), polarization_array=["rr", "ll"],
-    ...                 times=np.array([2460000.9]), telescope=tel, antpairs=[(0, 1)], empty=True)
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True,
+    ...                 empty=True)  # doctest: +IGNORE_WARNINGS
     >>> path = os.path.join(tempfile.mkdtemp(), "test.uvh5")
     >>> write_uvdata(uv, path)
-    >>> read_uvdata(path).telescope.mount_type
+    >>> read_uvdata(path).telescope.mount_type.tolist()
     ['alt-az', 'alt-az']
     """
     pyuvdata = _pyuvdata()
@@ -853,7 +862,7 @@ def write_uvdata(uv, path, overwrite=False):
     >>> write_uvdata(UVData(), os.path.join(tempfile.mkdtemp(), "out.fits"))
     Traceback (most recent call last):
     ...
-    ValueError: cannot tell the format of 'out.fits' from its extension '.fits'; use one of .uvfits, .uvh5, .h5, .hdf5, .ms, .uv, .miriad
+    ValueError: cannot tell the format of 'out.fits' from its extension '.fits'; ...
     """
     _check_uvdata(uv)
     path = os.fspath(path)

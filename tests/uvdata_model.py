@@ -63,7 +63,8 @@ def enu_vectors(coord, location, obstime):
 def projected_dipole_pa(source, location, obstime, azimuth_deg):
     """Sky position angle (rad) of a horizontal dipole at an azimuth, seen from the source."""
     s, _, _ = enu_vectors(source, location, obstime)
-    pole = SkyCoord(HADec(ha=np.zeros(obstime.shape) * u.deg, dec=np.full(obstime.shape, 90) * u.deg,
+    shape = obstime.shape
+    pole = SkyCoord(HADec(ha=np.zeros(shape) * u.deg, dec=np.full(shape, 90) * u.deg,
                           obstime=obstime, location=location))
     z, _, _ = enu_vectors(pole, location, obstime)
     f = np.radians(azimuth_deg)
