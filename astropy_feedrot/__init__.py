@@ -8,6 +8,9 @@ telescopes and GNSS antennas").
 
 Everything a user calls is importable from here; the modules (``grid``,
 ``stations``, ``tables``...) stay importable for those who want them.
+``astropy_feedrot.uvdata`` (pyuvdata's ``UVData`` objects: antennas, feed
+rotation, correction) is imported on its own, as it needs the optional
+pyuvdata.
 """
 
 from .antenna import Antenna, AntennaAngles, FeedRotationTerms

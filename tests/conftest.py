@@ -7,6 +7,9 @@ import pytest
 from astropy.utils import iers
 from astropy.utils.data import conf as data_conf
 
+# The scripts that made the test data write files when run: not test modules.
+collect_ignore_glob = ["data/*"]
+
 
 def pytest_configure(config):
     # The IERS tables bundled with astropy (astropy-iers-data) are enough; any
