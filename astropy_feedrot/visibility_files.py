@@ -290,7 +290,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.visibility_files import correct_file
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "corrected.uvfits"
-    >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name
+    >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name  # doctest: +IGNORE_WARNINGS
     'corrected.uvfits'
     """
     source = _path(path)
