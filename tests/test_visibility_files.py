@@ -145,3 +145,51 @@ def test_command_correct_fitsidi(capsys, idi, tmp_path):
     assert "never modified" in capsys.readouterr().err
     assert main(["correct", str(tmp_path / "missing.uvfits"), "-o", str(output)]) == 1
     assert "no such file" in capsys.readouterr().err
+
+
+# Through pyuvdata ----------------------------------------------------------------------------
+
+
+@pytest.mark.filterwarnings("ignore:The uvw_array does not match")
+@pytest.mark.filterwarnings("ignore:Writing in the MS file that the units")
+@pytest.mark.parametrize("name", ["corrected.uvfits", "corrected.uvh5", "corrected.ms"])
+def test_uvfits_corrected_into_every_format(tmp_path, name):
+    # The sample: real VLA data with RR, LL, RL, LR. The corrected copy, read
+    # back, equals correct_uvdata on the input read directly.
+    from astropy_feedrot.uvdata import correct_uvdata, read_uvdata
+
+    before = digest(VLA)
+    out = correct_file(VLA, tmp_path / name)
+    assert digest(VLA) == before
+    expected = correct_uvdata(read_uvdata(VLA))
+    got = read_uvdata(out)
+    got.reorder_pols(order=[list(got.polarization_array).index(p)
+                            for p in expected.polarization_array])
+    np.testing.assert_allclose(got.data_array, expected.data_array, rtol=1e-6, atol=1e-6)
+    assert "Feedrotationremoved" in "".join(got.history.split())  # lines are wrapped
+    # A second correction is refused: the history says it was done.
+    with pytest.raises(ValueError, match="already"):
+        correct_file(out, tmp_path / ("again" + Path(name).suffix))
+
+
+@pytest.mark.filterwarnings("ignore:The uvw_array does not match")
+@pytest.mark.filterwarnings("ignore:Writing in the MS file that the units")
+def test_command_correct_uvfits_and_existing_directory(tmp_path, capsys):
+    output = tmp_path / "vla.ms"
+    assert main(["correct", str(VLA), "-o", str(output), "--quiet"]) == 0
+    assert file_kind(output) == "ms"
+    assert main(["correct", str(VLA), "-o", str(output), "--quiet"]) == 1
+    assert "--overwrite" in capsys.readouterr().err
+    assert main(["correct", str(VLA), "-o", str(output), "--quiet", "--overwrite"]) == 0
+    assert file_kind(output) == "ms"
+    assert [p.name for p in tmp_path.iterdir()] == ["vla.ms"]  # nothing left behind
+
+
+def test_antennas_through_pyuvdata():
+    # The ATA uvh5 file: pyuvdata fills alt-az and x = 90 deg, y = 0 for the ATA.
+    antennas, software = read_antennas(
+        DATA / "ata.LoA.C0352.uvh5_60647_62965_9760406_3c286_0001.uvh5")
+    assert software == "pyuvdata"
+    table = antenna_table(antennas, software)
+    assert set(table["label"]) == {"alt-az"} and set(table["receptors"]) == {"XY"}
+    assert set(table["receptor_angles"]) == {"90 0"}
