@@ -52,8 +52,7 @@ TOLERANCES = {
                             "reference position (array centre, rounded coordinates)"),
 }
 
-#: Network membership that the planner file does not give. Names of
-#: networks, not coordinates; each with where it comes from.
+#: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
 MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
 
 #: The paper's antennas: name -> (position source, mount, focus, mount source, focus source).
@@ -499,7 +498,8 @@ def report(rows, left_out):
         d = np.array([c[1] for row in rows for c in row["checks"] if c[0] == kind])
         if d.size:
             lines.append(f"{kind:12s} n={d.size:4d}  median {np.median(d):10.3f} m  "
-                         f"max {d.max():10.3f} m  over tolerance {int(np.sum(d > TOLERANCES[kind][0]))}")
+                         f"max {d.max():10.3f} m  over tolerance "
+                         f"{int(np.sum(d > TOLERANCES[kind][0]))}")
     lines += ["", "Every comparison (station, kind, distance in m, within tolerance):"]
     for row in sorted(rows, key=lambda r: r["name"]):
         for kind, distance, where in row["checks"]:
