@@ -30,3 +30,36 @@ numpydoc_show_class_members = False
 
 # Offline builds: pass ``-D disable_intersphinx=1`` (the build_docs tox env
 # does) and cross-references to astropy, numpy and Python stay plain text.
+
+
+# The station table of stations.rst is written from the embedded catalogue at
+# each build (docs/_generated/stations.csv), so the page shows the data as it is.
+def _write_station_table():
+    import csv
+    from pathlib import Path
+
+    from astropy.table import Table
+
+    from astropy_feedrot.data import sample_file
+
+    table = Table.read(sample_file("stations.ecsv"), format="ascii.ecsv")
+    out = Path(__file__).parent / "_generated"
+    out.mkdir(exist_ok=True)
+
+    def text(value):
+        return "" if hasattr(value, "mask") and value.mask else str(value)
+
+    with open(out / "stations.csv", "w", newline="") as handle:
+        writer = csv.writer(handle)
+        for row in table:
+            writer.writerow([
+                row["name"], text(row["aliases"]).replace(",", ", "),
+                text(row["networks"]).replace(",", ", "),
+                f"{row['x']:.3f}, {row['y']:.3f}, {row['z']:.3f}",
+                row["mount"], text(row["focus"]), row["position_source"],
+                row["mount_source"], row["focus_source"],
+                f"{row['check_distance']:.3f} m ({row['check_kind']})",
+            ])
+
+
+_write_station_table()

@@ -116,9 +116,9 @@ def test_focus_override():
 
 def test_catalogue_api():
     catalogue = default_catalogue()
-    assert len(catalogue) == 9
+    assert len(catalogue) >= 90
     assert catalogue.names[:2] == ["DBR205", "FD-VLBA"]
-    assert "9 antennas" in repr(catalogue)
+    assert f"{len(catalogue)} antennas" in repr(catalogue)
     table = catalogue.table
     table["x"][0] = 0.0
     assert catalogue.table["x"][0] != 0.0  # a copy
