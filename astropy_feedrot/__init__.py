@@ -46,6 +46,7 @@ from .mounts import (
 )
 from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
 from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
+from .rotators import Rotator
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table
@@ -76,6 +77,7 @@ __all__ = [
     "NasmythFocus",
     "BeamWaveguideFocus",
     "MirrorTrain",
+    "Rotator",
     "mount_from_label",
     "label_from_mount",
     # Transmitters
