@@ -45,6 +45,7 @@ from .mounts import (
     XYMount,
 )
 from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .planning import feed_rotation_coverage, rank_sources
 from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
 from .rotators import Rotator
 from .satellite import LineOfSight, Satellite
@@ -95,6 +96,9 @@ __all__ = [
     "feed_rotation_grid",
     "feed_rotation_grid_dask",
     "rotation_delay_grid",
+    # Planning polarization calibration
+    "feed_rotation_coverage",
+    "rank_sources",
     # Continuity, corrections, tables and figures
     "unwrap",
     "rotation_delay",
