@@ -11,12 +11,13 @@ equatorial mount has none to offer, since its feed rotation is 0, Eq 17).
 
 `feed_rotation_coverage` tabulates that range for every antenna and target
 over a span of time, from one grid (`~astropy_feedrot.grid.feed_rotation_grid`);
-`rank_sources` orders the targets by their worst station.
+`rank_sources` orders the targets by their worst station, and
+`plot_coverage` draws the tracks (matplotlib, imported on use).
 """
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import BaseCoordinateFrame, SkyCoord
+from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 from astropy.table import Table
 
 from .antenna import Antenna
@@ -25,7 +26,7 @@ from .frames import as_elevation_limit
 from .grid import feed_rotation_grid
 from .inputs import as_time
 
-__all__ = ["feed_rotation_coverage", "rank_sources"]
+__all__ = ["feed_rotation_coverage", "rank_sources", "plot_coverage"]
 
 
 def _coordinate(value, name):
@@ -130,7 +131,7 @@ def _span(values):
 
 
 def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=10 * u.deg, *,
-                           names=None):
+                           names=None, tracks=False):
     """The range of feed rotation each antenna sees on each target above an elevation limit.
 
     Parameters
@@ -152,10 +153,13 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
         The elevation limit (default 10 deg).
     names : sequence of str, optional
         Names of the targets when ``targets`` is a `~astropy.coordinates.SkyCoord`.
+    tracks : bool, optional
+        Also return the epochs and the continuous feed rotation (for
+        `plot_coverage`).
 
     Returns
     -------
-    `~astropy.table.Table`
+    `~astropy.table.Table`, or (table, times, continuous) with ``tracks``
         One row per antenna and target (antennas first): ``antenna``,
         ``target``; ``range``, ``min`` and ``max`` (deg) of the continuous
         feed rotation (`~astropy_feedrot.unwrap`, Eq 9) over all epochs at
@@ -163,6 +167,9 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
         number of such epochs times ``step``) and ``epochs``. A target that
         never rises above the limit at an antenna has NaN angles, 0 h and 0
         epochs there. ``meta`` holds the span, the step and the limit.
+        With ``tracks``, also the epochs (`~astropy.time.Time`, shape (T,))
+        and the continuous feed rotation (`~astropy.coordinates.Angle`,
+        shape (T, A, S), NaN below the limit).
 
     Raises
     ------
@@ -251,7 +258,88 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     })
     table.meta.update(start=times[0].utc.isot, stop=times[-1].utc.isot, step=str(step),
                       min_elevation=str(u.Quantity(min_elevation)))
+    if tracks:
+        return table, times, Angle(continuous, u.deg)
     return table
+
+
+def _pyplot():
+    try:
+        import matplotlib.pyplot as plt  # optional: imported on use
+    except ImportError:
+        raise ImportError('plotting needs matplotlib: pip install "astropy_feedrot[all]"') from None
+    return plt
+
+
+def plot_coverage(table, times, continuous, path=None):
+    """Draw the tracks of `feed_rotation_coverage`: one panel per target, one line per antenna.
+
+    Parameters
+    ----------
+    table : `~astropy.table.Table`
+        The table of `feed_rotation_coverage` (``tracks=True``).
+    times : `~astropy.time.Time`
+        Its epochs, shape (T,).
+    continuous : `~astropy.coordinates.Angle`
+        Its continuous feed rotation, shape (T, A, S).
+    path : str or path-like, optional
+        Save the figure there (the format follows the extension).
+
+    Returns
+    -------
+    `matplotlib.figure.Figure`
+        Continuous feed rotation (deg) against hours since the first epoch,
+        above the elevation limit only; each panel's title gives the
+        target's worst range.
+
+    Raises
+    ------
+    ImportError
+        Without matplotlib.
+    ValueError
+        If the shapes do not match the table.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.planning import feed_rotation_coverage, plot_coverage
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> result = feed_rotation_coverage([get_antenna("EFLSBERG")],
+    ...                                 {"3C84": SkyCoord("03h19m48.16s +41d30m42.1s")},
+    ...                                 Time("2024-03-01"), Time("2024-03-02"), 30 * u.min,
+    ...                                 tracks=True)
+    >>> fig = plot_coverage(*result)
+    >>> len(fig.axes)
+    1
+    """
+    values = u.Quantity(continuous, u.deg).value
+    antennas = list(dict.fromkeys(str(name) for name in table["antenna"]))
+    targets = list(dict.fromkeys(str(name) for name in table["target"]))
+    if values.shape != (len(times), len(antennas), len(targets)):
+        raise ValueError(f"continuous has shape {values.shape}, but the table and times need "
+                         f"{(len(times), len(antennas), len(targets))}")
+    plt = _pyplot()
+    fig, axes = plt.subplots(len(targets), 1, sharex=True, squeeze=False,
+                             figsize=(8, 2.2 + 2.3 * len(targets)))
+    hours = (times - times[0]).to_value(u.hour)
+    ranked = {row["target"]: row for row in rank_sources(table)}
+    for j, (target, ax) in enumerate(zip(targets, axes[:, 0])):
+        for i, antenna in enumerate(antennas):
+            ax.plot(hours, values[:, i, j], label=antenna)
+        worst = ranked[target]
+        ax.set_title(f"{target}: worst range {worst['worst_range']:.1f} deg "
+                     f"({worst['worst_antenna']})", fontsize="medium")
+        ax.set_ylabel("feed rotation (deg)")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize="small", ncol=min(4, len(antennas)))
+    axes[-1, 0].set_xlabel(f"hours since {times[0].utc.isot[:19]} UTC "
+                           f"(above {table.meta.get('min_elevation', 'the limit')})")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=100, bbox_inches="tight")
+    return fig
 
 
 def rank_sources(table):
