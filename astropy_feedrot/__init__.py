@@ -48,7 +48,9 @@ from .mounts import (
     XYMount,
 )
 from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .planning import feed_rotation_coverage, rank_sources
 from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
+from .rotators import Rotator
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table
@@ -79,6 +81,7 @@ __all__ = [
     "NasmythFocus",
     "BeamWaveguideFocus",
     "MirrorTrain",
+    "Rotator",
     "mount_from_label",
     "label_from_mount",
     # Transmitters
@@ -96,6 +99,9 @@ __all__ = [
     "feed_rotation_grid",
     "feed_rotation_grid_dask",
     "rotation_delay_grid",
+    # Planning polarization calibration
+    "feed_rotation_coverage",
+    "rank_sources",
     # Continuity, corrections, tables and figures
     "unwrap",
     "rotation_delay",

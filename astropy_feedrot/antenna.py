@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""An antenna: a site, a mount and a focus, and its feed rotation.
+"""An antenna: a site, a mount, a focus and a rotator, and its feed rotation.
 
 `Antenna` is the wind-up engine (`~astropy_feedrot.engine`) for one antenna:
 it turns a target and epochs into lines of sight, lets the engine pick and
@@ -29,6 +29,7 @@ from .frames import (
 )
 from .mounts import as_mount
 from .receptors import Receptors
+from .rotators import as_rotator
 from .satellite import Satellite
 
 __all__ = ["Antenna", "FeedRotationTerms", "AntennaAngles"]
@@ -102,11 +103,13 @@ class AntennaAngles(NamedTuple):
 
 
 class _Sight(NamedTuple):
-    """A line of sight: the direction, and the transmitter's dipoles or None."""
+    """A line of sight: the direction, the transmitter's dipoles or None, and the
+    angle of a 'series' rotator at its epochs (shape (..., 1)) or None."""
 
     s: np.ndarray
     aligned: np.ndarray
     transverse: np.ndarray
+    rotation: np.ndarray = None
 
 
 def _to_angle(radians):
@@ -148,6 +151,12 @@ class Antenna:
         `~astropy_feedrot.correction.correct_receptor_visibilities`). They
         do not change `feed_rotation`, which is that of the antenna's
         reference direction.
+    rotator : `~astropy_feedrot.Rotator`, optional
+        A rotator that turns the feed about the line of sight (beyond the
+        paper): ``Rotator('sky')`` keeps the feed at a fixed angle on the sky
+        (ASKAP's polarization axis), ``Rotator('fixed', angle)`` adds a
+        constant, ``Rotator('series', times=..., angles=...)`` follows a log.
+        Only a mount that tracks takes one. See :doc:`/rotators`.
 
     Raises
     ------
@@ -156,8 +165,9 @@ class Antenna:
     ValueError
         If ``location`` is not a single site, has a NaN or infinite
         coordinate, or is not an Earth station (the geocentre, coordinates in
-        km read as m, a height beyond 100 km), for an unknown ``vertical``, or
-        if ``focus`` does not fit ``mount``.
+        km read as m, a height beyond 100 km), for an unknown ``vertical``,
+        if ``focus`` does not fit ``mount``, or for a rotator on a mount that
+        does not track.
 
     Examples
     --------
@@ -176,7 +186,7 @@ class Antenna:
     """
 
     def __init__(self, location, mount, focus=None, name=None, vertical="geodetic",
-                 receptors=None):
+                 receptors=None, rotator=None):
         self.location = as_location(location)
         if not self.location.isscalar:
             raise ValueError(
@@ -195,19 +205,22 @@ class Antenna:
             raise TypeError(f"receptors must be a Receptors object (e.g. Receptors('RL')), "
                             f"got {type(receptors).__name__}")
         self.receptors = receptors
+        self.rotator = as_rotator(rotator)
         self._local = local_frame(self.location, vertical=vertical)
         if self.mount.tracks:
             self.focus.check_mount(self.mount, self._local)
-        # The engine's description of this one receiver (raises for optics on a
-        # mount that does not track).
+        # The engine's description of this one receiver (raises for optics or a
+        # rotator on a mount that does not track).
         self._receivers = engine.Receivers.from_mounts(
-            xyz[np.newaxis], np.stack(self._local)[np.newaxis], [self.mount], [self.focus])
+            xyz[np.newaxis], np.stack(self._local)[np.newaxis], [self.mount], [self.focus],
+            [self.rotator])
 
     def __repr__(self):
         label = f"{self.name!r}, " if self.name else ""
         x, y, z = location_xyz(self.location)
         return (
             f"<Antenna {label}({x:.3f}, {y:.3f}, {z:.3f}) m, {self.mount!r}, {self.focus!r}"
+            + ("" if self.rotator is None else f", {self.rotator!r}")
             + ("" if self.receptors is None else f", {self.receptors!r}") + ">"
         )
 
@@ -221,12 +234,25 @@ class Antenna:
         """
         return self._local
 
-    def _line_of_sight(self, target, obstime):
-        """Direction and the transmitter's dipoles (None for a natural source)."""
+    def _line_of_sight(self, target, obstime, series=True):
+        """Direction, the transmitter's dipoles (None for a natural source) and the angle
+        of a 'series' rotator (None without one, or without ``series``)."""
         if isinstance(target, Satellite):
             los = target.line_of_sight(self.location, obstime)
-            return _Sight(los.s, los.aligned, los.transverse)
-        return _Sight(source_direction(target, self.location, obstime), None, None)
+            sight = _Sight(los.s, los.aligned, los.transverse)
+        else:
+            sight = _Sight(source_direction(target, self.location, obstime), None, None)
+        if series and self.rotator is not None and self.rotator.mode == "series":
+            angle = self.rotator.radians_at(obstime)
+            sight = sight._replace(rotation=np.broadcast_to(
+                angle, sight.s.shape[:-1])[..., np.newaxis])
+        return sight
+
+    def _series_rotation(self, los):
+        """The rotation to give the engine: 0 when a 'series' rotator is left out."""
+        if los.rotation is None and self._receivers.series_index.size:
+            return np.zeros(los.s.shape[:-1] + (1,))
+        return los.rotation
 
     def _wind_up(self, los, form="beyerle", limit=None, terms=False):
         """The engine on the line of sight: feed rotation (or its terms) and ``below``.
@@ -239,20 +265,27 @@ class Antenna:
         if los.aligned is not None:
             aligned = los.aligned[..., np.newaxis, :]
             transverse = los.transverse[..., np.newaxis, :]
+        rotation = self._series_rotation(los)
         if terms:
             *out, below = engine.feed_rotation_terms(self._receivers, s, aligned, transverse,
-                                                     min_sine=engine.min_sine(limit))
+                                                     min_sine=engine.min_sine(limit),
+                                                     rotation=rotation)
         else:
             *out, below = engine.feed_rotation(self._receivers, s, aligned, transverse,
-                                               form=form, min_sine=engine.min_sine(limit))
+                                               form=form, min_sine=engine.min_sine(limit),
+                                               rotation=rotation)
         return [phase[..., 0, 0] for phase in out] + [None if below is None
                                                       else below[..., 0, 0]]
+
+    def _describe(self):
+        """The receiver, for warnings: mount, focus and rotator."""
+        rotator = "" if self.rotator is None else f" and {self.rotator!r}"
+        return f"{self.mount!r} with {self.focus!r}{rotator}"
 
     def _finish(self, phase, s, below=None, what="feed rotation"):
         """One warning about degenerate epochs; an Angle."""
         count = int(np.count_nonzero(engine.degenerate(phase, s, below)))
-        engine.warn_degenerate(count, np.size(phase), what, "epochs",
-                               f"{self.mount!r} with {self.focus!r}")
+        engine.warn_degenerate(count, np.size(phase), what, "epochs", self._describe())
         return _to_angle(phase)
 
     @iers_context()  # one check of the Earth-orientation tables per call
@@ -327,7 +360,10 @@ class Antenna:
         Eqs 42-45 for a `MirrorTrain`. For a satellite the transmitter's
         effective dipole (Eq 8) comes from its attitude; a telescope gives
         Eqs 35, 40 and 41, and a `MirrorTrain` traces that dipole through its
-        mirrors.
+        mirrors. A `Rotator` then turns the receiver's effective dipole about
+        the line of sight: :math:`\\Phi + \\rho` (``'fixed'``, ``'series'``),
+        or :math:`\\rho_0` plus the transmitter term (``'sky'``); see
+        :doc:`/rotators`.
 
         Examples
         --------
@@ -597,7 +633,10 @@ class Antenna:
         diurnal and annual aberration
         (`~astropy_feedrot.rates.source_direction_rate`), and the chain rule
         goes through Eq 13, Eq 33 and the focus terms (Eqs 38, 39); mirror
-        trains are differentiated along the motion of the line of sight. For
+        trains are differentiated along the motion of the line of sight. A
+        ``'fixed'`` rotator changes nothing, a ``'sky'`` rotator gives 0 for a
+        natural source, and a ``'series'`` rotator adds its rate
+        (`Rotator.rate <astropy_feedrot.Rotator.rate>`). For
         a satellite, whose attitude turns its dipoles, it is a centred
         difference of `feed_rotation` over 0.02 s
         (`~astropy_feedrot.rates.difference_rate`; one-sided within 0.01 s of
@@ -623,11 +662,16 @@ class Antenna:
         sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
         form = engine.check_form(form)
+        series = self._receivers.series_index.size > 0
         if isinstance(target, Satellite):
             def phase(epochs):
-                return self.feed_rotation(target, epochs, polarization, form)
+                # A 'series' rotator's rate is added below, from its own series.
+                los = self._line_of_sight(target, epochs, series=False)
+                return self._finish(sign * self._wind_up(los, form)[0], los.s)
 
             rate = rates.difference_rate(phase, obstime, span=target.orbit.coverage)
+            if series:
+                rate = rate + sign * self.rotator.rate(obstime)
             if limit is not None:
                 below = self._below(self._line_of_sight(target, obstime).s, limit)
                 rate = np.where(below, np.nan, rate)
@@ -639,13 +683,17 @@ class Antenna:
         if filled.size:
             sun[...] = orientation_of(filled).sun_position().reshape(sun.shape)
         s_rate = rates.source_direction_rate(s, pole, location_xyz(self.location), sun)
+        rotation_rate = None
+        if series:
+            rotation_rate = np.broadcast_to(self.rotator.rate(obstime),
+                                            s.shape[:-1])[..., np.newaxis]
         rate = sign * engine.feed_rotation_rate(
             self._receivers, s[..., np.newaxis, np.newaxis, :],
-            s_rate[..., np.newaxis, np.newaxis, :])[..., 0, 0]
+            s_rate[..., np.newaxis, np.newaxis, :], rotation_rate)[..., 0, 0]
         below = None if limit is None else self._below(s, limit)
         count = int(np.count_nonzero(engine.degenerate(rate, s, below)))
         engine.warn_degenerate(count, np.size(rate), "feed rotation rate", "epochs",
-                               f"{self.mount!r} with {self.focus!r}")
+                               self._describe())
         if below is not None:
             rate = np.where(below, np.nan, rate)
         return self._rate(rate)

@@ -14,7 +14,11 @@ receivers declare what they are (`~astropy_feedrot.mounts`,
   <astropy_feedrot.Focus.closed_form>`): Eq 13 (Eq 35 for a satellite) plus
   those terms (Eqs 38-41), in `~astropy_feedrot.focus.closed_form_phase`;
 * a focus without closed form (`~astropy_feedrot.MirrorTrain`) traces its
-  mirrors (Eqs 42-45) in its ``receiver_phase``.
+  mirrors (Eqs 42-45) in its ``receiver_phase``;
+* a `~astropy_feedrot.Rotator` (beyond the paper) then turns the receiver's
+  effective dipole about the line of sight: its angle is added to the feed
+  rotation (``'fixed'``, ``'series'``), or the receiver term is held at its
+  angle (``'sky'``).
 
 The transmitter is a natural source, whose effective dipole is the projected
 celestial pole (Eq 11), or a satellite with aligned and transverse dipoles
@@ -38,6 +42,7 @@ from .focus import CassegrainFocus, as_focus, closed_form_phase
 from .frames import LocalFrame
 from .mounts import as_mount
 from .polarization import polarization_sign
+from .rotators import as_rotator
 from .satellite import Satellite
 
 __all__ = [
@@ -180,6 +185,9 @@ class Receivers:
     traced : dict, optional
         ``{index: focus}`` for tracking receivers whose focus has no closed
         form: the engine calls ``focus.receiver_phase`` for them.
+    rotators : dict, optional
+        ``{index: rotator}`` for tracking receivers with a
+        `~astropy_feedrot.Rotator`.
 
     Examples
     --------
@@ -195,7 +203,7 @@ class Receivers:
     """
 
     def __init__(self, station_xyz, station_axes, stationary, dipoles, fixed_axis, focus_terms,
-                 traced=None):
+                 traced=None, rotators=None):
         self.station_xyz = np.asarray(station_xyz, dtype=float)
         self.station_axes = np.asarray(station_axes, dtype=float)
         self.stationary = np.asarray(stationary, dtype=bool)
@@ -211,6 +219,19 @@ class Receivers:
         self.plain_index = np.flatnonzero(tracking & ~terms)
         self.focus_index = np.flatnonzero(tracking & terms)
         self.traced_index = np.array(sorted(self.traced), dtype=int)
+        # Rotators: their angles (radians, 0 for 'series' and none) and modes.
+        self.rotators = dict(rotators or {})
+        self.rotator_angle = np.zeros(len(self.station_xyz))
+        modes = {"sky": [], "fixed": [], "series": []}
+        for i, rotator in sorted(self.rotators.items()):
+            if self.stationary[i]:
+                raise ValueError(f"receiver {i} does not track: a rotator turns the feed of a "
+                                 "tracking antenna, and a stationary crossed dipole has none")
+            modes[rotator.mode].append(i)
+            if rotator.mode != "series":
+                self.rotator_angle[i] = rotator.radians
+        self.sky_index, self.fixed_index, self.series_index = (
+            np.array(modes[mode], dtype=int) for mode in ("sky", "fixed", "series"))
 
     def __len__(self):
         return len(self.station_xyz)
@@ -218,11 +239,11 @@ class Receivers:
     def __repr__(self):
         return (f"<Receivers: {len(self)} antennas, {self.stationary_index.size} stationary, "
                 f"{self.plain_index.size + self.focus_index.size} closed-form, "
-                f"{self.traced_index.size} traced>")
+                f"{self.traced_index.size} traced, {len(self.rotators)} with rotators>")
 
     @classmethod
-    def from_mounts(cls, station_xyz, station_axes, mounts, foci):
-        """The receivers of antennas from their sites, mounts and foci.
+    def from_mounts(cls, station_xyz, station_axes, mounts, foci, rotators=None):
+        """The receivers of antennas from their sites, mounts, foci and rotators.
 
         Parameters
         ----------
@@ -236,6 +257,8 @@ class Receivers:
         foci : sequence of `~astropy_feedrot.focus.Focus` or None
             Each focus's ``closed_form``, or its ``receiver_phase`` if that is
             None; None is a Cassegrain focus.
+        rotators : sequence of `~astropy_feedrot.Rotator` or None, optional
+            One per antenna (None: no rotator); only tracking mounts take one.
 
         Returns
         -------
@@ -248,8 +271,8 @@ class Receivers:
             ``fixed_axis`` (or a stationary one no ``dipoles``), or a
             ``closed_form`` is not two numbers.
         ValueError
-            If a mount that does not track has a focus that adds terms, or a
-            closed form or an axis is not finite.
+            If a mount that does not track has a focus that adds terms or a
+            rotator, or a closed form or an axis is not finite.
 
         Examples
         --------
@@ -269,7 +292,10 @@ class Receivers:
         fixed_axis = np.full((n, 3), np.nan)
         terms = np.zeros((n, 2))
         traced = {}
-        for i, (mount, focus) in enumerate(zip(mounts, foci)):
+        turned = {}
+        rotators = [None] * n if rotators is None else list(rotators)
+        for i, (mount, focus, rotator) in enumerate(zip(mounts, foci, rotators)):
+            rotator = as_rotator(rotator)
             mount = as_mount(mount)
             focus = CassegrainFocus() if focus is None else as_focus(focus)
             local = LocalFrame(*axes[i])
@@ -285,7 +311,13 @@ class Receivers:
                     traced[i] = focus
                 else:
                     terms[i] = form
+                if rotator is not None:
+                    turned[i] = rotator
                 continue
+            if rotator is not None:
+                raise ValueError(f"a {type(mount).__name__} does not track: a rotator turns the "
+                                 "feed of a tracking antenna about the line of sight; give "
+                                 "rotator=None")
             if form != (0.0, 0.0):
                 raise ValueError(f"a {type(mount).__name__} has no optics to add terms; "
                                  f"{focus!r} needs a steerable mount")
@@ -297,7 +329,7 @@ class Receivers:
             stationary[i] = True
             dipoles[i] = (_unit_vector(aligned, f"the aligned dipole of {mount!r}"),
                           _unit_vector(transverse, f"the transverse dipole of {mount!r}"))
-        return cls(xyz, axes, stationary, dipoles, fixed_axis, terms, traced)
+        return cls(xyz, axes, stationary, dipoles, fixed_axis, terms, traced, turned)
 
     @classmethod
     def from_arrays(cls, arrays):
@@ -330,8 +362,8 @@ class Receivers:
     def as_arrays(self):
         """The receivers as `ReceiverArrays`, or None if some have no such description.
 
-        Traced foci, and stationary dipoles other than east and north, have
-        none.
+        Traced foci, rotators, and stationary dipoles other than east and
+        north, have none.
 
         Returns
         -------
@@ -347,8 +379,8 @@ class Receivers:
         >>> rx.as_arrays().focus_terms
         array([[-1.,  1.]])
         """
-        if self.traced or not np.array_equal(self.dipoles[self.stationary],
-                                             self.station_axes[self.stationary, :2]):
+        if self.traced or self.rotators or not np.array_equal(
+                self.dipoles[self.stationary], self.station_axes[self.stationary, :2]):
             return None
         fixed_axis = np.where(self.stationary[:, np.newaxis], self.station_axes[:, 2],
                               self.fixed_axis)
@@ -373,6 +405,7 @@ class Receivers:
         """
         other = np.any(self.dipoles != self.station_axes[:, :2], axis=(1, 2)) & self.stationary
         other[self.traced_index] = True
+        other[list(self.rotators)] = True
         return np.flatnonzero(other)
 
 
@@ -480,8 +513,48 @@ def _beyerle_by_contraction(rx, index, target, aligned, transverse, need_sine):
     return phase.swapaxes(-1, -2), sine
 
 
+def _series_rotation(rx, rotation, name="rotation"):
+    """``rotation`` as a float array (..., A), checked; None if no receiver needs it."""
+    if not rx.series_index.size:
+        return None
+    if rotation is None:
+        raise ValueError(f"receivers {rx.series_index.tolist()} have a 'series' rotator, whose "
+                         f"angle depends on the epochs: pass {name} (radians, shape (..., "
+                         f"{len(rx)}), from astropy_feedrot.rotators)")
+    rotation = np.asarray(rotation, dtype=float)
+    if rotation.ndim < 1 or rotation.shape[-1] != len(rx):
+        raise ValueError(f"{name} must have shape (..., {len(rx)}), one value per receiver, "
+                         f"got {rotation.shape}")
+    return rotation
+
+
+def _apply_rotators(rx, phase, rest, where, s, dipole, rotation):
+    """Turn the receivers' effective dipoles by their rotators (in place on ``phase``).
+
+    ``'fixed'`` and ``'series'`` add their angle; ``'sky'`` holds the receiver
+    term at its angle, so the phase is that angle plus the transmitter term
+    (Eq 21), which is 0 for a natural source (NaN at the celestial pole).
+    """
+    n_rest = rest.size
+    for index, series in ((rx.fixed_index, False), (rx.series_index, True)):
+        index = index[where[index] >= 0]
+        if not index.size:
+            continue
+        if series:
+            added = rotation[..., index][..., np.newaxis]  # (..., a, 1)
+        else:
+            added = rx.rotator_angle[index][:, np.newaxis]  # (a, 1)
+        phase[..., index, :] = kernel.wrap_phase(phase[..., index, :] + added)
+    for i in rx.sky_index:
+        if where[i] < 0:
+            continue
+        j = [where[i]]
+        term = kernel.transmitter_term(_take(s, j, n_rest), dipole(j))[..., 0, :]
+        phase[..., i, :] = kernel.wrap_phase(rx.rotator_angle[i] + term)
+
+
 def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions=False,
-                  form="beyerle", min_sine=None):
+                  form="beyerle", min_sine=None, rotation=None):
     """Feed rotation of every receiver seeing every target (RCP, radians).
 
     Parameters
@@ -503,6 +576,10 @@ def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions
     min_sine : float, optional
         NaN where the sine of a target's elevation is below this (see
         `min_sine`).
+    rotation : ndarray, shape (..., A), optional
+        The angles in radians of the receivers' ``'series'`` rotators at the
+        epochs of ``target`` (`~astropy_feedrot.rotators.rotation_angles`);
+        needed when some receiver has one, ignored for the others.
 
     Returns
     -------
@@ -540,6 +617,7 @@ def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions
     45.0
     """
     rx = receivers
+    rotation = _series_rotation(rx, rotation)
     n_a = len(rx)
     lead = target.shape[:-2] if positions else target.shape[:-3]
     n_s = target.shape[-2]
@@ -558,7 +636,7 @@ def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions
             rest = np.flatnonzero(~rx.stationary)
         if rest.size:
             _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form,
-                                 phase, sine)
+                                 phase, sine, rotation)
         below = None
         if need_sine:
             below = sine < min_sine
@@ -566,7 +644,8 @@ def feed_rotation(receivers, target, aligned=None, transverse=None, *, positions
     return phase, below
 
 
-def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form, phase, sine):
+def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form, phase, sine,
+                         rotation=None):
     """Fill ``phase`` (and ``sine``) for the receivers ``rest``, from their lines of sight."""
     n_a, n_rest = len(rx), rest.size
     if positions:
@@ -618,9 +697,12 @@ def _from_lines_of_sight(rx, rest, target, aligned, transverse, positions, form,
         phase[..., i, :] = rx.traced[i].receiver_phase(
             _take(s, j, n_rest)[..., 0, :, :], dipole(j)[..., 0, :, :], rx.fixed_axis[i],
             LocalFrame(*rx.station_axes[i]))
+    if rx.rotators:
+        _apply_rotators(rx, phase, rest, where, s, dipole, rotation)
 
 
-def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine=None):
+def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine=None,
+                        rotation=None):
     """The feed rotation split into transmitter and receiver terms (Eqs 20-22), in radians.
 
     Parameters
@@ -633,6 +715,8 @@ def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine
         The transmitters' dipoles; None for natural sources.
     min_sine : float, optional
         NaN below this sine of the elevation (see `min_sine`).
+    rotation : ndarray, shape (..., A), optional
+        As for `feed_rotation`: the rotators turn the receiver term.
 
     Returns
     -------
@@ -662,14 +746,14 @@ def feed_rotation_terms(receivers, s, aligned=None, transverse=None, *, min_sine
         ta, tt = aligned[..., np.newaxis, :, :], transverse[..., np.newaxis, :, :]
     with np.errstate(invalid="ignore"):
         transmitter = kernel.transmitter_term(s, kernel.transmitter_dipole(s, ta, tt))
-    receiver, below = feed_rotation(receivers, s, min_sine=min_sine)
+    receiver, below = feed_rotation(receivers, s, min_sine=min_sine, rotation=rotation)
     transmitter = np.array(np.broadcast_to(transmitter, receiver.shape))
     if below is not None:
         transmitter[below] = np.nan
     return transmitter, receiver, below
 
 
-def feed_rotation_rate(receivers, s, s_rate):
+def feed_rotation_rate(receivers, s, s_rate, rotation_rate=None):
     """Rate of the feed rotation of natural sources (RCP), in rad/s.
 
     The receivers are taken as `feed_rotation` takes them, each by its own
@@ -686,11 +770,18 @@ def feed_rotation_rate(receivers, s, s_rate):
     s, s_rate : ndarray, shape (..., A, S, 3)
         Unit vectors from the receivers to the sources in ITRS, and their
         rates in rad/s (`~astropy_feedrot.rates.source_direction_rate`).
+    rotation_rate : ndarray, shape (..., A), optional
+        The rates in rad/s of the receivers' ``'series'`` rotators
+        (`~astropy_feedrot.rotators.rotation_rates`); needed when some
+        receiver has one.
 
     Returns
     -------
     ndarray, shape (..., A, S)
         :math:`d\\Phi/dt` in rad/s; NaN where the feed rotation is undefined.
+        A ``'fixed'`` rotator changes nothing, a ``'sky'`` one makes it 0
+        (the feed keeps its angle on the sky), a ``'series'`` one adds its
+        rate.
 
     Examples
     --------
@@ -713,9 +804,18 @@ def feed_rotation_rate(receivers, s, s_rate):
     """
     s = np.asarray(s, dtype=float)
     s_rate = np.asarray(s_rate, dtype=float)
+    rotation_rate = _series_rotation(receivers, rotation_rate, "rotation_rate")
     out = np.full(np.broadcast_shapes(s.shape, s_rate.shape)[:-1], np.nan)
     for i in range(len(receivers)):
         s_i, rate_i = s[..., i, :, :], s_rate[..., i, :, :]
+        rotator = receivers.rotators.get(i)
+        if rotator is not None and rotator.mode == "sky":
+            # The receiver term is held constant; a natural source has no transmitter term.
+            with np.errstate(invalid="ignore"):
+                defined = np.isfinite(kernel.transmitter_term(s_i, kernel.project(
+                    kernel.NORTH_POLE, s_i))) & np.all(np.isfinite(rate_i), axis=-1)
+            out[..., i, :] = np.where(defined, 0.0, np.nan)
+            continue
         east, north, up = receivers.station_axes[i]
         local = LocalFrame(east, north, up)
         if receivers.stationary[i]:
@@ -731,6 +831,8 @@ def feed_rotation_rate(receivers, s, s_rate):
         else:
             rate = rates.fixed_axis_rate(s_i, rate_i, receivers.fixed_axis[i], local,
                                          tuple(receivers.focus_terms[i]))
+        if rotator is not None and rotator.mode == "series":
+            rate = rate + rotation_rate[..., i, np.newaxis]
         out[..., i, :] = rate
     return out
 

@@ -49,6 +49,7 @@ from .frames import (
 )
 from .orbits import Orbit
 from .polarization import polarization_sign
+from .rotators import rotation_angles
 from .satellite import Satellite
 
 __all__ = [
@@ -98,7 +99,8 @@ def _receivers(antennas):
     return Receivers.from_mounts(
         np.stack([location_xyz(antenna.location) for antenna in antennas]),
         np.stack([np.stack(antenna.local_frame) for antenna in antennas]),
-        [antenna.mount for antenna in antennas], [antenna.focus for antenna in antennas])
+        [antenna.mount for antenna in antennas], [antenna.focus for antenna in antennas],
+        [antenna.rotator for antenna in antennas])
 
 
 def receiver_arrays(antennas):
@@ -122,8 +124,9 @@ def receiver_arrays(antennas):
         If an element is not an `~astropy_feedrot.Antenna`.
     ValueError
         For an antenna without a closed form (a `~astropy_feedrot.MirrorTrain`
-        focus, or a stationary mount whose dipoles are not east and north);
-        `feed_rotation_grid` evaluates those too.
+        focus, a `~astropy_feedrot.Rotator`, or a stationary mount whose
+        dipoles are not east and north); `feed_rotation_grid` evaluates those
+        too.
 
     Examples
     --------
@@ -143,8 +146,8 @@ def receiver_arrays(antennas):
         antenna = antennas[i]
         raise ValueError(
             f"antennas[{i}] ({antenna!r}) has no closed form for wind_up (mount "
-            f"{antenna.mount!r}, focus {antenna.focus!r}); feed_rotation_grid evaluates "
-            "such antennas"
+            f"{antenna.mount!r}, focus {antenna.focus!r}, rotator {antenna.rotator!r}); "
+            "feed_rotation_grid evaluates such antennas"
         )
     return arrays
 
@@ -476,6 +479,7 @@ class _Grid(NamedTuple):
     sign: np.ndarray
     min_sine: float
     shape: tuple
+    rotation: np.ndarray = None  # (T, A) angles of 'series' rotators, or None
 
 
 def _check_targets_objects(targets):
@@ -610,12 +614,15 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
             target[masked] = np.nan
         aligned = transverse = None
         positions = False
+    rotation = rotation_angles([antenna.rotator for antenna in antennas], obstime)
+    if rotation is not None and masked is not None:
+        rotation[masked] = np.nan
     return _Grid(receivers, target, aligned, transverse, positions, form, sign, min_sine,
-                 shape + (len(antennas), len(sign)))
+                 shape + (len(antennas), len(sign)), rotation)
 
 
-def _grid_block(target, aligned=None, transverse=None, *, receivers, positions, form, sign,
-                min_sine, degrees=True, count=False):
+def _grid_block(target, aligned=None, transverse=None, rotation=None, *, receivers, positions,
+                form, sign, min_sine, degrees=True, count=False):
     """Feed rotation (t, A, S) of a block of epochs, by the engine in blocks of
     `BLOCK_POINTS`; with ``count`` also the number of degenerate grid points (NaN
     where the target is finite and not masked)."""
@@ -628,15 +635,21 @@ def _grid_block(target, aligned=None, transverse=None, *, receivers, positions, 
         phase, below = engine.feed_rotation(
             receivers, tb, None if aligned is None else aligned[block],
             None if transverse is None else transverse[block], positions=positions,
-            form=form, min_sine=min_sine)
+            form=form, min_sine=min_sine,
+            rotation=None if rotation is None else rotation[block])
         if count:
             degenerate += int(np.count_nonzero(engine.degenerate(phase, tb, below, positions)))
         np.multiply(phase, scale, out=out[block])
     return (out, degenerate) if count else out
 
 
-def _dask_block(*arrays, **kwargs):
-    return _grid_block(*arrays, **kwargs)
+def _dask_block(*arrays, all_rotation=None, block_info=None, **kwargs):
+    rotation = None
+    if all_rotation is not None:  # (T, A), small: sliced to the block's epochs here
+        start, stop = block_info[None]["array-location"][0]
+        rotation = all_rotation[start:stop]
+    arrays = arrays + (None,) * (3 - len(arrays))
+    return _grid_block(*arrays, rotation, **kwargs)
 
 
 def _block_arguments(grid):
@@ -735,8 +748,8 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     True
     """
     grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
-    out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, count=True,
-                                  **_block_arguments(grid))
+    out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
+                                  count=True, **_block_arguments(grid))
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
@@ -816,7 +829,7 @@ def feed_rotation_grid_dask(antennas, targets, obstime, *, polarization=None, fo
         _dask_block, *lazy,
         chunks=(lazy[0].chunks[0], (n_a,), (n_s,)),
         drop_axis=[3] if grid.target.ndim == 4 else [],
-        dtype=float, meta=np.empty((0, 0, 0)),
+        dtype=float, meta=np.empty((0, 0, 0)), all_rotation=grid.rotation,
         **_block_arguments(grid),
     )
     if len(grid.shape) == 2:

@@ -223,7 +223,8 @@ def test_the_top_level_is_the_import_surface():
     import importlib
 
     modules = ["antenna", "attitude", "config", "continuity", "correction", "eop",
-               "exceptions", "focus", "grid", "io", "labels", "mounts", "orbits", "plotting",
+               "exceptions", "focus", "grid", "io", "labels", "mounts", "orbits", "planning",
+               "plotting", "rotators",
                "satellite", "stations", "tables"]
     homes = {}
     for module in modules:
