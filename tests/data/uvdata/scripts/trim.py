@@ -1,26 +1,38 @@
-"""Make the *_2ints VLA files from the originals in the pyuvdata 3.1.3 wheel
-(pyuvdata/data/day2_TDEM0003_10s_norx_1src_1spw.uvfits and .ms).
+"""Make the *_2ints VLA files from the originals in the pyuvdata 3.1.3 wheel.
 
-Row selection only: keeps the 5th and 6th unique DATE values (2 complete integrations,
-153 baselines each, 306 rows). Primary header, AIPS FQ/AN/WX tables and all MS subtables
-are untouched. SRC = directory holding the originals. Afterwards: tar czf <out_m>.tar.gz <out_m>
+The originals are pyuvdata/data/day2_TDEM0003_10s_norx_1src_1spw.uvfits and .ms; SRC is the
+directory holding them. Row selection only: keeps the 5th and 6th distinct DATE values (two
+complete integrations, 153 baselines each, 306 rows). The primary header, the AIPS FQ, AN and
+WX tables and all Measurement Set subtables are untouched. Afterwards:
+tar czf <ms>.tar.gz <ms>.
 """
-import os, shutil, numpy as np
+import os
+import shutil
+
+import numpy as np
 from astropy.io import fits
-from casacore import tables
-SRC = os.environ.get("SRC", "/tmp/cand")
-base = "day2_TDEM0003_10s_norx_1src_1spw"
-src_u = f"{SRC}/{base}.uvfits"; src_m = f"{SRC}/{base}.ms"
-out_u = f"{base}_2ints.uvfits"; out_m = f"{base}_2ints.ms"
-with fits.open(src_u) as h:
-    date = h[0].data.par("DATE")
-    ut = np.unique(date)
-    mask = np.isin(date, ut[4:6])   # two complete integrations (153 baselines each)
-    rows = np.nonzero(mask)[0]
-    new0 = fits.GroupsHDU(data=h[0].data[mask], header=h[0].header)
-    fits.HDUList([new0] + [x.copy() for x in h[1:]]).writeto(out_u, overwrite=True)
-t = tables.table(src_m, ack=False)   # MS rows are in the same order as the UVFITS groups (importuvfits)
-sel = t.selectrows(rows.tolist())
-shutil.rmtree(out_m, ignore_errors=True)
-sel.copy(out_m, deep=True)
-sel.close(); t.close()
+
+
+def main():
+    from casacore import tables
+
+    source = os.environ.get("SRC", ".")
+    base = "day2_TDEM0003_10s_norx_1src_1spw"
+    with fits.open(f"{source}/{base}.uvfits") as hdus:
+        date = hdus[0].data.par("DATE")
+        keep = np.isin(date, np.unique(date)[4:6])
+        rows = np.nonzero(keep)[0]
+        primary = fits.GroupsHDU(data=hdus[0].data[keep], header=hdus[0].header)
+        fits.HDUList([primary] + [hdu.copy() for hdu in hdus[1:]]).writeto(
+            f"{base}_2ints.uvfits", overwrite=True)
+    # The Measurement Set rows are in the order of the UVFITS groups (importuvfits).
+    table = tables.table(f"{source}/{base}.ms", ack=False)
+    selected = table.selectrows(rows.tolist())
+    shutil.rmtree(f"{base}_2ints.ms", ignore_errors=True)
+    selected.copy(f"{base}_2ints.ms", deep=True)
+    selected.close()
+    table.close()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,20 +1,39 @@
-"""Make sma_test_corrchunk1.mir from the original sma_test.mir (pyuvdata 3.1.3 wheel, pyuvdata/data/sma_test.mir).
+"""Make sma_test_corrchunk1.mir.tar.gz from sma_test.mir of the pyuvdata 3.1.3 wheel.
 
-SRC = directory holding the original sma_test.mir (e.g. unzip the wheel). Keeps only correlator
-chunk 1 (2 spectral windows x 16384 channels), cross-correlations only, and re-writes it with
-pyuvdata's MirParser.write (so the Mir container is pyuvdata-written; values are the real SMA data).
+SRC is the directory holding the original (pyuvdata/data/sma_test.mir of the unpacked wheel).
+Keeps correlator chunk 1 (2 spectral windows x 16384 channels), cross-correlations only, and
+writes it with pyuvdata's MirParser.write: the container is written by pyuvdata, the values
+are the real SMA data. Run it where the archive should appear.
 """
-import os, shutil, numpy as np, warnings
-warnings.simplefilter("ignore")
+import os
+import shutil
+import tarfile
+import warnings
+
 from astropy.coordinates import EarthLocation
 from astropy.coordinates.sites import SiteRegistry
-_reg = SiteRegistry(); _reg.add_site(["offline-placeholder"], EarthLocation.from_geocentric(6378137.0, 0, 0, unit="m"))
-EarthLocation._site_registry = _reg          # pyuvdata's known_telescopes() would otherwise download sites.json
-from pyuvdata.uvdata.mir_parser import MirParser
-SRC = os.environ.get("SRC", "/tmp/cand")
-mp = MirParser(os.path.join(SRC, "sma_test.mir"), has_auto=False)
-mp.select(where=("corrchunk", "eq", [1]))
-mp.load_data(load_cross=True)
-out = "sma_trim.mir"; shutil.rmtree(out, ignore_errors=True)
-mp.write(out, load_data=True)
-os.system(f"tar czf sma_test_corrchunk1.mir.tar.gz {out} && rm -rf {out}")
+
+
+def main():
+    warnings.simplefilter("ignore")
+    # pyuvdata asks astropy's site registry, which would download sites.json.
+    registry = SiteRegistry()
+    registry.add_site(["offline-placeholder"],
+                      EarthLocation.from_geocentric(6378137.0, 0, 0, unit="m"))
+    EarthLocation._site_registry = registry
+    from pyuvdata.uvdata.mir_parser import MirParser
+
+    source = os.environ.get("SRC", ".")
+    parser = MirParser(os.path.join(source, "sma_test.mir"), has_auto=False)
+    parser.select(where=("corrchunk", "eq", [1]))
+    parser.load_data(load_cross=True)
+    out = "sma_trim.mir"
+    shutil.rmtree(out, ignore_errors=True)
+    parser.write(out, load_data=True)
+    with tarfile.open("sma_test_corrchunk1.mir.tar.gz", "w:gz") as archive:
+        archive.add(out)
+    shutil.rmtree(out)
+
+
+if __name__ == "__main__":
+    main()
