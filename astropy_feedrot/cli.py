@@ -5,7 +5,9 @@
 feed rotation over a span of time (ECSV on standard output, or a file whose
 format follows its extension, and optionally a figure); ``feedrot demo`` runs
 the paper's Section 4.1 simulation on embedded data; ``feedrot stations``
-lists the station catalogue. ``feedrot antennas`` lists the antennas of a
+lists the station catalogue (``--network``, ``--mount``); ``feedrot
+coverage`` tabulates the range of feed rotation that candidate polarization
+calibrators offer a network. ``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
 visibility file with the feed rotation removed (see
 `astropy_feedrot.visibility_files`).
