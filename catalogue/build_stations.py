@@ -63,6 +63,11 @@ MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
 AXIS_CODES = {"ALTZ": "AZEL", "ALTAZ": "AZEL", "ALTA": "AZEL", "EQUA": "EQUA",
               "XYEW": "X-YE", "XYNS": "X-YN"}
 
+#: Largest distance (m) at which an EVN planner entry is taken to be the same
+#: antenna as a GSFC position, to give it a mount: a nearby but different
+#: antenna (a mobile site beside an observatory, 70 m away) must not lend its mount.
+SAME_ANTENNA = 10.0
+
 #: Stations of eastern Japan whose two GSFC solutions differ eastward by more
 #: than the geodetic tolerance (the 2011 Tohoku earthquake; see crosscheck.txt).
 TOHOKU = {"USUDA64", "MIZNAO10", "MIZUSGSI", "KASHIM11", "KOGANEI", "TSUKUB32"}
@@ -327,7 +332,7 @@ def build():
     # ones from locations.dat, historical ones from the 2014a solution): the
     # mount from an AXISTYPE column validated against stations.dat
     # (locations.dat, else the 2005f file), else from the EVN planner's entry
-    # for the same telescope (within 150 m); no mount, no row.
+    # for the same antenna (within SAME_ANTENNA); no mount, no row.
     no_mount = []
     for file_name, entries in (("locations.dat", locations),
                                ("Master_NRAO/locations.dat.gsfc_2014a", older)):
@@ -346,7 +351,7 @@ def build():
             if code is None:
                 near = [(float(np.linalg.norm(np.subtract(loc["xyz"], p["xyz"]))), i)
                         for i, p in enumerate(planner) if p.get("mount")]
-                if near and min(near)[0] < TOLERANCES["planner"][0]:
+                if near and min(near)[0] < SAME_ANTENNA:
                     station = planner[min(near)[1]]
                     code = MOUNT_CODES.get(station["mount"].upper())
                     planner_code = station["code"].upper()
