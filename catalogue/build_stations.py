@@ -45,7 +45,11 @@ PAPER_EPOCH = 59969.0
 #: Tolerance of each kind of cross-check (metres), and what it compares.
 TOLERANCES = {
     "paper": (0.50, "the paper's Tables 1 and 3 vs SCHED's GSFC position moved to 2023 Jan 25"),
-    "geodetic": (0.10, "GSFC solution 2019d (or later) vs GSFC 2014a, both moved to 2020.0"),
+    "geodetic": (0.10, "one GSFC solution vs an older one (2014a, else 2011a, else 2016a), "
+                       "both moved to 2020.0"),
+    "geodetic-seismic": (1.5, "as geodetic, for stations of eastern Japan whose difference is "
+                              "eastward: the 2011 Mar 11 Tohoku earthquake, whose jump and "
+                              "post-seismic motion the two solutions model differently"),
     "planner": (150.0, "one telescope in two compiled catalogues (SCHED vs the EVN planner)"),
     "eht": (150.0, "one telescope in SCHED or the EVN planner vs eht-imaging's EHT2017 file"),
     "observatory": (3000.0, "a telescope or connected array vs casacore's observatory "
@@ -54,6 +58,19 @@ TOLERANCES = {
 
 #: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
 MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
+
+#: AXISTYPE values of SCHED's locations files (SPAC, a tracking station, has no code here).
+AXIS_CODES = {"ALTZ": "AZEL", "ALTAZ": "AZEL", "ALTA": "AZEL", "EQUA": "EQUA",
+              "XYEW": "X-YE", "XYNS": "X-YN"}
+
+#: Largest distance (m) at which an EVN planner entry is taken to be the same
+#: antenna as a GSFC position, to give it a mount: a nearby but different
+#: antenna (a mobile site beside an observatory, 70 m away) must not lend its mount.
+SAME_ANTENNA = 10.0
+
+#: Stations of eastern Japan whose two GSFC solutions differ eastward by more
+#: than the geodetic tolerance (the 2011 Tohoku earthquake; see crosscheck.txt).
+TOHOKU = {"USUDA64", "MIZNAO10", "MIZUSGSI", "KASHIM11", "KOGANEI", "TSUKUB32"}
 
 #: The paper's antennas: name -> (position source, mount, focus, mount source, focus source).
 PAPER_FOCUS = {
@@ -153,6 +170,33 @@ def read_locations(path):
     return entries
 
 
+def read_axistypes(path):
+    """DBNAME -> (AXISTYPE, DBCODE or '', line) of a locations file that gives them."""
+    found = {}
+    for text, line in sched_blocks(path):
+        name, axis = _word(text, "DBNAME"), _word(text, "AXISTYPE")
+        if name and axis:
+            found.setdefault(name, (axis.upper(), _word(text, "DBCODE") or "", line))
+    return found
+
+
+def validate_axistypes(axistypes, sched):
+    """Compare an AXISTYPE column with stations.dat's MOUNT: (agreements, disagreements)."""
+    mounts = {}
+    for entry in sched:
+        if entry["dbname"] and entry["mount"]:
+            mounts.setdefault(entry["dbname"], set()).add(
+                MOUNT_CODES.get(entry["mount"].upper(), entry["mount"].upper()))
+    agree, disagree = 0, []
+    for name, (axis, _, line) in sorted(axistypes.items()):
+        if name in mounts:
+            if AXIS_CODES.get(axis, axis) in mounts[name]:
+                agree += 1
+            else:
+                disagree.append((name, axis, sorted(mounts[name])))
+    return agree, disagree
+
+
 def read_sched_stations(path):
     """SCHED station entries in file order."""
     stations = []
@@ -239,6 +283,10 @@ def _moved(xyz, vel, epoch, to):
 def build():
     locations = read_locations(SOURCES / "sched" / "locations.dat")
     older = read_locations(SOURCES / "sched" / "locations.dat.gsfc_2014a")
+    older_2011 = read_locations(SOURCES / "sched" / "locations.dat.gsfc2011a")
+    later_2016 = read_locations(SOURCES / "sched" / "locations_gsfc2016aplus.dat")
+    axis_now = read_axistypes(SOURCES / "sched" / "locations.dat")
+    axis_2005 = read_axistypes(SOURCES / "sched" / "locations.dat.2005f")
     sched = read_sched_stations(SOURCES / "sched" / "stations.dat")
     planner = read_planner(SOURCES / "vlbiplanobs" / "stations_catalog.inp")
     observatories = read_observatories(SOURCES / "casadata" / "Observatories")
@@ -279,6 +327,45 @@ def build():
             row["networks"].add("DSN")
         if frame.startswith("GSFC"):
             row["networks"].add("IVS")
+
+    # 1b. GSFC geodetic stations that stations.dat does not list (current
+    # ones from locations.dat, historical ones from the 2014a solution): the
+    # mount from an AXISTYPE column validated against stations.dat
+    # (locations.dat, else the 2005f file), else from the EVN planner's entry
+    # for the same antenna (within SAME_ANTENNA); no mount, no row.
+    no_mount = []
+    for file_name, entries in (("locations.dat", locations),
+                               ("Master_NRAO/locations.dat.gsfc_2014a", older)):
+        for name, loc in entries.items():
+            if name in rows or not loc["frame"].startswith("GSFC") or \
+                    (entries is older and name in locations):
+                continue
+            code, mount_source, dbcode, planner_code = None, "", "", None
+            for axes, axes_file in ((axis_now, "locations.dat"),
+                                    (axis_2005, "Master_NRAO/locations.dat.2005f")):
+                if name in axes:
+                    axis, dbcode, line = axes[name]
+                    code = AXIS_CODES.get(axis)
+                    mount_source = f"{SCHED}{axes_file} line {line} (AXISTYPE={axis})"
+                    break
+            if code is None:
+                near = [(float(np.linalg.norm(np.subtract(loc["xyz"], p["xyz"]))), i)
+                        for i, p in enumerate(planner) if p.get("mount")]
+                if near and min(near)[0] < SAME_ANTENNA:
+                    station = planner[min(near)[1]]
+                    code = MOUNT_CODES.get(station["mount"].upper())
+                    planner_code = station["code"].upper()
+                    mount_source = (f"{VPO} [{station['section']}] "
+                                    f"(mount = {station['mount']})")
+            if code is None:
+                no_mount.append(name)
+                continue
+            rows[name] = dict(
+                name=name, aliases=[dbcode], networks={"IVS"}, xyz=loc["xyz"], vel=loc["vel"],
+                epoch=loc["epoch"], mount=code, focus="cassegrain", frame=loc["frame"],
+                sched_codes={c for c in (dbcode.upper(), planner_code) if c},
+                position_source=f"{SCHED}{file_name} line {loc['line']} ({loc['frame']})",
+                mount_source=mount_source, focus_source="", checks=[])
 
     # 2. The EVN planner: networks for SCHED stations (same code, within 5 km),
     # and stations SCHED lacks.
@@ -387,14 +474,24 @@ def build():
             row["checks"].append(("paper", float(np.linalg.norm(xyz - there)),
                                   f"{SCHED}locations.dat line {other['line']}"))
         label_set = {str(a).upper() for a in [row["name"], *row["aliases"]]}
-        if row["name"] in older and row["frame"].startswith("GSFC") and \
-                not older[row["name"]]["frame"].startswith("VLA"):
-            other = older[row["name"]]
-            here = _moved(xyz, row["vel"], row["epoch"], COMPARE_EPOCH)
-            there = _moved(other["xyz"], other["vel"], other["epoch"], COMPARE_EPOCH)
-            row["checks"].append(("geodetic", float(np.linalg.norm(here - there)),
-                                  f"{SCHED}Master_NRAO/locations.dat.gsfc_2014a line "
-                                  f"{other['line']}"))
+        # One other GSFC solution (never a choice among several): 2014a,
+        # else 2011a, else 2016a, the first that lists the station from a
+        # solution other than the position's own.
+        if row["frame"].startswith("GSFC"):
+            for other_file, solution in (("locations.dat.gsfc_2014a", older),
+                                         ("locations.dat.gsfc2011a", older_2011),
+                                         ("locations_gsfc2016aplus.dat", later_2016)):
+                other = solution.get(row["name"])
+                if other is None or other["frame"] == row["frame"] or \
+                        other["frame"].startswith("VLA"):
+                    continue
+                here = _moved(xyz, row["vel"], row["epoch"], COMPARE_EPOCH)
+                there = _moved(other["xyz"], other["vel"], other["epoch"], COMPARE_EPOCH)
+                kind = "geodetic-seismic" if row["name"] in TOHOKU else "geodetic"
+                row["checks"].append((kind, float(np.linalg.norm(here - there)),
+                                      f"{SCHED}Master_NRAO/{other_file} line "
+                                      f"{other['line']}"))
+                break
         if "planner" in row and not row["position_source"].startswith(VPO):
             row["checks"].append(("planner", float(np.linalg.norm(
                 xyz - row["planner"]["xyz"])), f"{VPO} [{row['planner']['section']}]"))
@@ -413,7 +510,9 @@ def build():
     kept = [row for row in rows.values() if _best(row) is not None or row["name"] in PAPER_FOCUS]
     left_out = sorted(row["name"] for row in rows.values()
                       if _best(row) is None and row["name"] not in PAPER_FOCUS)
-    return kept, left_out
+    mount_checks = {"locations.dat": validate_axistypes(axis_now, sched),
+                     "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched)}
+    return kept, left_out, sorted(no_mount), mount_checks
 
 
 def _best(row):
@@ -488,25 +587,32 @@ def to_table(rows):
     return table
 
 
-def report(rows, left_out):
+def report(rows, left_out, no_mount, mount_checks):
     lines = ["Cross-check of the station catalogue: each position against a second, "
              "independent catalogue.", "", "Tolerances:"]
     for kind, (tol, what) in TOLERANCES.items():
-        lines.append(f"  {kind:12s} {tol:8.2f} m  {what}")
+        lines.append(f"  {kind:16s} {tol:8.2f} m  {what}")
     lines.append("")
     for kind in TOLERANCES:
         d = np.array([c[1] for row in rows for c in row["checks"] if c[0] == kind])
         if d.size:
-            lines.append(f"{kind:12s} n={d.size:4d}  median {np.median(d):10.3f} m  "
+            lines.append(f"{kind:16s} n={d.size:4d}  median {np.median(d):10.3f} m  "
                          f"max {d.max():10.3f} m  over tolerance "
                          f"{int(np.sum(d > TOLERANCES[kind][0]))}")
     lines += ["", "Every comparison (station, kind, distance in m, within tolerance):"]
     for row in sorted(rows, key=lambda r: r["name"]):
         for kind, distance, where in row["checks"]:
             ok = "ok" if distance <= TOLERANCES[kind][0] else "OVER"
-            lines.append(f"  {row['name']:12s} {kind:12s} {distance:12.3f}  {ok:4s}  {where}")
+            lines.append(f"  {row['name']:12s} {kind:16s} {distance:12.3f}  {ok:4s}  {where}")
     lines += ["", "Left out (no second catalogue confirms the position within tolerance): "
               + (", ".join(left_out) or "none")]
+    lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "
+              + (", ".join(no_mount) or "none")]
+    lines += ["", "AXISTYPE columns used for mounts, against stations.dat MOUNT on the stations "
+              "both give:"]
+    for name, (agree, disagree) in mount_checks.items():
+        lines.append(f"  {SCHED}{name}: {agree} agree, {len(disagree)} disagree"
+                     + "".join(f"; {n} {a} vs {m}" for n, a, m in disagree))
     return "\n".join(lines) + "\n"
 
 
@@ -515,10 +621,10 @@ def main(argv=None):
     parser.add_argument("--output", default=str(OUTPUT))
     parser.add_argument("--report", default=str(REPORT))
     args = parser.parse_args(argv)
-    rows, left_out = build()
+    rows, left_out, no_mount, mount_checks = build()
     table = to_table(rows)
     table.write(args.output, format="ascii.ecsv", overwrite=True)
-    Path(args.report).write_text(report(rows, left_out))
+    Path(args.report).write_text(report(rows, left_out, no_mount, mount_checks))
     print(f"{len(table)} stations written to {args.output}; {len(left_out)} left out",
           file=sys.stderr)
     return 0

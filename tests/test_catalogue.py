@@ -38,7 +38,7 @@ def _text(row, column):
 
 
 def test_size_and_provenance():
-    assert len(TABLE) >= 90
+    assert len(TABLE) >= 150
     for column in ("position_source", "mount_source", "focus_source"):
         # Every station says where each value comes from, or that it is
         # assumed and why.
