@@ -44,6 +44,7 @@ from .focus import (
     PrimeFocus,
 )
 from .labels import mount_from_label
+from .rotators import Rotator
 
 __all__ = [
     "MAX_VELOCITY",
@@ -152,9 +153,11 @@ class StationCatalogue:
         (comma-separated other names), ``focus`` (one of `FOCUS_NAMES`;
         empty for the mount's default), ``vx``, ``vy``, ``vz`` (velocity unit) with
         ``epoch`` (MJD of the position), ``networks`` (comma-separated network
-        names, see `get_network`), ``source`` or ``position_source``,
-        ``mount_source`` and ``focus_source`` (citations). Other columns are
-        kept and ignored.
+        names, see `get_network`), ``rotator`` (a mode of
+        `~astropy_feedrot.rotators.Rotator`, ``'sky'`` or ``'fixed'`` at
+        angle 0, or empty for none), ``source`` or ``position_source``,
+        ``mount_source``, ``focus_source`` and ``rotator_source``
+        (citations). Other columns are kept and ignored.
     origin : str, optional
         Where the table came from, for error messages.
 
@@ -555,7 +558,19 @@ class StationCatalogue:
         mount, catalogue_focus = self._mount_and_focus(row)
         return Antenna(self.location(name, epoch), mount,
                        focus if focus is not None else catalogue_focus,
-                       name=str(self._table["name"][row]))
+                       name=str(self._table["name"][row]), rotator=self._rotator(row))
+
+    def _rotator(self, row):
+        """The Rotator of a row's ``rotator`` column, or None."""
+        if "rotator" not in self._table.colnames:
+            return None
+        mode = str(self._table["rotator"][row]).strip().lower()
+        if mode in ("", "--", "none"):
+            return None
+        if mode not in ("sky", "fixed"):
+            raise ValueError(f"{self._origin}: rotator of {self._table['name'][row]!r} must be "
+                             f"'sky', 'fixed' or empty, got {mode!r}")
+        return Rotator(mode)
 
 
 @functools.lru_cache(maxsize=1)

@@ -89,6 +89,13 @@ PAPER_FOCUS = {
     "PARKES": ("AZEL", "prime", "paper Sec. 4 (az-el)", "paper Sec. 4 (prime focus)"),
 }
 PAPER_ORDER = list(PAPER_FOCUS)
+
+# Field rotators: ASKAP's antennas have a third (roll) axis that turns the
+# phased-array feed to keep it fixed on the sky while tracking.
+ROTATORS = {
+    "ASKAP32": ("sky", "Hotan et al. 2021, PASA 38, e009 (ASKAP system description): "
+                       "three-axis antennas whose roll axis keeps the feed fixed on the sky"),
+}
 PAPER_ALIASES = {
     "FD-VLBA": ["Fort Davis", "FD", "VLBA_FD"],
     "GGAO12M": ["Goddard 12m", "GGAO", "Gs"],
@@ -556,6 +563,8 @@ def to_table(rows):
     table["position_source"] = [row["position_source"] for row in rows]
     table["mount_source"] = [row["mount_source"] for row in rows]
     table["focus_source"] = [row["focus_source"] for row in rows]
+    table["rotator"] = [ROTATORS.get(row["name"], ("", ""))[0] for row in rows]
+    table["rotator_source"] = [ROTATORS.get(row["name"], ("", ""))[1] for row in rows]
     table["check_kind"] = [c[0] for c in best]
     table["check_distance"] = np.round([c[1] for c in best], 4) * u.m
     table["check_tolerance"] = [TOLERANCES.get(c[0], (math.nan,))[0] for c in best] * u.m
@@ -572,6 +581,8 @@ def to_table(rows):
         "position_source": "file and line, or paper table, of the position",
         "mount_source": "where the mount comes from",
         "focus_source": "where the focus comes from, or 'assumed: <reason>'",
+        "rotator": "field rotator mode (sky: the feed keeps its angle on the sky), or empty",
+        "rotator_source": "where the rotator comes from",
         "check_kind": "kind of the second, independent catalogue position",
         "check_distance": "distance to the second catalogue's position",
         "check_tolerance": "tolerance of that kind of comparison",

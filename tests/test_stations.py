@@ -237,3 +237,24 @@ def test_focus_from_name():
     assert focus_from_name("BWG-LEFT").handedness == "left"
     with pytest.raises(ValueError, match=r"--focus: unknown focus 'x'"):
         focus_from_name("x", "--focus")
+
+
+def test_askap_keeps_its_feed_on_the_sky():
+    # ASKAP's roll axis turns the feed against the parallactic angle (Hotan et al.
+    # 2021): with the catalogue's sky-tracking rotator the feed rotation of a
+    # natural source stays at the rotator's angle, 0, all day.
+    from astropy.coordinates import SkyCoord
+    from astropy.time import Time
+
+    askap = get_antenna("ASKAP")
+    assert askap.rotator is not None and askap.rotator.mode == "sky"
+    times = Time("2024-06-01T00:00") + np.arange(0, 24, 0.5) * u.hour
+    phi = askap.feed_rotation(SkyCoord("13h25m27.6s -43d01m09s"), times)
+    assert np.all(np.abs(phi.to_value(u.deg)) < 1e-9)
+
+
+def test_a_catalogue_rotator_must_be_a_mode(tmp_path):
+    table = default_catalogue().table[:2].copy()
+    table["rotator"] = ["spin", ""]
+    with pytest.raises(ValueError, match="rotator of .* must be 'sky', 'fixed' or empty"):
+        StationCatalogue(table).get_antenna(table["name"][0])
