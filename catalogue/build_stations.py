@@ -517,8 +517,10 @@ def build():
     kept = [row for row in rows.values() if _best(row) is not None or row["name"] in PAPER_FOCUS]
     left_out = sorted(row["name"] for row in rows.values()
                       if _best(row) is None and row["name"] not in PAPER_FOCUS)
-    mount_checks = {"locations.dat": validate_axistypes(axis_now, sched),
-                     "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched)}
+    mount_checks = {
+        "locations.dat": validate_axistypes(axis_now, sched),
+        "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched),
+    }
     return kept, left_out, sorted(no_mount), mount_checks
 
 
