@@ -21,20 +21,16 @@ target and renamed into place once everything has been written.
 
 import argparse
 import contextlib
-import importlib.util
 import math
 import os
 import re
-import stat
 import sys
-import tempfile
 import warnings
 from pathlib import Path
 
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import EarthLocation, SkyCoord, frame_transform_graph
-from astropy.io.fits.verify import VerifyWarning
 from astropy.time import Time
 
 from . import plotting
@@ -45,6 +41,14 @@ from .eop import iers_context
 from .io import FileFormatError, read_tle
 from .labels import mount_from_label
 from .orbits import SP3Orbit, TLEOrbit
+from .outputs import (
+    TABLE_FORMATS,
+    CommandError,
+    check_outputs,
+    table_format,
+    table_writer,
+    write_files,
+)
 from .satellite import Satellite
 from .simulations import gps_short_baseline
 from .stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
@@ -56,22 +60,6 @@ __all__ = ["main", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS", "CELESTIAL_FRA
 #: a natural source; a satellite with the nominal attitude is ten times slower).
 MAX_EPOCHS = 1_000_000
 
-#: Formats of ``-o/--output`` by file extension: the format `astropy.table.Table.write`
-#: itself identifies from each extension. ECSV, FITS and HDF5 keep units, the
-#: time scale and the header; CSV and HTML keep the values only (degrees, ps, UTC).
-TABLE_FORMATS = {
-    ".ecsv": "ascii.ecsv",
-    ".csv": "ascii.csv",
-    ".fits": "fits",
-    ".fit": "fits",
-    ".fts": "fits",
-    ".hdf5": "hdf5",
-    ".h5": "hdf5",
-    ".html": "ascii.html",
-}
-
-#: The modules each table format needs beyond astropy.
-_FORMAT_NEEDS = {"hdf5": "h5py"}
 
 #: Frames accepted by ``--frame``: celestial frames, whose coordinates need
 #: no observing time or place (unlike altaz or hadec).
@@ -104,10 +92,6 @@ _ANTENNA_HELP = (
 )
 
 _SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
-
-
-class CommandError(Exception):
-    """A problem with the command's input, reported on one line."""
 
 
 class _UsageError(Exception):
@@ -419,94 +403,12 @@ def _inputs(args):
     return inputs
 
 
-def _same_file(path, other):
-    if path == other:
-        return True
-    try:
-        return os.path.samefile(path, other)
-    except OSError:
-        return False
-
-
 def _figure_types():
     try:
         from matplotlib.figure import Figure
     except ImportError:
         raise CommandError('--plot needs matplotlib: pip install "astropy_feedrot[all]"') from None
     return ["." + name for name in Figure().canvas.get_supported_filetypes()]
-
-
-def _check_outputs(outputs, inputs, overwrite, hint="choose another name"):
-    """Resolved paths of the outputs, each checked before any work is done.
-
-    Parameters
-    ----------
-    outputs : list of (option, path, extensions)
-        The files to write (path None: not written) and the extensions each may have.
-    inputs : list of (option, path)
-        Files the command reads: never overwritten.
-    overwrite : bool
-        Whether an existing output may be replaced.
-    hint : str
-        What else to do about an existing output.
-    """
-    resolved = []
-    for what, text, extensions in outputs:
-        if text is None:
-            resolved.append(None)
-            continue
-        given = Path(text).expanduser()
-        if given.is_dir():
-            raise CommandError(f"{what}: {text!r} is a directory")
-        if given.suffix.lower() not in extensions:
-            raise CommandError(f"{what}: cannot tell a format from the extension of {text!r}; "
-                               f"use one of {', '.join(extensions)}")
-        # Through symbolic links: the file that would change.
-        path = given.resolve()
-        for option, source in inputs:
-            if _same_file(path, Path(source).expanduser().resolve()):
-                raise CommandError(f"{what}: {text!r} is the {option} input, which is never "
-                                   f"overwritten; {hint}")
-        for option, other in zip((o[0] for o in outputs), resolved):
-            if other is not None and _same_file(path, other):
-                raise CommandError(f"{what} and {option} name the same file {text!r}; each "
-                                   "needs its own")
-        if not path.parent.is_dir():
-            raise CommandError(f"{what}: cannot write {text!r}: directory "
-                               f"{str(path.parent)!r} does not exist")
-        if path.exists():
-            if not path.is_file():
-                raise CommandError(f"{what}: {text!r} is not a regular file")
-            if not overwrite:
-                raise CommandError(f"{what}: {text!r} exists; add --overwrite to replace it, or "
-                                   f"{hint}")
-            if not os.access(path, os.W_OK):
-                raise CommandError(f"{what}: cannot write {text!r}: permission denied")
-        if not os.access(path.parent, os.W_OK | os.X_OK):
-            raise CommandError(f"{what}: cannot write {text!r}: permission denied in "
-                               f"{str(path.parent)!r}")
-        resolved.append(path)
-    return resolved
-
-
-def _table_format(path):
-    """The astropy format of a table file, checking that its writer is installed."""
-    fmt = TABLE_FORMATS[path.suffix.lower()]
-    module = _FORMAT_NEEDS.get(fmt)
-    if module is not None and importlib.util.find_spec(module) is None:
-        raise CommandError(f"-o/--output: writing {path.suffix} files needs {module} "
-                           f"(pip install {module})")
-    return fmt
-
-
-def _write_table(table, fmt):
-    def write(name):
-        options = {"path": "feedrot", "serialize_meta": True} if fmt == "hdf5" else {}
-        with warnings.catch_warnings():
-            # Header keywords longer than 8 characters are written as HIERARCH cards.
-            warnings.filterwarnings("ignore", "Keyword name", VerifyWarning)
-            table.write(name, format=fmt, overwrite=True, **options)
-    return write
 
 
 def _draw(table, kind, path):
@@ -521,54 +423,14 @@ def _draw(table, kind, path):
     return write
 
 
-def _new_file_mode(path):
-    if path.exists():
-        return stat.S_IMODE(path.stat().st_mode)
-    umask = os.umask(0o022)
-    os.umask(umask)
-    return 0o666 & ~umask
-
-
-def _write_files(files, then=None):
-    """Write files safely: each to a temporary file beside it, all renamed at the end.
-
-    Parameters
-    ----------
-    files : list of (Path, callable)
-        Each target and a function writing its content to a given file name.
-    then : callable, optional
-        Called once every file is written, before any is renamed.
-
-    A failure anywhere leaves every existing file as it was and no temporary
-    file behind.
-    """
-    temporaries = []
-    try:
-        for path, write in files:
-            handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem[:64]}.",
-                                            suffix=f".tmp{path.suffix}")
-            os.close(handle)
-            temporaries.append(name)
-            write(name)
-            os.chmod(name, _new_file_mode(path))
-        if then is not None:
-            then()
-        for name, (path, _) in zip(temporaries, files):
-            os.replace(name, path)
-    finally:
-        for name in temporaries:
-            with contextlib.suppress(FileNotFoundError):
-                os.remove(name)
-
-
 def _outputs(args):
     """The checked table and figure paths of a table command (None: not written)."""
     figure_types = _figure_types() if args.plot is not None else ()
-    paths = _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
-                            ("--plot", args.plot, figure_types)],
-                           _inputs(args), args.overwrite)
+    paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
+                           ("--plot", args.plot, figure_types)],
+                          _inputs(args), args.overwrite)
     if paths[0] is not None:
-        _table_format(paths[0])
+        table_format(paths[0])
     return paths
 
 
@@ -576,11 +438,11 @@ def _write(table, paths, kind):
     output, figure = paths
     files = []
     if output is not None:
-        files.append((output, _write_table(table, _table_format(output))))
+        files.append((output, table_writer(table, table_format(output))))
     if figure is not None:
         files.append((figure, _draw(table, kind, figure)))
     then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    _write_files(files, then)
+    write_files(files, then)
 
 
 # Commands -----------------------------------------------------------------------------------
@@ -626,16 +488,16 @@ def _run_baseline(args):
 def _run_antennas(args):
     from .visibility_files import antenna_table, read_antennas
 
-    paths = _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
-                           [("FILE", args.file)], args.overwrite)
+    paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
+                          [("FILE", args.file)], args.overwrite)
     antennas, software = read_antennas(args.file, vertical=args.vertical)
     table = antenna_table(antennas, software)
     table.meta["file"] = str(args.file)
     table.meta["labels"] = software
-    files = [] if paths[0] is None else [(paths[0], _write_table(table,
-                                                                 _table_format(paths[0])))]
+    files = [] if paths[0] is None else [(paths[0], table_writer(table,
+                                                                 table_format(paths[0])))]
     then = None if files else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    _write_files(files, then)
+    write_files(files, then)
     return 0
 
 
@@ -656,11 +518,11 @@ def _run_coverage(args):
     from . import planning, stations  # the planning layer sits above this module's imports
 
     figure_types = _figure_types() if args.plot is not None else ()
-    paths = _check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
-                            ("--plot", args.plot, figure_types)],
-                           _inputs(args), args.overwrite)
+    paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
+                           ("--plot", args.plot, figure_types)],
+                          _inputs(args), args.overwrite)
     if paths[0] is not None:
-        _table_format(paths[0])
+        table_format(paths[0])
     antennas = {}
     for text in args.stations:
         name = text.strip()
@@ -711,7 +573,7 @@ def _run_coverage(args):
         ranking[column].info.format = ".2f"
     files = []
     if paths[0] is not None:
-        files.append((paths[0], _write_table(table, _table_format(paths[0]))))
+        files.append((paths[0], table_writer(table, table_format(paths[0]))))
     if paths[1] is not None:
         def draw(name):
             import matplotlib.pyplot as plt  # optional: checked by _figure_types
@@ -722,7 +584,7 @@ def _run_coverage(args):
                 raise CommandError(f"--plot: cannot draw {str(paths[1])!r}: "
                                    f"{_one_line(error)}") from None
         files.append((paths[1], draw))
-    _write_files(files)
+    write_files(files)
     print(f"Feed rotation above {min_elevation} from {epochs[0].isot} to {epochs[-1].isot} "
           f"every {args.step}:")
     print("\n".join(table.pformat(max_lines=-1, max_width=-1)))
@@ -776,14 +638,14 @@ def _run_demo(args):
     names = [("table", directory / "feedrot_demo.ecsv", (".ecsv",))]
     if figure_types is not None:
         names.append(("figure", directory / "feedrot_demo.png", figure_types))
-    paths = _check_outputs([("--output-dir", str(path), types) for _, path, types in names], [],
-                           args.overwrite, hint="choose another --output-dir")
+    paths = check_outputs([("--output-dir", str(path), types) for _, path, types in names], [],
+                          args.overwrite, hint="choose another --output-dir")
     table = gps_short_baseline(step=step)
     summary = baseline_summary(table)
-    files = [(paths[0], _write_table(table, "ascii.ecsv"))]
+    files = [(paths[0], table_writer(table, "ascii.ecsv"))]
     if figure_types is not None:
         files.append((paths[1], _draw(table, "baseline", paths[1])))
-    _write_files(files)
+    write_files(files)
     print("Section 4.1 of the paper: GPS SVN 76 over the GNSS antenna DBR205 and the")
     print("alt-az telescope FD-VLBA, 73 m apart, on 2023-01-25 (embedded element set, Table 2).")
     print(summary)
