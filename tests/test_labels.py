@@ -693,7 +693,7 @@ def test_casacore_labels_give_casacore_par_angle(label, el_sign, az_sign, site):
 
 
 def test_bwg_r_is_parallactic_angle_plus_elevation_minus_azimuth():
-    # The example of the brief: casacore's ALT-AZ+BWG-R at Warkworth, a few epochs.
+    # casacore's ALT-AZ+BWG-R at Warkworth, at a few epochs.
     site = SITES["WARKWORTH"]
     source = SkyCoord("05h42m36.1s +49d51m07s")
     times = Time(["2023-01-25T08:00", "2023-01-25T10:30", "2023-01-25T13:00"])
