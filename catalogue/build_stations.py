@@ -281,6 +281,20 @@ def read_paper(path):
     return rows
 
 
+def read_ms_mounts(path):
+    """The MOUNT strings of a Measurement Set's ANTENNA table (python-casacore)."""
+    from casacore.tables import table  # optional: python-casacore
+
+    with table(str(path), ack=False) as tab:
+        return sorted(set(tab.getcol("MOUNT")))
+
+
+# A real ALMA Measurement Set (pyuvdata 3.1.3 test data, written by CASA 5.1.1's
+# importasdm from the ASDM): its ANTENNA table gives the mount of ALMA's antennas.
+ALMA_MS = ("ALMA Measurement Set X5707_1spw_1scan_10chan_1time_1bl_noatm.ms (pyuvdata 3.1.3 "
+           "test data; CASA 5.1.1 importasdm), ANTENNA table")
+
+
 def _moved(xyz, vel, epoch, to):
     if math.isnan(epoch):
         return np.array(xyz)
@@ -635,6 +649,11 @@ def main(argv=None):
     parser.add_argument("--report", default=str(REPORT))
     args = parser.parse_args(argv)
     rows, left_out, no_mount, mount_checks = build()
+    mounts = read_ms_mounts(SOURCES / "alma_ms" / "ANTENNA")
+    for row in rows:
+        if row["name"] == "ALMA" and mounts == ["ALT-AZ"]:
+            row["mount"] = "AZEL"
+            row["mount_source"] = f"{ALMA_MS}: MOUNT 'ALT-AZ' for its antennas DA41, DA42"
     table = to_table(rows)
     table.write(args.output, format="ascii.ecsv", overwrite=True)
     Path(args.report).write_text(report(rows, left_out, no_mount, mount_checks))
