@@ -508,12 +508,22 @@ def test_interrupted_run_leaves_files_as_they_were(capsys, tmp_path):
     output.write_bytes(b"old table")
     argv = ["natural", "EFLSBERG", "--source", SOURCE, "--start", "2023-01-01", "--stop",
             "2023-01-12T13:46:39", "--step", "1s", "-o", str(output), "--overwrite"]
-    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
-    timer.start()
+    # Ctrl-C every half second until the run stops: Python drops a
+    # KeyboardInterrupt that arrives while a destructor runs, as a user's
+    # first Ctrl-C can be lost, so one signal alone can go unseen.
+    stop = threading.Event()
+
+    def interrupt():
+        while not stop.wait(0.5):
+            os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=interrupt, daemon=True)
+    sender.start()
     try:
         status = main(argv)
     finally:
-        timer.cancel()
+        stop.set()
+        sender.join()
     _, err = capsys.readouterr()
     assert status == 130 and err == "feedrot: interrupted\n"
     assert [p.name for p in tmp_path.iterdir()] == ["out.ecsv"]
