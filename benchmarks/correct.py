@@ -104,7 +104,7 @@ def _uvdata(gib):
     from astropy_feedrot.stations import get_antenna
 
     names = ["BR-VLBA", "FD-VLBA", "HN-VLBA", "KP-VLBA", "LA-VLBA", "MK-VLBA", "NL-VLBA",
-             "OV-VLBA", "PT-VLBA", "SC-VLBA"]
+             "OV-VLBA", "PIETOWN", "SC-VLBA"]
     available = []
     for name in names:
         try:
