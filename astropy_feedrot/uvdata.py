@@ -25,6 +25,7 @@ from astropy import units as u
 from astropy.coordinates import AltAz, Angle, EarthLocation, SkyCoord
 from astropy.time import Time
 
+from . import __version__
 from .antenna import Antenna
 from .correction import correct_receptor_visibilities
 from .eop import iers_context
@@ -725,8 +726,6 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         sky = {"x": 0.0, "y": np.pi / 2, "r": 0.0, "l": 0.0}
         tel.feed_angle = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(
             tel.feed_array)
-    from . import __version__
-
     target.history += (f" {HISTORY_MARK} {__version__} (frame={_frame_text(frame)}, "
                        f"vertical={vertical}): receptors fixed on the sky (R, L; X north, "
                        "Y east); feed_angle set to match.")

@@ -16,7 +16,6 @@ import shutil
 import sys
 import tempfile
 import warnings
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
@@ -25,6 +24,8 @@ from astropy.coordinates import FK4, ICRS, SkyCoord
 from astropy.time import Time
 from astropy.utils.console import ProgressBar
 
+# The package is initialized before this module (it is loaded on use, see io/__init__).
+from .. import __version__
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..receptors import RECEPTOR_TYPES, basis_of
@@ -418,13 +419,6 @@ def _correct_chunk(records, plan, antennas, alphas, sources, scale, frame, name)
     return int(np.count_nonzero(bad))
 
 
-def _version():
-    try:
-        return metadata.version("astropy_feedrot")
-    except metadata.PackageNotFoundError:
-        return "(version unknown)"
-
-
 def _check_paths(path, output, overwrite):
     source = os.fspath(path)
     target = os.fspath(output)
@@ -576,7 +570,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         header_end = int(hdul.fileinfo(0)["datLoc"])
         new_header = primary.copy()
     antennas = fitsidi_antennas(source, vertical=vertical, software=software)
-    new_header.add_history(f"{HISTORY_MARK} {_version()}: UV_DATA FLUX corrected for the "
+    new_header.add_history(f"{HISTORY_MARK} {__version__}: UV_DATA FLUX corrected for the "
                            f"feed rotation and receptor angles (POLAA, POLAB) of both "
                            f"antennas of every row, north of frame {frame_name!r}.")
     directory = os.path.dirname(os.path.abspath(target))
