@@ -34,10 +34,16 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle
 
-__all__ = ["Receptors", "RECEPTOR_TYPES", "basis_of"]
+__all__ = ["Receptors", "RECEPTOR_TYPES", "PRODUCT_CODES", "basis_of"]
 
 #: The receptor types, by basis.
 RECEPTOR_TYPES = {"circular": ("R", "L"), "linear": ("X", "Y")}
+
+#: The codes of the correlation products in the ``STOKES`` axis of FITS-IDI
+#: and UVFITS files and in pyuvdata's ``polarization_array`` (AIPS Memo 117);
+#: the first letter is the receptor of antenna 1.
+PRODUCT_CODES = {-1: "RR", -2: "LL", -3: "RL", -4: "LR",
+                 -5: "XX", -6: "YY", -7: "XY", -8: "YX"}
 
 # Two linear receptors closer than this to parallel (sine of the angle between
 # them) cannot be told apart.

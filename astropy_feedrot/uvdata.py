@@ -33,7 +33,7 @@ from .exceptions import DegenerateGeometryWarning, warn_caller
 from .frames import VERTICALS, local_frame
 from .labels import mount_from_label
 from .mounts import AltAzMount, FixedAxisMount
-from .receptors import RECEPTOR_TYPES, Receptors, basis_of
+from .receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .rows import feed_rotation_rows
 
 __all__ = [
@@ -66,7 +66,6 @@ WRITERS = {
 
 # pyuvdata polarization codes of correlation products (AIPS Memo 117); the
 # first letter is the receptor of ant_1.
-_PRODUCTS = {-1: "RR", -2: "LL", -3: "RL", -4: "LR", -5: "XX", -6: "YY", -7: "XY", -8: "YX"}
 _STOKES = {1: "pI", 2: "pQ", 3: "pU", 4: "pV"}
 _EXTRA = "pip install 'astropy_feedrot[uvdata]'"
 
@@ -542,13 +541,13 @@ def _product_names(uv):
                          "(flex_spw_polarization_array) are not supported; call "
                          "uv.remove_flex_pol() first")
     codes = [int(c) for c in uv.polarization_array]
-    stokes = [_STOKES.get(c, str(c)) for c in codes if c not in _PRODUCTS]
+    stokes = [_STOKES.get(c, str(c)) for c in codes if c not in PRODUCT_CODES]
     if stokes:
         raise ValueError(
             f"the data hold Stokes or pseudo-Stokes products {stokes}: feed rotation acts on "
             "the correlations of receptors (RR, LL, RL, LR or XX, XY, YX, YY), which those "
             "have already mixed; correct the data before forming Stokes parameters")
-    names = [_PRODUCTS[c] for c in codes]
+    names = [PRODUCT_CODES[c] for c in codes]
     try:
         basis = basis_of(names)
     except ValueError:

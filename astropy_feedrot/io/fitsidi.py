@@ -28,16 +28,15 @@ from astropy.utils.console import ProgressBar
 from .. import __version__
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..receptors import RECEPTOR_TYPES, basis_of
+from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, basis_of
 from ..rows import feed_rotation_rows
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES", "HISTORY_MARK"]
 
 #: The polarization codes of the ``STOKES`` axis (FITS-IDI, UVFITS, casacore,
-#: pyuvdata and DiFX agree) that can be corrected.
-STOKES_CODES = {-1: "RR", -2: "LL", -3: "RL", -4: "LR",
-                -5: "XX", -6: "YY", -7: "XY", -8: "YX"}
+#: pyuvdata and DiFX agree) that can be corrected: `~astropy_feedrot.receptors.PRODUCT_CODES`.
+STOKES_CODES = PRODUCT_CODES
 
 #: The first words of the HISTORY card `correct_fitsidi` writes; a file
 #: holding it is not corrected again.
