@@ -33,6 +33,7 @@ from .exceptions import DegenerateGeometryWarning, warn_caller
 from .frames import VERTICALS, local_frame
 from .labels import mount_from_label
 from .mounts import AltAzMount, FixedAxisMount
+from .progress import progress_steps
 from .receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .rows import feed_rotation_rows
 
@@ -575,14 +576,6 @@ def _chunk_rows(uv):
     return max(1, int(data.nbytes // 8 // row_bytes))
 
 
-def _progress(progress, total):
-    if progress is True:
-        from astropy.utils.console import ProgressBar
-
-        return ProgressBar(total)
-    return contextlib.nullcontext(progress if callable(progress) else None)
-
-
 @iers_context()
 def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", antennas=None,
                    progress=False):
@@ -625,7 +618,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     ImportError
         If pyuvdata is not installed.
     TypeError
-        If ``uv`` is not a `~pyuvdata.UVData` object.
+        If ``uv`` is not a `~pyuvdata.UVData` object, or ``progress`` is
+        neither a bool nor a callable.
     ValueError
         For Stokes or pseudo-Stokes data, linear data without all four
         products (parallel hands only: rotate Stokes Q + iU after imaging),
@@ -697,8 +691,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     n_rows = data.shape[0]
     step = _chunk_rows(target)
     starts = range(0, n_rows, step)
-    with _progress(progress, len(starts)) as bar:
-        for done, start in enumerate(starts, 1):
+    with progress_steps(progress, len(starts)) as done_step:
+        for start in starts:
             chunk = slice(start, min(start + step, n_rows))
             block = data[chunk]
             with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
@@ -708,11 +702,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
                 for row in np.flatnonzero(auto[chunk]):
                     for k in parallel:
                         block[row, ..., k].imag = 0
-            if bar is not None:
-                if callable(bar) and not hasattr(bar, "update"):
-                    bar(done, len(starts))
-                else:
-                    bar.update(done)
+            done_step()
     if undefined:
         bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
         data[bad] = np.nan

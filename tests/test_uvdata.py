@@ -323,6 +323,10 @@ def test_nan_rows_are_flagged_with_one_warning():
 def test_progress_bar(capsys):
     uv = make_uv(["r", "l"], [0, 0], "alt-az", CIRCULAR, catalog=sidereal())
     correct_uvdata(uv, progress=True)
+    before = uv.data_array.copy()
+    with pytest.raises(TypeError, match="progress must be True, False or a callable"):
+        correct_uvdata(uv, inplace=True, progress="yes")
+    np.testing.assert_array_equal(uv.data_array, before)  # refused before any change
 
 
 # --- bad input -------------------------------------------------------------------------

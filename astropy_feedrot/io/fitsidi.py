@@ -13,7 +13,6 @@ and Stokes codes) and their sources.
 
 import os
 import shutil
-import sys
 import tempfile
 import warnings
 from pathlib import Path
@@ -22,12 +21,12 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import FK4, ICRS, SkyCoord
 from astropy.time import Time
-from astropy.utils.console import ProgressBar
 
 # The package is initialized before this module (it is loaded on use, see io/__init__).
 from .. import __version__
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
+from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, basis_of
 from ..rows import feed_rotation_rows
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
@@ -446,25 +445,6 @@ def _copy(source, target, header, header_end):
         shutil.copyfileobj(fin, fout, 16 * 2**20)
 
 
-def _progress_reporter(progress, total):
-    """A (step, close) pair for progress=False, True or a callable."""
-    if callable(progress):
-        done = [0]
-
-        def step():
-            done[0] += 1
-            progress(done[0], total)
-        return step, lambda: None
-    if progress is True:
-        bar = ProgressBar(total, file=sys.stdout)
-        bar.__enter__()
-        return bar.update, lambda: bar.__exit__(None, None, None)
-    if progress is False or progress is None:
-        return (lambda: None), (lambda: None)
-    raise TypeError(f"progress must be True, False or a callable (done, total), got "
-                    f"{type(progress).__name__}")
-
-
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
                     software=None, vertical="geodetic", chunk_bytes=None):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
@@ -585,10 +565,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
             per_chunk = max(1, chunk_bytes // max(plan.dtype.itemsize, 1))
             work += [(plan, start, min(start + per_chunk, plan.rows))
                      for start in range(0, plan.rows, per_chunk)]
-        step, close = _progress_reporter(progress, len(work))
         nan_rows = 0
         total_rows = sum(plan.rows for plan in plans)
-        try:
+        with progress_steps(progress, len(work)) as step:
             for plan in plans:
                 if not plan.rows:
                     continue
@@ -605,8 +584,6 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                     records.flush()
                 finally:
                     del records
-        finally:
-            close()
         os.replace(temporary, target)
     except BaseException:
         if os.path.exists(temporary):
