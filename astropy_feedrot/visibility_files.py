@@ -26,6 +26,7 @@ from astropy.table import Table
 
 from .io import correct_fitsidi, fitsidi_antennas, uvfits_antennas, writing_program
 from .labels import label_from_mount
+from .outputs import same_file
 
 __all__ = ["FILE_KINDS", "file_kind", "read_antennas", "antenna_table", "correct_file"]
 
@@ -213,8 +214,7 @@ def _check_output(source, output, overwrite):
     """The resolved output path, refused if it is the input or exists without overwrite."""
     target = Path(os.fspath(output)).expanduser()
     resolved = target.resolve()
-    same = resolved.exists() and os.path.samefile(resolved, source)
-    if resolved == source.resolve() or same:
+    if same_file(resolved, source.resolve()):
         raise ValueError(f"the output {str(target)!r} is the input; the input is never "
                          "modified: choose another name")
     if target.exists() and not overwrite:

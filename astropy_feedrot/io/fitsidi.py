@@ -26,6 +26,7 @@ from astropy.time import Time
 from .. import __version__
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
+from ..outputs import same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, basis_of
 from ..rows import feed_rotation_rows
@@ -422,8 +423,7 @@ def _check_paths(path, output, overwrite):
     target = os.fspath(output)
     if not os.path.isfile(source):
         raise FileNotFoundError(f"no such file: {source!r}")
-    if Path(source).resolve() == Path(target).resolve() or (
-            os.path.exists(target) and os.path.samefile(source, target)):
+    if same_file(Path(source).resolve(), Path(target).resolve()):
         raise ValueError(f"output {target!r} is the input file; write the corrected copy to "
                          "another path (the input is never modified)")
     if os.path.isdir(target):
