@@ -51,6 +51,15 @@ class Attitude:
     ----------
     needs_sun : bool
         Whether `sun_dipoles` gives the dipoles (False here).
+
+    Examples
+    --------
+    >>> from astropy_feedrot import NominalAttitude, QuaternionAttitude
+    >>> from astropy_feedrot.attitude import Attitude
+    >>> issubclass(NominalAttitude, Attitude), issubclass(QuaternionAttitude, Attitude)
+    (True, True)
+    >>> NominalAttitude.needs_sun, Attitude.needs_sun
+    (True, False)
     """
 
     needs_sun = False
@@ -73,6 +82,19 @@ class Attitude:
         -------
         aligned, transverse : ndarray, shape (..., 3)
             :math:`\\hat{t}^a` and :math:`\\hat{t}^t`; NaN where undefined.
+
+        Examples
+        --------
+        A model's dipoles are orthogonal unit vectors (here the nominal
+        attitude of a satellite 26,000 km from the geocentre):
+
+        >>> import numpy as np
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import NominalAttitude
+        >>> aligned, transverse = NominalAttitude().dipoles(Time("2023-01-25"),
+        ...                                                 np.array([2.6e7, 0.0, 0.0]))
+        >>> bool(np.isclose(aligned @ aligned, 1) and abs(aligned @ transverse) < 1e-12)
+        True
         """
         raise NotImplementedError  # pragma: no cover
 
@@ -96,6 +118,15 @@ class Attitude:
         ------
         NotImplementedError
             For models without `needs_sun`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import NominalAttitude
+        >>> aligned, transverse = NominalAttitude().sun_dipoles(
+        ...     np.array([2.6e7, 0.0, 0.0]), np.array([0.0, 1.5e11, 0.0]))
+        >>> aligned.shape, bool(abs(aligned @ transverse) < 1e-12)
+        ((3,), True)
         """
         raise NotImplementedError(f"{type(self).__name__} does not take its dipoles from the "
                                   "Sun (needs_sun is False); call dipoles()")

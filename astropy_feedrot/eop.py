@@ -70,6 +70,14 @@ class EarthOrientationStatus(NamedTuple):
     Returned by `earth_orientation_status`. Dates are `~astropy.time.Time`
     (UTC), spans and ages `~astropy.units.Quantity` in days, the UT1 error in
     seconds and the angle bounds in arcseconds.
+
+    Examples
+    --------
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import earth_orientation_status
+    >>> status = earth_orientation_status(Time("2023-01-25"))
+    >>> type(status).__name__, status._fields[0]
+    ('EarthOrientationStatus', 'table_start')
     """
 
     #: Start of the tables.

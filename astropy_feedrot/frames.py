@@ -64,6 +64,15 @@ class LocalFrame(NamedTuple):
 
     Each field is an ndarray of shape ``(..., 3)`` (the shape of the location
     plus a last axis of 3).
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from astropy_feedrot.frames import local_frame
+    >>> frame = local_frame(EarthLocation.from_geodetic(0 * u.deg, 0 * u.deg, 0 * u.m))
+    >>> frame.up.round(12) + 0.0, frame.east.round(12) + 0.0
+    (array([1., 0., 0.]), array([0., 1., 0.]))
     """
 
     east: np.ndarray

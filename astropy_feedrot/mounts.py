@@ -35,6 +35,12 @@ class Mount:
     does not track defines ``dipoles(local)``, its aligned, transverse and
     boresight unit vectors (as `StationaryMount`). That is all
     `~astropy_feedrot.engine` needs to give it every feed rotation.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import AltAzMount, Mount, StationaryMount
+    >>> isinstance(AltAzMount(), Mount), AltAzMount().tracks, StationaryMount().tracks
+    (True, True, False)
     """
 
     #: Whether the antenna points its boresight at the source.

@@ -56,6 +56,15 @@ class Orbit:
     coverage : tuple of `~astropy.time.Time` or None
         ``(start, stop)`` outside which `position` cannot give positions (an
         orbit file's span); None (here) where there is no such limit.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import CoordinateOrbit, SP3Orbit, TLEOrbit
+    >>> from astropy_feedrot.orbits import Orbit
+    >>> all(issubclass(c, Orbit) for c in (TLEOrbit, SP3Orbit, CoordinateOrbit))
+    True
+    >>> TLEOrbit.uses_orientation, CoordinateOrbit.coverage
+    (True, None)
     """
 
     uses_orientation = False
@@ -79,6 +88,19 @@ class Orbit:
         ndarray, shape obstime.shape + (3,)
             Cartesian ITRS coordinates in metres; NaN where the orbit cannot
             give a position.
+
+        Examples
+        --------
+        GPS SVN 76 (the paper's Table 2) is some 26,600 km from the geocentre:
+
+        >>> import numpy as np
+        >>> import astropy.units as u
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import TLEOrbit
+        >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+        >>> xyz = TLEOrbit(*GPS_SVN76_TLE).position(Time("2023-01-25T12:00") + [0, 1] * u.h)
+        >>> xyz.shape, bool(np.all(np.abs(np.linalg.norm(xyz, axis=-1) - 2.66e7) < 2e5))
+        ((2, 3), True)
         """
         raise NotImplementedError  # pragma: no cover
 
