@@ -498,8 +498,9 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
 
     Parameters
     ----------
-    visibilities : `~numpy.ndarray`, complex
-        Correlation products along the last axis.
+    visibilities : array-like or `~astropy.units.Quantity`, complex
+        Correlation products along the last axis; a `numpy.ma.MaskedArray`
+        or an astropy `~astropy.utils.masked.Masked` array keeps its mask.
     position_angles1, position_angles2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
         Position angles :math:`\\theta` of the receptors of antenna 1 and 2,
         shape ``(..., 2)`` with the last axis in the order ``(R, L)`` or
@@ -521,10 +522,12 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
 
     Returns
     -------
-    `~numpy.ndarray`
+    `~numpy.ndarray` or `~astropy.units.Quantity`
         The visibilities of receptors fixed on the sky, in the same
-        convention and dtype: circular R and L of the sky, or linear X toward
-        north and Y toward east (IAU). NaN where an angle is NaN.
+        convention, dtype, unit and mask: circular R and L of the sky, or
+        linear X toward north and Y toward east (IAU; a sample is masked
+        wholly where any of its four products is). NaN where an angle is
+        NaN.
 
     Raises
     ------
@@ -575,12 +578,7 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     array([10.])
     """
     names, basis = _product_names(products)
-    values = np.asarray(visibilities)
-    if not np.issubdtype(values.dtype, np.complexfloating):
-        raise TypeError(f"visibilities must be complex, got dtype {values.dtype}")
-    if values.ndim == 0 or values.shape[-1] != len(names):
-        raise ValueError(f"the last axis of visibilities must hold the {len(names)} products "
-                         f"{names}, got shape {values.shape}")
+    values, unit, mask = _visibilities(visibilities, names)
     theta1 = _radians(position_angles1, "position_angles1")
     theta2 = _radians(position_angles2, "position_angles2")
     for name, theta in (("position_angles1", theta1), ("position_angles2", theta2)):
@@ -602,7 +600,7 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
                      - polarization_sign(q) * theta2[..., index[q]])
             np.multiply(values[..., k], np.exp(1j * sign * angle), out=out[..., k],
                         casting="same_kind")
-        return out
+        return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:
         raise ValueError(
@@ -611,10 +609,12 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
             "without all four. With parallel hands only, rotate Stokes Q + iU by minus "
             "twice the feed rotation after imaging instead"
         )
-    inverse1, inverse2 = _linear_inverse(theta1), _linear_inverse(theta2)
+    if mask is not None:  # the correction mixes the four products of a sample
+        mask = (mask[0], np.broadcast_to(np.any(mask[1], axis=-1, keepdims=True),
+                                         values.shape).copy())
+    m1, m2 = _linear_inverse(theta1), _linear_inverse(theta2)
     order = [names.index(name) for name in LINEAR_PRODUCTS]
     v = [values[..., k] for k in order]  # XX, XY, YX, YY
-    m1, m2 = inverse1, inverse2
     # M1 V: rows of V mixed.
     a00 = m1[..., 0, 0] * v[0] + m1[..., 0, 1] * v[2]
     a01 = m1[..., 0, 0] * v[1] + m1[..., 0, 1] * v[3]
@@ -627,7 +627,7 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
               a10 * m2[..., 1, 0] + a11 * m2[..., 1, 1])
     for k, value in zip(order, result):
         out[..., k] = value
-    return out
+    return _finish(out, values.dtype, unit, mask)
 
 
 # --- the dual-polarization check (Eq 46) ----------------------------------------

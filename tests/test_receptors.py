@@ -235,3 +235,30 @@ def test_antenna_carries_receptors():
     assert "Receptors('RL'" in repr(antenna)
     with pytest.raises(TypeError, match="Receptors object"):
         Antenna(site, AltAzMount(), receptors="RL")
+
+
+def test_masks_and_units_are_kept():
+    # A masked sample stays masked (for linear feeds the whole sample, whose four
+    # products the correction mixes), and the values are those of the plain array.
+    from astropy.utils.masked import Masked
+
+    rng = np.random.default_rng(5)
+    data = rng.normal(size=(3, 4)) + 1j * rng.normal(size=(3, 4))
+    theta = rng.uniform(-180, 180, (3, 2)) * u.deg
+    flags = np.zeros((3, 4), bool)
+    flags[1, 2] = True
+    for products, expected_flags in ((CIRCULAR, flags), (LINEAR, np.repeat(
+            flags.any(axis=1, keepdims=True), 4, axis=1))):
+        plain = correct_receptor_visibilities(data, theta, theta, products)
+        masked = correct_receptor_visibilities(np.ma.MaskedArray(data, flags), theta, theta,
+                                               products)
+        assert np.ma.isMaskedArray(masked)
+        np.testing.assert_array_equal(np.ma.getmaskarray(masked), expected_flags)
+        np.testing.assert_allclose(masked.data[~expected_flags], plain[~expected_flags])
+        astropy_masked = correct_receptor_visibilities(Masked(data, mask=flags), theta, theta,
+                                                       products)
+        np.testing.assert_array_equal(astropy_masked.mask, expected_flags)
+    jansky = correct_receptor_visibilities(data * u.Jy, theta, theta, CIRCULAR)
+    assert jansky.unit == u.Jy
+    np.testing.assert_allclose(jansky.value,
+                               correct_receptor_visibilities(data, theta, theta, CIRCULAR))
