@@ -162,6 +162,18 @@ def distinct_epochs(obstime):
     return obstime[first], index.reshape(-1)
 
 
+def _antenna_numbers(values, name):
+    """Antenna numbers as a 1-d int array; ValueError for what is not whole numbers."""
+    array = np.asarray(values).reshape(-1)
+    whole = np.issubdtype(array.dtype, np.integer) or (
+        np.issubdtype(array.dtype, np.floating) and bool(np.all(np.isfinite(array)))
+        and bool(np.all(array == np.round(array))))
+    if not whole:
+        raise ValueError(f"{name} must be whole antenna numbers, one per row; got "
+                         f"{array[:5].tolist()}")
+    return array.astype(int)
+
+
 def _antenna_list(antennas, antenna1, antenna2):
     """The antennas the rows use, and each row's two positions in that list."""
     if not hasattr(antennas, "keys"):
@@ -260,8 +272,8 @@ def feed_rotation_rows(antennas, antenna1, antenna2, obstime, sources, source_in
         If ``antennas`` is not a mapping of `~astropy_feedrot.Antenna`, or
         ``sources`` and ``source_index`` do not fit.
     ValueError
-        For rows of other lengths, antenna numbers or source keys that the
-        mappings lack, a moving source that does not give one position per
+        For rows of other lengths, antenna numbers that are not whole
+        numbers, antenna numbers or source keys that the mappings lack, a moving source that does not give one position per
         epoch, or an unknown ``frame``.
 
     Warns
@@ -295,8 +307,8 @@ def feed_rotation_rows(antennas, antenna1, antenna2, obstime, sources, source_in
     >>> bool(rows[0, 0] == rows[1, 1])
     True
     """
-    antenna1 = np.asarray(antenna1).astype(int, casting="unsafe").reshape(-1)
-    antenna2 = np.asarray(antenna2).astype(int, casting="unsafe").reshape(-1)
+    antenna1 = _antenna_numbers(antenna1, "antenna1")
+    antenna2 = _antenna_numbers(antenna2, "antenna2")
     obstime = as_time(obstime)
     n_rows = antenna1.size
     if antenna2.size != n_rows or obstime.shape != (n_rows,):

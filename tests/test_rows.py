@@ -136,6 +136,19 @@ def test_rows_in_the_icrs_frame_subtract_its_angle():
     assert_quantity_allclose(apparent - icrs, np.stack([delta, delta], axis=1), atol=1e-9 * u.deg)
 
 
+def test_masked_epochs_and_no_rows():
+    # A masked epoch gives NaN in its row, without a warning (as everywhere in
+    # the package); a table without rows gives an empty result.
+    times = TIMES[:3].copy()
+    times[1] = np.ma.masked
+    rows = feed_rotation_rows(ANTENNAS, [3, 3, 3], [7, 7, 7], times, SOURCE)
+    assert np.all(np.isnan(rows[1])) and np.all(np.isfinite(rows[[0, 2]]))
+    assert_quantity_allclose(rows[[0, 2], 0], parallactic(ANTENNAS[3], SOURCE, TIMES[[0, 2]]),
+                             atol=1 * u.mas)
+    empty = feed_rotation_rows(ANTENNAS, [], [], Time([], format="mjd"), SOURCE)
+    assert empty.shape == (0, 2)
+
+
 def test_distinct_epochs_compare_both_parts():
     t = Time(60000.0, np.array([0.25, 0.0, 0.25, 0.5]), format="mjd")
     epochs, index = distinct_epochs(t)
@@ -152,6 +165,9 @@ def test_distinct_epochs_compare_both_parts():
     (dict(antennas={3: "FD", 7: "WZ"}), TypeError, r"antennas\[3\] must be an Antenna"),
     (dict(antenna2=[7, 4]), ValueError, r"antenna numbers \[4\]"),
     (dict(antenna2=[7]), ValueError, "one value per row"),
+    (dict(antenna1=[3.5, 3]), ValueError, r"antenna1 must be whole antenna numbers"),
+    (dict(antenna2=[np.nan, 7]), ValueError, r"antenna2 must be whole antenna numbers"),
+    (dict(antenna1=["3", "3"]), ValueError, r"antenna1 must be whole antenna numbers"),
     (dict(sources={"a": SOURCE}), ValueError, "source_index must give"),
     (dict(source_index=["a", "a"]), TypeError, "must be a mapping"),
     (dict(sources={"a": SOURCE}, source_index=["a", "b"]), ValueError, r"source keys \['b'\]"),
