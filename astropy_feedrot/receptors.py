@@ -33,6 +33,7 @@ convention of `~astropy_feedrot.correction` (Appendix D of the paper).
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle
+from astropy.utils.masked import Masked
 
 __all__ = ["Receptors", "RECEPTOR_TYPES", "PRODUCT_CODES", "basis_of"]
 
@@ -115,8 +116,8 @@ class Receptors:
         If ``angles`` are not angles.
     ValueError
         For unknown, repeated or mixed types, more than two receptors, a
-        number of angles that is not the number of types, non-finite angles,
-        or two linear receptors that are parallel.
+        number of angles that is not the number of types, non-finite or
+        masked angles, or two linear receptors that are parallel.
 
     Examples
     --------
@@ -154,6 +155,11 @@ class Receptors:
         self.types = "".join(letters)
         if angles is None:
             angles = [90.0 if letter == "Y" else 0.0 for letter in letters] * u.deg
+        if isinstance(angles, Masked):
+            if np.any(angles.mask):
+                raise ValueError(f"receptor angles must all be known, got masked values "
+                                 f"{angles}; give the angle of every receptor")
+            angles = angles.unmasked
         if not isinstance(angles, u.Quantity):
             raise TypeError(f"angles must be an angle Quantity (e.g. [0, 90] * u.deg), got "
                             f"{type(angles).__name__}")

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from astropy import units as u
 from astropy.coordinates import EarthLocation
+from astropy.utils.masked import Masked
 
 from astropy_feedrot import AltAzMount, Antenna
 from astropy_feedrot.correction import (
@@ -202,6 +203,7 @@ def test_parallel_linear_receptors_in_angles():
     (("XY", [0, 90] * u.m), u.UnitsError, "angles"),
     (("XY", [0] * u.deg), ValueError, "one angle per receptor"),
     (("XY", [0, np.nan] * u.deg), ValueError, "finite"),
+    (("XY", Masked([0, 90] * u.deg, mask=[False, True])), ValueError, "must all be known"),
     (("XY", [10, 190] * u.deg), ValueError, "parallel"),
 ])
 def test_receptor_errors(args, error, match):
@@ -240,8 +242,6 @@ def test_antenna_carries_receptors():
 def test_masks_and_units_are_kept():
     # A masked sample stays masked (for linear feeds the whole sample, whose four
     # products the correction mixes), and the values are those of the plain array.
-    from astropy.utils.masked import Masked
-
     rng = np.random.default_rng(5)
     data = rng.normal(size=(3, 4)) + 1j * rng.normal(size=(3, 4))
     theta = rng.uniform(-180, 180, (3, 2)) * u.deg
