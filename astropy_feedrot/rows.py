@@ -273,8 +273,9 @@ def feed_rotation_rows(antennas, antenna1, antenna2, obstime, sources, source_in
         ``sources`` and ``source_index`` do not fit.
     ValueError
         For rows of other lengths, antenna numbers that are not whole
-        numbers, antenna numbers or source keys that the mappings lack, a moving source that does not give one position per
-        epoch, or an unknown ``frame``.
+        numbers, antenna numbers or source keys that the mappings lack, a
+        moving source that does not give one position per epoch, or an
+        unknown ``frame``.
 
     Warns
     -----

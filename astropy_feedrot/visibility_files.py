@@ -19,6 +19,7 @@ import contextlib
 import os
 import shutil
 import tempfile
+import warnings
 from pathlib import Path
 
 from astropy.io import fits
@@ -41,6 +42,9 @@ FILE_KINDS = {
 }
 
 _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+# What astropy.io.fits warns on opening a FITS file that ends early.
+_CUT_SHORT = ("truncated", "Header size is not multiple of 2880")
 
 
 def _path(path, what="file"):
@@ -69,7 +73,8 @@ def file_kind(path):
     FileNotFoundError
         If nothing is at ``path``.
     ValueError
-        If the content is none of the known kinds.
+        If the content is none of the known kinds, or a FITS file is cut
+        short.
 
     Examples
     --------
@@ -94,14 +99,27 @@ def file_kind(path):
     if start.startswith(_HDF5_SIGNATURE):
         return "uvh5"
     if start.startswith(b"SIMPLE"):
-        with fits.open(path, memmap=True) as hdus:
-            if hdus[0].header.get("GROUPS", False):
-                return "uvfits"
-            names = {hdu.name for hdu in hdus[1:]}
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                with fits.open(path, memmap=True) as hdus:
+                    groups = hdus[0].header.get("GROUPS", False)
+                    names = {hdu.name for hdu in hdus[1:]}
+            except OSError as error:
+                raise ValueError(f"{str(path)!r} cannot be read as FITS ({error}); the file "
+                                 "may be cut short") from None
+        for record in caught:
+            if any(sign in str(record.message) for sign in _CUT_SHORT):
+                raise ValueError(f"{str(path)!r} is cut short: {record.message}")
+            warnings.warn_explicit(record.message, record.category, record.filename,
+                                   record.lineno)
+        if groups:
+            return "uvfits"
         if "UV_DATA" in names:
             return "fits-idi"
         raise ValueError(f"{str(path)!r} is a FITS file with neither random groups (UVFITS) "
-                         f"nor a UV_DATA table (FITS-IDI); its extensions: {sorted(names)}")
+                         f"nor a UV_DATA table (FITS-IDI); its extensions: {sorted(names)} "
+                         "(a FITS-IDI file cut short loses its last tables)")
     raise ValueError(f"cannot tell the kind of {str(path)!r}: not FITS, HDF5 (uvh5), a "
                      "Measurement Set, Miriad nor SMA Mir")
 

@@ -193,3 +193,38 @@ def test_antennas_through_pyuvdata():
     table = antenna_table(antennas, software)
     assert set(table["label"]) == {"alt-az"} and set(table["receptors"]) == {"XY"}
     assert set(table["receptor_angles"]) == {"90 0"}
+
+
+def test_files_cut_short(idi, tmp_path):
+    # A FITS-IDI file cut inside its first block, before its UV_DATA table, and
+    # inside the rows of UV_DATA: each a clear error, never a corrected copy.
+    path, _ = idi
+    data = path.read_bytes()
+    cut = tmp_path / "cut.idifits"
+    cut.write_bytes(data[:100])
+    with pytest.raises(ValueError, match="cannot be read as FITS .* may be cut short"):
+        file_kind(cut)
+    cut.write_bytes(data[:2 * 2880 + 10])
+    with pytest.raises(ValueError, match="is cut short"):
+        correct_file(cut, tmp_path / "out.idifits")
+    with fits.open(path) as hdus:  # cut where UV_DATA starts: whole tables before it
+        start = hdus.fileinfo(hdus.index_of("UV_DATA"))["hdrLoc"]
+    cut.write_bytes(data[:start])
+    with pytest.raises(ValueError, match="cut short loses its last tables"):
+        file_kind(cut)
+    cut.write_bytes(data[:-2880])
+    with pytest.raises(ValueError, match="is cut short"):
+        correct_file(cut, tmp_path / "out.idifits")
+    assert not (tmp_path / "out.idifits").exists()
+
+
+def test_correct_fitsidi_refuses_rows_cut_short(idi, tmp_path):
+    from astropy_feedrot.io import FITSFormatError, correct_fitsidi
+
+    path, _ = idi
+    cut = tmp_path / "cut.idifits"
+    cut.write_bytes(path.read_bytes()[:-2880])
+    with pytest.warns(UserWarning, match="truncated"):  # astropy's own word on reading
+        with pytest.raises(FITSFormatError, match="UV_DATA .* the file is cut short"):
+            correct_fitsidi(cut, tmp_path / "out.idifits")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cut.idifits", "experiment.idifits"]

@@ -328,9 +328,14 @@ class _Plan:
         self.dtype = _record_dtype(hdu, name)
         self.rows = int(hdu.header["NAXIS2"])
         self.offset = int(hdul.fileinfo(index)["datLoc"])
+        needed = self.rows * self.dtype.itemsize
+        available = os.path.getsize(hdul.filename()) - self.offset
+        if available < needed:
+            raise FITSFormatError(name, self.table, f"{needed} bytes of rows (NAXIS2 = "
+                                  f"{self.rows})", f"{max(available, 0)} bytes: the file is "
+                                  "cut short", None)
         self.products, self.shape, self.stokes_axis, self.complex = _flux_layout(hdu, name)
-        basis_of(self.products)  # refuse mixed products now
-        if basis_of(self.products) == "linear":
+        if basis_of(self.products) == "linear":  # also refuses mixed products
             missing = [p for p in ("XX", "XY", "YX", "YY") if p not in self.products]
             if missing:
                 raise ValueError(
