@@ -53,12 +53,12 @@ from astropy.coordinates import (
     Supergalactic,
     UnitSphericalRepresentation,
 )
-from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
+from astropy.time.utils import day_frac
 from astropy.utils import iers
 
 from .config import conf
-from .eop import iers_context
+from .eop import iers_context, utc_earth_orientation
 from .inputs import as_location, as_skycoord, as_time
 
 __all__ = [
@@ -66,6 +66,7 @@ __all__ = [
     "orientation_of",
     "clear_orientation_cache",
     "fast_path_applies",
+    "site_position",
     "FIXED_FRAMES",
     "FAST_PATH_MIN_DISTANCE",
     "DEFAULT_STEP",
@@ -166,6 +167,7 @@ def fast_path_applies(target, obstime):
     >>> import astropy.units as u
     >>> from astropy.coordinates import SkyCoord
     >>> from astropy.time import Time
+from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import fast_path_applies
     >>> times = Time("2023-01-25") + np.arange(24) * u.hour
     >>> fast_path_applies(SkyCoord(ra=10 * u.deg, dec=20 * u.deg), times)
@@ -201,6 +203,54 @@ def _distance_less(data):
             or data.to_cartesian().x.unit == u.one)
 
 
+#: How many sites `site_position` keeps.
+SITE_CACHE_SIZE = 256
+
+_SITES = collections.OrderedDict()
+_SITES_LOCK = threading.Lock()
+
+
+def site_position(location):
+    """The ITRS position (m) of a site as astropy's transformations use it.
+
+    Astropy hands ERFA's ``apco`` the site's WGS84 geodetic coordinates, and
+    ERFA's ``pvtob`` turns them back into a position (``gd2gc``). The round
+    trip costs 0.1 ms (astropy's geodetic representation), so each site's is
+    computed once and kept (the last `SITE_CACHE_SIZE` sites, keyed on their
+    coordinates).
+
+    Parameters
+    ----------
+    location : `~astropy.coordinates.EarthLocation`
+        A single site.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from astropy_feedrot.earth import site_position
+    >>> site = EarthLocation.from_geocentric(4075659.180, 931824.551, 4801516.102, u.m)
+    >>> site_position(site)  # doctest: +FLOAT_CMP
+    array([4075659.18 ,  931824.551, 4801516.102])
+    """
+    key = (np.asarray(location.value).tobytes(), str(location.unit))
+    with _SITES_LOCK:
+        site = _SITES.get(key)
+    if site is None:
+        lon, lat, height = location.to_geodetic("WGS84")
+        site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+        site.flags.writeable = False
+        with _SITES_LOCK:
+            _SITES[key] = site
+            while len(_SITES) > SITE_CACHE_SIZE:
+                _SITES.popitem(last=False)
+    return site
+
+
 def _distinct(values, limit):
     """Distinct values of a float array of integers, and a function of each element's index.
 
@@ -234,10 +284,11 @@ class _Days:
             if obstime.scale != "utc":
                 utc = obstime.utc
                 jd1, jd2 = np.asarray(utc.jd1, dtype=float), np.asarray(utc.jd2, dtype=float)
-            self.ref = Time(np.floor((jd1[first] - erfa.DJM0) + jd2[first]),
-                            format="mjd", scale="utc")
-            a = jd1 - self.ref.jd1
-            b = jd2 - self.ref.jd2
+            # The UTC midnight before the first epoch, as a two-part JD.
+            self.ref1, self.ref2 = day_frac(erfa.DJM0,
+                                            np.floor((jd1[first] - erfa.DJM0) + jd2[first]))
+            a = jd1 - self.ref1
+            b = jd2 - self.ref2
             self.u = a + b
             day = np.floor(self.u)
             # At a midnight the rounding of a + b may leave the fraction a hair outside.
@@ -263,33 +314,31 @@ class _Days:
         days = self.days
         starts = np.union1d(days, days + 1)
         this, following = np.searchsorted(starts, days), np.searchsorted(starts, days + 1)
-        t = Time(self.ref.jd1 + starts, np.full(starts.shape, self.ref.jd2),
-                 format="jd", scale="utc")
-        tt, ut1 = t.tt, t.ut1
+        tt1, tt2, ut11, ut12, xp, yp = utc_earth_orientation(
+            self.ref1 + starts, np.full(starts.shape, self.ref2))
         # TT is counted in days from the start of the first day of the tables.
-        self.tt1, self.tt2 = float(tt.jd1[0]), float(tt.jd2[0])
-        self.tt0 = ((tt.jd1 - self.tt1) + (tt.jd2 - self.tt2))[this]
-        self.tt_rate = _length(tt, this, following)
-        era = erfa.era00(ut1.jd1, ut1.jd2)
+        self.tt1, self.tt2 = float(tt1[0]), float(tt2[0])
+        self.tt0 = ((tt1 - self.tt1) + (tt2 - self.tt2))[this]
+        self.tt_rate = _length(tt1, tt2, this, following)
+        era = erfa.era00(ut11, ut12)
         self.era0 = era[this]
-        self.era_rate = _ERA_RATE * _length(ut1, this, following)
-        gmst = erfa.gmst82(ut1.jd1, ut1.jd2)
+        self.era_rate = _ERA_RATE * _length(ut11, ut12, this, following)
+        gmst = erfa.gmst82(ut11, ut12)
         self.gmst0 = gmst[this]
         # GMST turns by a little more than 2 pi in a day.
         self.gmst_rate = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
-        xp, yp = get_polar_motion(t)
         self.xp0, self.xp_rate = xp[this], xp[following] - xp[this]
         self.yp0, self.yp_rate = yp[this], yp[following] - yp[this]
-        self.sp = erfa.sp00(tt.jd1[this], tt.jd2[this])
+        self.sp = erfa.sp00(tt1[this], tt2[this])
 
     def at(self, slot, frac):
         """The quantities at instants given by day slots and fractions of day."""
         return _Instants(self, slot, frac)
 
 
-def _length(t, this, following):
-    """Days from ``t[this]`` to ``t[following]``, to the precision of the two-part JD."""
-    return (t.jd1[following] - t.jd1[this]) + (t.jd2[following] - t.jd2[this])
+def _length(jd1, jd2, this, following):
+    """Days from ``[this]`` to ``[following]`` of a two-part JD, to its precision."""
+    return (jd1[following] - jd1[this]) + (jd2[following] - jd2[this])
 
 
 class _Instants:
@@ -541,6 +590,7 @@ class EarthOrientation:
     >>> import numpy as np
     >>> import astropy.units as u
     >>> from astropy.time import Time
+from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import EarthOrientation
     >>> times = Time("2023-01-25T00:00") + np.arange(1000) * u.min
     >>> orientation = EarthOrientation(times)
@@ -623,6 +673,7 @@ class EarthOrientation:
         >>> import numpy as np
         >>> import astropy.units as u
         >>> from astropy.time import Time
+from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time("2023-01-25") + np.arange(100) * u.hour)
         >>> days = (orientation.nodes - orientation.nodes[0]).jd
@@ -666,6 +717,7 @@ class EarthOrientation:
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
+from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time(["2023-01-25T00:00", "2023-01-25T06:00"]))
         >>> z = orientation.cirs_to_itrs([[0, 0, 1.0], [0, 0, 1.0]])  # the CIP
@@ -692,6 +744,7 @@ class EarthOrientation:
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
+from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time(["2023-01-25T00:00"]))
         >>> float(np.linalg.norm(orientation.teme_to_itrs([[7000.0, 0, 0]])))  # doctest: +FLOAT_CMP
@@ -733,6 +786,7 @@ class EarthOrientation:
         >>> import astropy.units as u
         >>> from astropy.coordinates import EarthLocation, SkyCoord
         >>> from astropy.time import Time
+from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> site = EarthLocation.from_geodetic(6.88 * u.deg, 50.52 * u.deg, 416 * u.m)
         >>> times = Time("2023-01-25T00:00") + np.arange(100) * u.min
@@ -753,9 +807,7 @@ class EarthOrientation:
         distance = None
         if not _distance_less(data):
             distance = icrs.spherical.distance.to_value(u.au).reshape(-1)
-        # As ERFA's pvtob inside apco, from astropy's WGS84 geodetic coordinates.
-        lon, lat, height = location.to_geodetic("WGS84")
-        site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+        site = site_position(location)
 
         def evaluate(instants):
             return self._directions_at(instants, pco, distance, site)
@@ -779,6 +831,7 @@ class EarthOrientation:
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
+from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> sun = EarthOrientation(Time("2023-01-25")).sun_position()
         >>> round(float(np.linalg.norm(sun) / 1.495978707e11), 3)  # au
@@ -936,6 +989,7 @@ def orientation_of(obstime):
     >>> import numpy as np
     >>> import astropy.units as u
     >>> from astropy.time import Time
+from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import orientation_of
     >>> times = Time("2023-01-25") + np.arange(100) * u.min
     >>> orientation_of(times) is orientation_of(times.copy())  # the same epochs

@@ -32,6 +32,7 @@ from typing import NamedTuple
 import erfa
 import numpy as np
 from astropy import units as u
+from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
 from astropy.utils import iers
 from astropy.utils.exceptions import AstropyWarning
@@ -43,6 +44,7 @@ __all__ = [
     "EarthOrientationStatus",
     "earth_orientation_status",
     "iers_context",
+    "utc_earth_orientation",
     "EARTH_ROTATION_RATE",
     "MAX_TABLE_AGE",
 ]
@@ -130,6 +132,94 @@ def _table_facts():
         _FACTS.clear()
         _FACTS[id(table)] = facts
     return facts[1:]
+
+
+_ARRAYS = {}
+
+# Polar motion astropy uses outside the tables (the 1962-2014 mean of IERS B,
+# astropy.coordinates.builtin_frames.utils), in radians.
+_DEFAULT_PM = (0.035 * u.arcsec).to_value(u.rad), (0.29 * u.arcsec).to_value(u.rad)
+
+
+def _table_arrays():
+    """MJD, UT1 - UTC (s), x_p, y_p (rad) of the tables in use, as float arrays."""
+    table = _table()
+    arrays = _ARRAYS.get(id(table))
+    if arrays is None or arrays[0] is not table:  # the entry keeps its table alive
+        arrays = (table,
+                  np.asarray(table["MJD"].to_value(u.day), dtype=float),
+                  np.asarray(u.Quantity(table["UT1_UTC"]).to_value(u.s), dtype=float),
+                  np.asarray(u.Quantity(table["PM_x"]).to_value(u.rad), dtype=float),
+                  np.asarray(u.Quantity(table["PM_y"]).to_value(u.rad), dtype=float))
+        _ARRAYS.clear()
+        _ARRAYS[id(table)] = arrays
+    return arrays[1:]
+
+
+def utc_earth_orientation(jd1, jd2):
+    """TT, UT1 and polar motion at UTC instants, as astropy's `~astropy.time.Time` gives them.
+
+    The same numbers as ``Time(jd1, jd2, format="jd", scale="utc")``'s
+    ``.tt`` and ``.ut1`` and astropy's ``get_polar_motion`` (linear
+    interpolation of the daily IERS values in UTC, a leap second taken out of
+    the UT1 - UTC step, the first or last values outside the tables and the
+    50-year mean polar motion there; ERFA ``utctai``, ``taitt``, ``utcut1``),
+    from plain arrays, without building a `~astropy.time.Time`: a few
+    microseconds instead of a few hundred. With
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy is asked (it may
+    then refresh its tables). Call it inside `iers_context`.
+
+    Parameters
+    ----------
+    jd1, jd2 : array-like
+        Two-part Julian dates in UTC (same shape).
+
+    Returns
+    -------
+    tt1, tt2, ut11, ut12, xp, yp : ndarray
+        Two-part Julian dates of TT and UT1, and the polar motion in radians.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.eop import iers_context, utc_earth_orientation
+    >>> t = Time(["2023-01-25T00:00", "2023-01-26T00:00"])
+    >>> with iers_context(t):
+    ...     tt1, tt2, ut11, ut12, xp, yp = utc_earth_orientation(t.jd1, t.jd2)
+    ...     ut1 = t.ut1
+    >>> bool(np.allclose((ut11 - ut1.jd1) + (ut12 - ut1.jd2), 0, atol=1e-15))  # astropy's
+    True
+    """
+    jd1 = np.asarray(jd1, dtype=float)
+    jd2 = np.asarray(jd2, dtype=float)
+    tai1, tai2 = erfa.utctai(jd1, jd2)
+    tt1, tt2 = erfa.taitt(tai1, tai2)
+    if conf.iers_auto_download:  # astropy's own route, which may refresh its tables
+        t = Time(jd1, jd2, format="jd", scale="utc")
+        ut1 = t.ut1
+        xp, yp = get_polar_motion(t)
+        return tt1, tt2, ut1.jd1, ut1.jd2, xp, yp
+    mjd_table, dut_table, xp_table, yp_table = _table_arrays()
+    # As astropy's IERS._interpolate.
+    mjd = np.floor(jd1 - erfa.DJM0 + jd2)
+    utc = jd1 - (erfa.DJM0 + mjd) + jd2
+    i = np.searchsorted(mjd_table, mjd, side="right")
+    i1 = np.clip(i, 1, mjd_table.size - 1)
+    i0 = i1 - 1
+    fraction = (mjd - mjd_table[i0] + utc) / (mjd_table[i1] - mjd_table[i0])
+    step = dut_table[i1] - dut_table[i0]
+    step -= step.round()  # a leap second is not a change of UT1 - UTC
+    dut = dut_table[i0] + fraction * step
+    xp = xp_table[i0] + fraction * (xp_table[i1] - xp_table[i0])
+    yp = yp_table[i0] + fraction * (yp_table[i1] - yp_table[i0])
+    before, after = i == 0, i == mjd_table.size
+    dut = np.where(before, dut_table[0], np.where(after, dut_table[-1], dut))
+    outside = before | after
+    xp = np.where(outside, _DEFAULT_PM[0], xp)
+    yp = np.where(outside, _DEFAULT_PM[1], yp)
+    ut11, ut12 = erfa.utcut1(jd1, jd2, dut)
+    return tt1, tt2, ut11, ut12, xp, yp
 
 
 def _covered(low, high):
@@ -346,7 +436,12 @@ def iers_context(obstime=None):
     False
     """
     scope = _SCOPE.get()
-    outermost = scope is None
+    if scope is not None:  # nested: the outermost context has set everything up
+        if obstime is not None:
+            scope.add(obstime)
+        yield
+        return
+    outermost = True
     if outermost:
         scope = _Scope()
         token = _SCOPE.set(scope)
