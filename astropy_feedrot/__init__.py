@@ -26,6 +26,7 @@ from .correction import (
     rr_minus_ll,
 )
 from .eop import earth_orientation_status
+from .epochs import Epochs
 from .exceptions import DegenerateGeometryWarning, OrbitWarning, StaleEarthOrientationWarning
 from .focus import (
     BeamWaveguideFocus,
@@ -119,6 +120,7 @@ __all__ = [
     "plot_baseline",
     # Earth orientation, warnings and errors
     "earth_orientation_status",
+    "Epochs",
     "conf",
     "DegenerateGeometryWarning",
     "StaleEarthOrientationWarning",

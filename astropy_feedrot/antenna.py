@@ -113,8 +113,8 @@ class _Sight(NamedTuple):
 
 def _to_angle(radians):
     """Radians to an `~astropy.coordinates.Angle` in degrees; 0-d becomes scalar."""
-    radians = np.asarray(radians)
-    return Angle(radians[()] if radians.ndim == 0 else radians, u.rad).to(u.deg)
+    degrees = np.degrees(radians)
+    return Angle(degrees[()] if degrees.ndim == 0 else degrees, u.deg, copy=False)
 
 
 class Antenna:

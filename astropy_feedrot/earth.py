@@ -54,7 +54,6 @@ from astropy.coordinates import (
     UnitSphericalRepresentation,
 )
 from astropy.time import Time
-from astropy.time.utils import day_frac
 from astropy.utils import iers
 
 from .config import conf
@@ -167,7 +166,6 @@ def fast_path_applies(target, obstime):
     >>> import astropy.units as u
     >>> from astropy.coordinates import SkyCoord
     >>> from astropy.time import Time
-from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import fast_path_applies
     >>> times = Time("2023-01-25") + np.arange(24) * u.hour
     >>> fast_path_applies(SkyCoord(ra=10 * u.deg, dec=20 * u.deg), times)
@@ -278,17 +276,17 @@ class _Days:
     def __init__(self, obstime):
         jd1 = np.asarray(obstime.jd1, dtype=float).ravel()
         jd2 = np.asarray(obstime.jd2, dtype=float).ravel()
-        total = jd1 + jd2
-        first, last = int(np.argmin(total)), int(np.argmax(total))
-        with iers_context(obstime[[first, last]]):
+        first = int(np.argmin(jd1 + jd2)) if jd1.size > 1 else 0
+        with iers_context(obstime):
             if obstime.scale != "utc":
                 utc = obstime.utc
-                jd1, jd2 = np.asarray(utc.jd1, dtype=float), np.asarray(utc.jd2, dtype=float)
-            # The UTC midnight before the first epoch, as a two-part JD.
-            self.ref1, self.ref2 = day_frac(erfa.DJM0,
-                                            np.floor((jd1[first] - erfa.DJM0) + jd2[first]))
+                jd1 = np.asarray(utc.jd1, dtype=float).ravel()
+                jd2 = np.asarray(utc.jd2, dtype=float).ravel()
+            # The UTC midnight before the first epoch (a JD, exact in a float).
+            self.ref1 = erfa.DJM0 + np.floor((jd1[first] - erfa.DJM0) + jd2[first])
+            self.ref2 = 0.0
             a = jd1 - self.ref1
-            b = jd2 - self.ref2
+            b = jd2
             self.u = a + b
             day = np.floor(self.u)
             # At a midnight the rounding of a + b may leave the fraction a hair outside.
@@ -480,6 +478,8 @@ class _Series:
         None when there are no more instants than the nodes they would need:
         ERFA is then evaluated at the instants themselves.
         """
+        if tt.size <= self.order:
+            return None
         needed = np.unique(np.unique(np.floor(tt / self.spacing))[:, np.newaxis]
                            + self.offsets)
         return None if tt.size <= needed.size else needed
@@ -492,6 +492,8 @@ class _Series:
         grid, that polynomial reduced to a Chebyshev interpolant of degree
         `_PIECE_DEGREE` in each interval (below 1e-6 mas).
         """
+        if tt.size <= self.order:  # fewer instants than the nodes of one interval
+            return self.evaluate(self.tt1, self.tt2 + tt)
         x = tt / self.spacing
         j = np.floor(x)
         intervals, slot = np.unique(j, return_inverse=True)
@@ -590,7 +592,6 @@ class EarthOrientation:
     >>> import numpy as np
     >>> import astropy.units as u
     >>> from astropy.time import Time
-from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import EarthOrientation
     >>> times = Time("2023-01-25T00:00") + np.arange(1000) * u.min
     >>> orientation = EarthOrientation(times)
@@ -673,7 +674,6 @@ from astropy.time.utils import day_frac
         >>> import numpy as np
         >>> import astropy.units as u
         >>> from astropy.time import Time
-from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time("2023-01-25") + np.arange(100) * u.hour)
         >>> days = (orientation.nodes - orientation.nodes[0]).jd
@@ -717,7 +717,6 @@ from astropy.time.utils import day_frac
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
-from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time(["2023-01-25T00:00", "2023-01-25T06:00"]))
         >>> z = orientation.cirs_to_itrs([[0, 0, 1.0], [0, 0, 1.0]])  # the CIP
@@ -744,7 +743,6 @@ from astropy.time.utils import day_frac
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
-from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> orientation = EarthOrientation(Time(["2023-01-25T00:00"]))
         >>> float(np.linalg.norm(orientation.teme_to_itrs([[7000.0, 0, 0]])))  # doctest: +FLOAT_CMP
@@ -786,7 +784,6 @@ from astropy.time.utils import day_frac
         >>> import astropy.units as u
         >>> from astropy.coordinates import EarthLocation, SkyCoord
         >>> from astropy.time import Time
-from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> site = EarthLocation.from_geodetic(6.88 * u.deg, 50.52 * u.deg, 416 * u.m)
         >>> times = Time("2023-01-25T00:00") + np.arange(100) * u.min
@@ -831,7 +828,6 @@ from astropy.time.utils import day_frac
         --------
         >>> import numpy as np
         >>> from astropy.time import Time
-from astropy.time.utils import day_frac
         >>> from astropy_feedrot.earth import EarthOrientation
         >>> sun = EarthOrientation(Time("2023-01-25")).sun_position()
         >>> round(float(np.linalg.norm(sun) / 1.495978707e11), 3)  # au
@@ -989,7 +985,6 @@ def orientation_of(obstime):
     >>> import numpy as np
     >>> import astropy.units as u
     >>> from astropy.time import Time
-from astropy.time.utils import day_frac
     >>> from astropy_feedrot.earth import orientation_of
     >>> times = Time("2023-01-25") + np.arange(100) * u.min
     >>> orientation_of(times) is orientation_of(times.copy())  # the same epochs

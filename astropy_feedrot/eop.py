@@ -452,10 +452,11 @@ def iers_context(obstime=None):
             with iers.conf.set_temp("auto_download", True):
                 yield
         else:
-            with iers.conf.set_temp("auto_download", False), \
-                    iers.conf.set_temp("auto_max_age", None), \
-                    iers.conf.set_temp("iers_degraded_accuracy", "ignore"), \
-                    _quiet():
+            with contextlib.ExitStack() as stack:
+                for name, value in _OFFLINE:  # set_temp only where needed: it costs 9 us
+                    if getattr(iers.conf, name) != value:
+                        stack.enter_context(iers.conf.set_temp(name, value))
+                stack.enter_context(_quiet())
                 yield
     finally:
         if outermost:
@@ -464,6 +465,11 @@ def iers_context(obstime=None):
         message = earth_orientation_status(scope.epochs()).message
         if message is not None:
             warn_caller(message, StaleEarthOrientationWarning)
+
+
+# Astropy's IERS settings inside iers_context when downloads are off.
+_OFFLINE = (("auto_download", False), ("auto_max_age", None),
+            ("iers_degraded_accuracy", "ignore"))
 
 
 @contextlib.contextmanager

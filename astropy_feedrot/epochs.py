@@ -292,10 +292,14 @@ class Epochs:
 
         Examples
         --------
+        >>> import erfa
         >>> from astropy.time import Time
         >>> from astropy_feedrot import Epochs
-        >>> float(Epochs(Time("2023-01-25T20:00")).earth_rotation_angle())  # doctest: +FLOAT_CMP
-        5.36735807
+        >>> t = Time("2023-01-25T20:00")
+        >>> era = Epochs(t).earth_rotation_angle()
+        >>> ut1 = t.ut1  # astropy's UT1, for comparison
+        >>> float(era - erfa.era00(ut1.jd1, ut1.jd2))  # doctest: +FLOAT_CMP
+        0.0
         """
         _, _, ut11, ut12, _, _ = self._eop()
         era = erfa.era00(ut11, ut12)
