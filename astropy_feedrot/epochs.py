@@ -244,7 +244,8 @@ class Epochs:
         return np.where(self.mask[..., np.newaxis], np.nan, values)
 
     def _eop(self):
-        """TT, UT1 and polar motion at every epoch (`~astropy_feedrot.eop.utc_earth_orientation`)."""
+        """TT, UT1 and polar motion at every epoch (`~astropy_feedrot.eop.utc_earth_orientation`).
+        """
         eop = self._cache.get("eop")
         if eop is None:
             utc = self.utc

@@ -35,15 +35,14 @@ from . import engine
 from .antenna import Antenna
 from .attitude import Attitude, nominal_dipoles
 from .continuity import delay_of_difference, frequency_hz
-from .earth import fast_path_applies, orientation_of
 from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
+from .epochs import Epochs
 from .frames import (
     as_elevation_limit,
     as_skycoord,
     as_time,
     check_station_xyz,
-    fill_masked,
     location_xyz,
     source_direction,
 )
@@ -515,14 +514,12 @@ def _check_targets_objects(targets):
     return "satellites", targets
 
 
-def _earth_orientation(obstime):
-    """The one Earth orientation of the grid, or None where orbits use astropy's frames."""
-    if fast_path_applies(None, obstime):
-        return orientation_of(obstime)
-    return None
+def _earth_orientation(epochs):
+    """The Earth orientation of `~astropy_feedrot.epochs.Epochs` where it serves, else None."""
+    return epochs.orientation if epochs.uses_nodes() else None
 
 
-def _satellite_arrays(satellites, obstime, polarization, masked=None):
+def _satellite_arrays(satellites, epochs, polarization):
     """Positions and dipoles (T, S, 3) of satellites, and their signs (S,).
 
     Every orbit class propagates its members in one batch and every attitude
@@ -530,6 +527,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     `Attitude.dipoles_many`); one Earth orientation serves them all. NaN at
     ``masked`` epochs (True), where ``obstime`` holds stand-ins.
     """
+    obstime, masked = epochs.filled, epochs.mask
     n_t, n_s = obstime.size, len(satellites)
     sign = np.array([engine.receiver_sign(sat, polarization) for sat in satellites], dtype=float)
     if masked is not None and masked.all():
@@ -539,7 +537,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     attitudes = [sat.attitude for sat in satellites]
     orientation = None
     if any(o.uses_orientation for o in orbits) or any(a.needs_sun for a in attitudes):
-        orientation = _earth_orientation(obstime)
+        orientation = _earth_orientation(epochs)
     try:
         xyz = Orbit.positions(orbits, obstime, orientation)  # (S, T, 3)
     except ValueError:
@@ -559,11 +557,12 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     return position, aligned, transverse, sign
 
 
-def _source_directions(sources, antennas, obstime):
+def _source_directions(sources, antennas, epochs):
     """Apparent topocentric directions (T, A, S, 3) of natural sources at each antenna.
 
     A 2-d ``sources`` (T, S) moves: element [k, j] is source j at epoch k.
     """
+    obstime = epochs.filled
     n_t, n_s = obstime.size, sources.shape[-1] if sources.ndim else 1
     out = np.empty((n_t, len(antennas), n_s, 3))
     if sources.ndim == 2:
@@ -572,8 +571,8 @@ def _source_directions(sources, antennas, obstime):
         return out
     column = sources.reshape((n_s, 1))
     orientation = None
-    if fast_path_applies(column, obstime):  # every source at every epoch
-        orientation = orientation_of(obstime)
+    if epochs.uses_nodes(column):  # every source at every epoch
+        orientation = epochs.orientation
         icrs = sources.icrs
     for i, antenna in enumerate(antennas):
         if orientation is not None:
@@ -587,12 +586,15 @@ def _source_directions(sources, antennas, obstime):
 def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
     antennas = _check_antennas(antennas)
     kind, targets = _check_targets_objects(targets)
-    obstime = as_time(obstime)
-    if obstime.ndim > 1:
+    time = as_time(obstime)
+    if time.ndim > 1:
         raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
-                         f"got shape {obstime.shape}; flatten it with .ravel()")
-    shape = obstime.shape
-    obstime, masked = fill_masked(obstime.reshape((obstime.size,)))
+                         f"got shape {time.shape}; flatten it with .ravel()")
+    shape = time.shape
+    # One Epochs for the whole grid (the caller's, if 1-d), handed to every step.
+    epochs = obstime if isinstance(obstime, Epochs) and time.ndim == 1 else Epochs(
+        time.reshape((time.size,)))
+    obstime, masked = epochs.filled, epochs.mask
     form = check_form(form)
     min_sine = engine.min_sine(as_elevation_limit(min_elevation))
     receivers = _receivers(antennas)
@@ -600,8 +602,7 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
         raise ValueError(f"moving sources (a 2-d SkyCoord) need one row per epoch: shape "
                          f"{targets.shape} for {obstime.size} epochs")
     if kind == "satellites":
-        target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization,
-                                                              masked)
+        target, aligned, transverse, sign = _satellite_arrays(targets, epochs, polarization)
         positions = True
     else:
         sign = np.full(targets.shape[-1] if targets.ndim else 1, polarization_sign(
@@ -609,7 +610,7 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
         if masked is not None and masked.all():
             target = np.full((obstime.size, len(antennas), len(sign), 3), np.nan)
         else:
-            target = _source_directions(targets, antennas, obstime)
+            target = _source_directions(targets, antennas, epochs)
         if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
             target[masked] = np.nan
         aligned = transverse = None

@@ -145,7 +145,8 @@ def celestial_pole(obstime):
     Returns
     -------
     ndarray, shape obstime.shape + (3,)
-        The unit vector of the CIP in ITRS (`~astropy_feedrot.Epochs.celestial_pole`), from the polar motion of the IERS
+        The unit vector of the CIP in ITRS
+        (`~astropy_feedrot.Epochs.celestial_pole`), from the polar motion of the IERS
         tables bundled with astropy (ERFA ``pom00``, the same values astropy's
         transformation to ITRS uses, inside
         `~astropy_feedrot.eop.iers_context`). It lies within about 0.5 arcsec

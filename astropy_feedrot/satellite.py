@@ -7,8 +7,8 @@ import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
+from .epochs import as_epochs
 from .exceptions import warn_caller
 from .frames import as_location, fill_masked, location_xyz
 from .orbits import as_orbit, check_orientation
@@ -231,13 +231,14 @@ class Satellite:
         array([1., 0., 0.])
         """
         location = as_location(location)
-        filled, masked = fill_masked(obstime)
+        epochs = as_epochs(obstime)
+        filled, masked = epochs.filled, epochs.mask
         if masked is not None and masked.all():
             s = np.full(filled.shape + (3,), np.nan)
             return LineOfSight(s, s, s)
         orientation = None
         if self.orbit.uses_orientation or self.attitude.needs_sun:
-            orientation = _earth_orientation(filled)
+            orientation = _earth_orientation(epochs)
         position, aligned, transverse = self._transmitter_at(filled, masked, orientation)
         s = kernel.unit(position - location_xyz(location))
         if masked is not None:
@@ -274,8 +275,6 @@ class Satellite:
         return tuple(np.array(v) for v in kept[2:5])
 
 
-def _earth_orientation(obstime):
-    """The Earth orientation shared by orbit and attitude, or None off the fast path."""
-    if fast_path_applies(None, obstime):
-        return orientation_of(obstime)
-    return None
+def _earth_orientation(epochs):
+    """The Earth orientation of `~astropy_feedrot.epochs.Epochs` where it serves, else None."""
+    return epochs.orientation if epochs.uses_nodes() else None
