@@ -5,7 +5,6 @@
 lists them); `check_orientation` checks an Earth orientation handed to one.
 """
 
-
 import numpy as np
 
 from .earth import EarthOrientation

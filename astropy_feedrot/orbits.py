@@ -12,7 +12,6 @@ take an optional `~astropy_feedrot.earth.EarthOrientation` of the epochs, so
 that several consumers of the same epochs share one.
 """
 
-
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import ITRS, SkyCoord

@@ -5,7 +5,6 @@
 interpolation, in stretches without gaps.
 """
 
-
 import numpy as np
 from astropy import units as u
 

@@ -22,8 +22,8 @@ from .eop import iers_context
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time
 from .io.tle import check_tle_pair
-from .propagation import propagate
 from .orbit_base import Orbit, check_orientation
+from .propagation import propagate
 
 __all__ = ["TLEOrbit", "propagate_tles", "teme_to_itrs"]
 
