@@ -52,10 +52,9 @@ from astropy.coordinates import (
     UnitSphericalRepresentation,
 )
 from astropy.time import Time
-from astropy.utils import iers
 
 from .config import conf
-from .eop import iers_context
+from .eop import iers_context, table_in_use
 from .inputs import as_location, as_skycoord, as_time
 from .instants import UtcDays, distinct, terrestrial
 from .series import (
@@ -692,7 +691,7 @@ def orientation_of(obstime):
     obstime = as_time(obstime)
     if obstime.masked:
         return EarthOrientation(obstime)
-    table = iers.earth_orientation_table.get()
+    table = table_in_use()  # None: the bundled tables, not yet loaded by astropy
     digest = hashlib.blake2b(np.ascontiguousarray(obstime.jd1, dtype=float).tobytes())
     digest.update(np.ascontiguousarray(obstime.jd2, dtype=float).tobytes())
     key = (obstime.scale, obstime.shape, digest.digest(), id(table))

@@ -25,13 +25,20 @@ large the UT1 error may be and what that does to hour and parallactic angles
 
 import contextlib
 import contextvars
+import hashlib
+import os
+import pathlib
+import tempfile
+import threading
 import time
 import warnings
 from typing import NamedTuple
 
+import astropy
 import erfa
 import numpy as np
 from astropy import units as u
+from astropy.config import get_cache_dir
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
 from astropy.utils import iers
@@ -45,6 +52,9 @@ __all__ = [
     "earth_orientation_status",
     "iers_context",
     "utc_earth_orientation",
+    "table_arrays",
+    "table_in_use",
+    "TableArrays",
     "EARTH_ROTATION_RATE",
     "MAX_TABLE_AGE",
 ]
@@ -117,43 +127,150 @@ def _table():
     return iers.earth_orientation_table.get()
 
 
-_FACTS = {}
-
-
-def _table_facts():
-    """(start, end of the predictions, last measured) MJD of the tables in use."""
-    table = _table()
-    facts = _FACTS.get(id(table))
-    if facts is None or facts[0] is not table:  # the entry keeps its table alive
-        mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
-        start, end = float(mjd[0]), float(mjd[-1])
-        measured = min(float(table.meta.get("predictive_mjd", end + 1)) - 1, end)
-        facts = (table, start, end, measured)
-        _FACTS.clear()
-        _FACTS[id(table)] = facts
-    return facts[1:]
-
-
-_ARRAYS = {}
-
 # Polar motion astropy uses outside the tables (the 1962-2014 mean of IERS B,
 # astropy.coordinates.builtin_frames.utils), in radians.
 _DEFAULT_PM = (0.035 * u.arcsec).to_value(u.rad), (0.29 * u.arcsec).to_value(u.rad)
 
+_ARRAYS = {}
+_ARRAYS_LOCK = threading.Lock()
 
-def _table_arrays():
-    """MJD, UT1 - UTC (s), x_p, y_p (rad) of the tables in use, as float arrays."""
-    table = _table()
-    arrays = _ARRAYS.get(id(table))
-    if arrays is None or arrays[0] is not table:  # the entry keeps its table alive
-        arrays = (table,
-                  np.asarray(table["MJD"].to_value(u.day), dtype=float),
-                  np.asarray(u.Quantity(table["UT1_UTC"]).to_value(u.s), dtype=float),
-                  np.asarray(u.Quantity(table["PM_x"]).to_value(u.rad), dtype=float),
-                  np.asarray(u.Quantity(table["PM_y"]).to_value(u.rad), dtype=float))
+
+class TableArrays(NamedTuple):
+    """The columns of an Earth-orientation table that the package interpolates.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.eop import table_arrays
+    >>> arrays = table_arrays()
+    >>> bool(arrays.mjd[0] <= 41684.0 < arrays.mjd[-1])  # IERS values since 1973
+    True
+    """
+
+    #: The days of the table (MJD, UTC).
+    mjd: np.ndarray
+    #: UT1 - UTC (s).
+    ut1_utc: np.ndarray
+    #: Polar motion x_p, y_p (rad).
+    xp: np.ndarray
+    yp: np.ndarray
+    #: The first day of predictions (MJD), or the day after the table.
+    predictive_mjd: float
+
+
+def table_in_use():
+    """The Earth-orientation table astropy uses, if it has one loaded; else None.
+
+    None stands for the tables bundled with astropy before astropy has read
+    them (`table_arrays` then reads a kept copy of their arrays). With
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy's table (loaded
+    now if need be).
+
+    Returns
+    -------
+    `~astropy.utils.iers.IERS` or None
+
+    Examples
+    --------
+    >>> from astropy.utils import iers
+    >>> from astropy_feedrot.eop import table_in_use
+    >>> b = iers.IERS_B.open(iers.IERS_B_FILE)
+    >>> with iers.earth_orientation_table.set(b):
+    ...     table_in_use() is b
+    True
+    """
+    if conf.iers_auto_download:
+        return _table()
+    value = getattr(iers.earth_orientation_table, "_value", None)
+    if value is not None:
+        return value
+    return iers.IERS_Auto.iers_table  # what earth_orientation_table.get() would return
+
+
+def _arrays_of(table):
+    mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
+    return TableArrays(mjd,
+                       np.asarray(u.Quantity(table["UT1_UTC"]).to_value(u.s), dtype=float),
+                       np.asarray(u.Quantity(table["PM_x"]).to_value(u.rad), dtype=float),
+                       np.asarray(u.Quantity(table["PM_y"]).to_value(u.rad), dtype=float),
+                       float(table.meta.get("predictive_mjd", mjd[-1] + 1)))
+
+
+def _kept_path():
+    """Where the arrays of the bundled tables are kept, named after their files."""
+    files = [iers.IERS_A_FILE, iers.IERS_B_FILE]
+    stamp = [astropy.__version__] + [(str(f), os.stat(f).st_size, os.stat(f).st_mtime_ns)
+                                     for f in files]
+    key = hashlib.blake2b(repr(stamp).encode(), digest_size=10).hexdigest()
+    return pathlib.Path(get_cache_dir()) / "astropy_feedrot" / f"iers-{key}.npz"
+
+
+def _read_kept():
+    try:
+        with np.load(_kept_path()) as kept:
+            return TableArrays(kept["mjd"], kept["ut1_utc"], kept["xp"], kept["yp"],
+                               float(kept["predictive_mjd"]))
+    except (OSError, KeyError, ValueError):  # not kept yet, or unreadable: read the tables
+        return None
+
+
+def _keep(arrays):
+    try:
+        path = _kept_path()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".npz", delete=False) as f:
+            np.savez(f, **arrays._asdict())
+        os.replace(f.name, path)  # whole or not at all, for processes reading at once
+    except OSError:  # a read-only cache: the tables are read again next time
+        pass
+
+
+def table_arrays():
+    """The Earth-orientation table in use, as plain arrays.
+
+    Astropy reads its bundled IERS tables (``astropy-iers-data``) on first
+    use, which takes about a second. Until astropy has a table loaded (or
+    when the user has set none), these arrays are read instead from a copy
+    kept in astropy's cache directory, named after the bundled files (their
+    paths, sizes and times, and astropy's version), and written the first
+    time they are read: a fresh process then gets UT1 and polar motion in a
+    millisecond. A table set with ``iers.earth_orientation_table.set`` or
+    already loaded by astropy is read directly (and with
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy's own table,
+    which it may refresh).
+
+    Returns
+    -------
+    TableArrays
+
+    Examples
+    --------
+    >>> from astropy_feedrot.eop import table_arrays
+    >>> arrays = table_arrays()
+    >>> arrays.mjd.shape == arrays.ut1_utc.shape
+    True
+    """
+    table = table_in_use()
+    key = "bundled" if table is None else id(table)
+    with _ARRAYS_LOCK:
+        kept = _ARRAYS.get(key)
+    if kept is not None and kept[0] is table:  # the entry keeps its table alive
+        return kept[1]
+    arrays = None if table is not None else _read_kept()
+    if arrays is None:
+        arrays = _arrays_of(_table() if table is None else table)
+        if table is None:
+            _keep(arrays)
+    with _ARRAYS_LOCK:
         _ARRAYS.clear()
-        _ARRAYS[id(table)] = arrays
-    return arrays[1:]
+        _ARRAYS[key] = (table, arrays)
+    return arrays
+
+
+def _table_facts():
+    """(start, end of the predictions, last measured) MJD of the tables in use."""
+    arrays = table_arrays()
+    start, end = float(arrays.mjd[0]), float(arrays.mjd[-1])
+    return start, end, min(arrays.predictive_mjd - 1, end)
 
 
 def utc_earth_orientation(jd1, jd2):
@@ -200,7 +317,7 @@ def utc_earth_orientation(jd1, jd2):
         ut1 = t.ut1
         xp, yp = get_polar_motion(t)
         return tt1, tt2, ut1.jd1, ut1.jd2, xp, yp
-    mjd_table, dut_table, xp_table, yp_table = _table_arrays()
+    mjd_table, dut_table, xp_table, yp_table, _ = table_arrays()
     # As astropy's IERS._interpolate.
     mjd = np.floor(jd1 - erfa.DJM0 + jd2)
     utc = jd1 - (erfa.DJM0 + mjd) + jd2
