@@ -226,3 +226,30 @@ def test_iers_tables_are_the_ones_in_use():
             after = utc_earth_orientation(t.jd1, t.jd2)
     lead = ((after[2] - before[2]) + (after[3] - before[3])) * 86400.0
     assert np.allclose(lead, 0.5, atol=1e-9)
+
+
+def test_kept_tables_are_astropys():
+    # A fresh process reads the arrays of the bundled tables from the kept copy
+    # (written by the first process that needed them) without loading astropy's
+    # table; they must be the columns of that table once astropy loads it.
+    import subprocess
+    import sys
+
+    code = (
+        "import numpy as np\n"
+        "from astropy.utils import iers\n"
+        "from astropy_feedrot.eop import iers_context, table_arrays, table_in_use\n"
+        "with iers_context():\n"
+        "    before = table_arrays()\n"
+        "    assert table_in_use() is None\n"
+        "    table = iers.earth_orientation_table.get()\n"
+        "    after = table_arrays()\n"
+        "assert table_in_use() is table\n"
+        "for a, b in zip(before, after):\n"
+        "    assert np.array_equal(a, b, equal_nan=True)\n"
+        "print('same')\n"
+    )
+    for _ in range(2):  # the first may write the copy, the second reads it
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                             cwd=PACKAGE.parent, check=True)
+        assert out.stdout.strip() == "same"
