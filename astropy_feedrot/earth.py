@@ -329,10 +329,7 @@ class EarthOrientation:
         self.obstime = obstime
         self.shape = obstime.shape
         self.size = obstime.size
-        flat = obstime.ravel()
-        if flat.masked:
-            flat = flat.unmasked
-        self._days = days = UtcDays(flat)
+        self._days = days = UtcDays(obstime.unmasked if obstime.masked else obstime)
         self._sun_cip = Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
         self._cip = self._sun_cip
         self._velocity = Series(_velocity, *_VELOCITY_GRID, days.tt1, days.tt2)

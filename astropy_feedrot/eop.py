@@ -26,6 +26,7 @@ large the UT1 error may be and what that does to hour and parallactic angles
 import contextlib
 import contextvars
 import hashlib
+import math
 import os
 import pathlib
 import tempfile
@@ -157,6 +158,12 @@ class TableArrays(NamedTuple):
     predictive_mjd: float
 
 
+def _downloads():
+    """Whether downloads are allowed (read once per outermost `iers_context`)."""
+    scope = _SCOPE.get()
+    return conf.iers_auto_download if scope is None else scope.downloads
+
+
 def table_in_use():
     """The Earth-orientation table astropy uses, if it has one loaded; else None.
 
@@ -178,7 +185,7 @@ def table_in_use():
     ...     table_in_use() is b
     True
     """
-    if conf.iers_auto_download:
+    if _downloads():
         return _table()
     value = getattr(iers.earth_orientation_table, "_value", None)
     if value is not None:
@@ -310,9 +317,12 @@ def utc_earth_orientation(jd1, jd2):
     """
     jd1 = np.asarray(jd1, dtype=float)
     jd2 = np.asarray(jd2, dtype=float)
-    tai1, tai2 = erfa.utctai(jd1, jd2)
-    tt1, tt2 = erfa.taitt(tai1, tai2)
-    if conf.iers_auto_download:  # astropy's own route, which may refresh its tables
+    # ERFA's ufuncs directly: the status of utctai and utcut1 says only "dubious
+    # year", which iers_context silences, or "unacceptable date" (before -4799),
+    # which a Time cannot hold.
+    tai1, tai2, _ = erfa.ufunc.utctai(jd1, jd2)
+    tt1, tt2, _ = erfa.ufunc.taitt(tai1, tai2)
+    if _downloads():  # astropy's own route, which may refresh its tables
         t = Time(jd1, jd2, format="jd", scale="utc")
         ut1 = t.ut1
         xp, yp = get_polar_motion(t)
@@ -335,7 +345,7 @@ def utc_earth_orientation(jd1, jd2):
     outside = before | after
     xp = np.where(outside, _DEFAULT_PM[0], xp)
     yp = np.where(outside, _DEFAULT_PM[1], yp)
-    ut11, ut12 = erfa.utcut1(jd1, jd2, dut)
+    ut11, ut12, _ = erfa.ufunc.utcut1(jd1, jd2, dut)
     return tt1, tt2, ut11, ut12, xp, yp
 
 
@@ -351,10 +361,14 @@ def _mjd_range(obstime):
     """First and last finite, unmasked MJD of a Time (any scale), or None."""
     if obstime is None or obstime.size == 0:
         return None
-    plain = obstime.unmasked if obstime.masked else obstime
-    mjd = np.asarray(plain.jd1, dtype=float) + np.asarray(plain.jd2, dtype=float) - 2400000.5
+    masked = obstime.masked
+    plain = obstime.unmasked if masked else obstime
+    mjd = (np.asarray(plain.jd1, dtype=float) - 2400000.5) + np.asarray(plain.jd2, dtype=float)
+    if mjd.size == 1 and not masked:  # one epoch: the common case, kept cheap
+        value = float(mjd.flat[0])
+        return (value, value) if math.isfinite(value) else None
     keep = np.isfinite(mjd)
-    if obstime.masked:
+    if masked:
         keep &= ~np.broadcast_to(obstime.mask, mjd.shape)
     if not np.any(keep):
         return None
@@ -508,6 +522,8 @@ class _Scope:
     def __init__(self):
         self.low = np.inf
         self.high = -np.inf
+        # Read once per call: the configuration costs microseconds a read.
+        self.downloads = conf.iers_auto_download
 
     def add(self, obstime):
         span = _mjd_range(obstime)
@@ -565,7 +581,7 @@ def iers_context(obstime=None):
     if obstime is not None:
         scope.add(obstime)
     try:
-        if conf.iers_auto_download:
+        if scope.downloads:
             with iers.conf.set_temp("auto_download", True):
                 yield
         else:

@@ -205,12 +205,11 @@ class Epochs:
         with other computations at the same epochs
         (`~astropy_feedrot.earth.orientation_of`).
         """
-        if self._orientation is None:
-            with iers_context(self.filled):
-                if self.mask is None:
-                    self._orientation = orientation_of(self.filled)
-                else:
-                    self._orientation = EarthOrientation(self.filled)
+        if self._orientation is None:  # (each checks the tables for these epochs)
+            if self.mask is None:
+                self._orientation = orientation_of(self.filled)
+            else:
+                self._orientation = EarthOrientation(self.filled)
         return self._orientation
 
     # --- time scales ---------------------------------------------------------------

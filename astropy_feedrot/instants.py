@@ -63,13 +63,13 @@ class UtcDays:
     Parameters
     ----------
     obstime : `~astropy.time.Time`
-        Unmasked epochs (any scale; converted to UTC once).
+        Unmasked epochs (any shape, flattened; any scale, converted to UTC once).
 
     Examples
     --------
     >>> from astropy.time import Time
     >>> from astropy_feedrot.instants import UtcDays
-    >>> days = UtcDays(Time(["2023-01-25T06:00", "2023-01-27T18:00"]).ravel())
+    >>> days = UtcDays(Time(["2023-01-25T06:00", "2023-01-27T18:00"]))
     >>> days.days, days.frac
     (array([0., 2.]), array([0.25, 0.75]))
     """
@@ -119,16 +119,16 @@ class UtcDays:
         self.tt1, self.tt2 = float(tt1[0]), float(tt2[0])
         self.tt0 = ((tt1 - self.tt1) + (tt2 - self.tt2))[this]
         self.tt_rate = _length(tt1, tt2, this, following)
-        era = erfa.era00(ut11, ut12)
+        era = erfa.ufunc.era00(ut11, ut12)
         self.era0 = era[this]
         self.era_rate = ERA_RATE * _length(ut11, ut12, this, following)
-        gmst = erfa.gmst82(ut11, ut12)
+        gmst = erfa.ufunc.gmst82(ut11, ut12)
         self.gmst0 = gmst[this]
         # GMST turns by a little more than 2 pi in a day.
         self.gmst_rate = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
         self.xp0, self.xp_rate = xp[this], xp[following] - xp[this]
         self.yp0, self.yp_rate = yp[this], yp[following] - yp[this]
-        self.sp = erfa.sp00(tt1[this], tt2[this])
+        self.sp = erfa.ufunc.sp00(tt1[this], tt2[this])
 
     def at(self, slot, frac):
         """The quantities at instants given by day slots and fractions of day."""
