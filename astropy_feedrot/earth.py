@@ -16,11 +16,12 @@ rotation to ITRS), but takes each input where it is cheap:
   a leap second over its day): astropy gives them once at the start of each
   day with epochs and of the next, and the Earth rotation angle, GMST 1982,
   TT and polar motion follow exactly at any instant;
-* X, Y and s come from ERFA every day of TT, the ephemeris every 1.5 days,
-  through Lagrange polynomials of 16 and 10 nodes (1e-13 rad and 5e-5 m/s);
-  for sparse epochs over long spans (fewer than 100 per node) every 1.5 and
-  2.5 days through 24 and 20 nodes (0.002 mas and 0.0012 m/s); or from ERFA
-  at the instants themselves when they are fewer than the nodes;
+* X, Y and s, the Earth's velocity and its positions come from ERFA at
+  whole days of TT through Lagrange polynomials of 16, 10 and 14 nodes
+  (below 1e-13 rad and 5e-5 m/s); the nodes are computed a year at a time
+  and kept, in memory and in astropy's cache directory
+  (`~astropy_feedrot.series.KeptSeries`), so that sparse epochs cost an
+  interpolation each and later computations and processes reuse them;
 * the site's position and velocity (diurnal aberration), the Earth's
   rotation and polar motion are computed at each instant.
 
@@ -58,6 +59,8 @@ from .eop import iers_context, table_in_use
 from .inputs import as_location, as_skycoord, as_time
 from .instants import UtcDays, distinct, terrestrial
 from .series import (
+    KeptSeries,
+    clear_kept_nodes,
     Series,
     chebyshev,
     combine,
@@ -98,19 +101,13 @@ _AU = erfa.DAU  # metres
 
 # Slow series: (node spacing in days of TT, number of nodes per Lagrange polynomial).
 # X, Y, s: 16 nodes a day apart interpolate the nutation's 5- to 14-day terms to
-# 0.00002 mas (1e-13 rad). The ephemeris: 10 nodes 1.5 days apart give the Earth's
+# 0.00002 mas (1e-13 rad). The ephemeris: 10 nodes a day apart give the Earth's
 # velocity to 5e-5 m/s (0.00003 mas of aberration), enough for sources without a
 # distance; 14 nodes a day apart give the positions to 1 cm, for the Sun (1e-13 rad)
 # and the parallax of sources with a distance.
 _CIP_GRID = (1.0, 16)
-_VELOCITY_GRID = (1.5, 10)
+_VELOCITY_GRID = (1.0, 10)
 _POSITION_GRID = (1.0, 14)
-# With fewer than _SPARSE epochs per node of _CIP_GRID the nodes cost more than the
-# epochs, and sparser grids take over for the directions of sources (the Sun keeps
-# the others): 0.002 mas for X and Y, 0.0012 m/s (0.0008 mas).
-_SPARSE = 100
-_SPARSE_CIP_GRID = (1.5, 24)
-_SPARSE_VELOCITY_GRID = (2.5, 20)
 
 # Cells of UTC: (cells per day, polynomial degree). The direction turns with the
 # Earth by 2 pi / (cells per day) within a cell; these degrees keep the error of
@@ -248,11 +245,6 @@ def site_position(location):
     return site
 
 
-def _node_count(days, *grids):
-    """About how many nodes of these grids a series of ``days`` days needs."""
-    return sum(days / spacing + order for spacing, order in grids)
-
-
 def _cip(tt1, tt2):
     """CIP X, Y and CIO locator s (IAU 2006/2000A, as astropy's ``get_cip``)."""
     x, y = erfa.bpn2xy(erfa.pnm06a(tt1, tt2))
@@ -330,15 +322,15 @@ class EarthOrientation:
         self.shape = obstime.shape
         self.size = obstime.size
         self._days = days = UtcDays(obstime.unmasked if obstime.masked else obstime)
+        # The nodes of `nodes` and `interpolate`, a day apart around the epochs.
         self._sun_cip = Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
-        self._cip = self._sun_cip
-        self._velocity = Series(_velocity, *_VELOCITY_GRID, days.tt1, days.tt2)
-        if (self.size < _SPARSE * _node_count(days.days.size, _CIP_GRID)
-                and _node_count(days.days.size, _SPARSE_CIP_GRID, _SPARSE_VELOCITY_GRID)
-                < _node_count(days.days.size, _CIP_GRID, _VELOCITY_GRID)):
-            self._cip = Series(_cip, *_SPARSE_CIP_GRID, days.tt1, days.tt2)
-            self._velocity = Series(_velocity, *_SPARSE_VELOCITY_GRID, days.tt1, days.tt2)
-        self._position = Series(_ephemeris, *_POSITION_GRID, days.tt1, days.tt2)
+        # The slow series themselves: whole days of TT, kept between computations
+        # (and processes), or over the span of the epochs when it is short.
+        self._cip = KeptSeries("cip", _cip, _CIP_GRID[1], days.tt1, days.tt2)
+        self._velocity = KeptSeries("velocity", _velocity, _VELOCITY_GRID[1], days.tt1,
+                                    days.tt2)
+        self._position = KeptSeries("ephemeris", _ephemeris, _POSITION_GRID[1], days.tt1,
+                                    days.tt2)
         self._epochs = None
 
     # --- the epochs themselves ---------------------------------------------
@@ -554,7 +546,7 @@ class EarthOrientation:
         return self._per_epoch(self._sun_at, 1)[0]
 
     def _sun_at(self, instants):
-        x, y, s = self._sun_cip.at(instants.tt).T
+        x, y, s = self._cip.at(instants.tt).T
         sun = -self._position.at(instants.tt)[:, 0:3] * _AU
         return instants.to_itrs(erfa.rxp(erfa.c2ixys(x, y, s), sun))[np.newaxis]
 
@@ -708,7 +700,7 @@ def orientation_of(obstime):
 
 
 def clear_orientation_cache():
-    """Forget the Earth orientations `orientation_of` keeps.
+    """Forget the Earth orientations `orientation_of` keeps, and the nodes and sites in memory.
 
     For timing a computation from nothing (the benchmarks), or to free their
     memory.
@@ -720,3 +712,6 @@ def clear_orientation_cache():
     """
     with _ORIENTATIONS_LOCK:
         _ORIENTATIONS.clear()
+    clear_kept_nodes()
+    with _SITES_LOCK:
+        _SITES.clear()

@@ -13,12 +13,18 @@ Plain numpy on floats; nothing here knows about time scales or frames.
 
 import concurrent.futures
 import math
+import os
+import pathlib
+import tempfile
 import threading
 
+import erfa
 import numpy as np
+from astropy.config import get_cache_dir
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
-           "horner", "short_span_degree", "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS"]
+           "horner", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
+           "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN", "KEPT_CHUNK"]
 
 # With many instants in an interval of a grid, the interpolant is reduced there to
 # a polynomial of this degree (Chebyshev points), below 1e-6 mas.
@@ -177,6 +183,9 @@ class Series:
     True
     """
 
+    #: Days from the reference of the instants to node 0 of the grid.
+    shift = 0.0
+
     def __init__(self, evaluate, spacing, order, tt1, tt2):
         self.evaluate, self.spacing, self.order = evaluate, spacing, order
         self.tt1, self.tt2 = tt1, tt2
@@ -191,7 +200,7 @@ class Series:
         """
         if tt.size <= self.order:
             return None
-        needed = np.unique(np.unique(np.floor(tt / self.spacing))[:, np.newaxis]
+        needed = np.unique(np.unique(np.floor((tt + self.shift) / self.spacing))[:, np.newaxis]
                            + self.offsets)
         return None if tt.size <= needed.size else needed
 
@@ -203,18 +212,19 @@ class Series:
         grid, that polynomial reduced to a Chebyshev interpolant of degree
         `PIECE_DEGREE` in each interval (below 1e-6 mas).
         """
-        if tt.size > 1:
+        ready = self.nodes_ready(tt)
+        if tt.size > 1 and not ready:
             low, high = float(tt.min()), float(tt.max())
             degree = short_span_degree(high - low)
             if degree is not None and tt.size > degree + 1:
                 return self._over_span(tt, low, high, degree)
-        if tt.size <= self.order:  # fewer instants than the nodes of one interval
+        if tt.size <= self.order and not ready:  # fewer instants than nodes
             return self.evaluate(self.tt1, self.tt2 + tt)
-        x = tt / self.spacing
+        x = (tt + self.shift) / self.spacing
         j = np.floor(x)
         intervals, slot = np.unique(j, return_inverse=True)
         needed = np.unique(intervals[:, np.newaxis] + self.offsets)
-        if tt.size <= needed.size:
+        if tt.size <= needed.size and not ready:
             return self.evaluate(self.tt1, self.tt2 + tt)
         values = self.nodes(needed)
         # The nodes of a stencil are consecutive integers, hence consecutive in needed.
@@ -246,6 +256,28 @@ class Series:
             out *= x
             out += coefficients[k]
         return out
+
+    def nodes_ready(self, tt):
+        """Whether the nodes for instants ``tt`` cost nothing to compute (`KeptSeries`).
+
+        Parameters
+        ----------
+        tt : ndarray
+            Instants, days from the reference.
+
+        Returns
+        -------
+        bool
+            False here: a plain series computes its nodes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot.series import Series
+        >>> Series(None, 1.0, 8, 2451545.0, 0.0).nodes_ready(np.zeros(3))
+        False
+        """
+        return False
 
     def nodes(self, needed):
         """Values at grid nodes ``needed`` (integers), computing those not yet known."""
@@ -311,3 +343,173 @@ def horner(coefficients, slot, x):
         out *= x
         out += np.take(coefficients[k], slot, axis=1)
     return out
+
+
+#: TT Julian date of node 0 of `KeptSeries` (2000-01-01T00:00 TT).
+KEPT_ORIGIN = 2451544.5
+#: Nodes (days) per file of `KeptSeries`.
+KEPT_CHUNK = 366
+# The chunks kept: within 1901-2098, where ERFA's ephemeris (epv00) is valid.
+_KEPT_CHUNKS = range(-99, 99)
+_KEPT = {}
+_KEPT_LOCK = threading.Lock()
+# Set when a chunk could not be written: chunks not kept yet are then not
+# computed (a year of nodes for a few epochs would be paid by every process).
+_UNWRITABLE = False
+
+
+def kept_path(name, chunk):
+    """The file of chunk ``chunk`` of the kept nodes of series ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The series.
+    chunk : int
+        `KEPT_CHUNK` days from ``KEPT_ORIGIN + chunk * KEPT_CHUNK``.
+
+    Returns
+    -------
+    pathlib.Path
+        In astropy's cache directory, named after the series, the chunk and
+        the versions of pyerfa and ERFA that computed it.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.series import kept_path
+    >>> kept_path("cip", 23).name.startswith("cip-23-")
+    True
+    """
+    versions = f"{erfa.__version__}-{erfa.version.erfa_version}"
+    return pathlib.Path(get_cache_dir()) / "astropy_feedrot" / f"{name}-{chunk}-{versions}.npy"
+
+
+def clear_kept_nodes():
+    """Forget the kept nodes held in memory (the files stay).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.series import clear_kept_nodes
+    >>> clear_kept_nodes()
+    """
+    with _KEPT_LOCK:
+        _KEPT.clear()
+
+
+class KeptSeries(Series):
+    """A `Series` whose nodes are whole days of TT, computed once and kept.
+
+    The values at the nodes of a slow quantity depend on nothing but the
+    day: they are computed a year (`KEPT_CHUNK` days) at a time, kept in
+    memory and in a file of astropy's cache directory (`kept_path`), and
+    shared by every computation after, in this process and the next. A
+    computation at sparse epochs (one a day, or fewer) then costs an
+    interpolation per epoch instead of ERFA's series, and a year of hourly
+    epochs needs no evaluation of its own. Where no file can be written, the
+    nodes are kept in memory only. Nodes outside 1901-2098 are computed as a
+    `Series` computes them.
+
+    Parameters
+    ----------
+    name : str
+        What the nodes are called in their files (one name per ``evaluate``).
+    evaluate : callable
+        ``evaluate(tt1, tt2)``: the quantity at M instants, shape (M, C).
+    order : int
+        Nodes per Lagrange polynomial.
+    tt1, tt2 : float
+        The two-part JD (TT) from which instants are counted in days.
+
+    Examples
+    --------
+    >>> import erfa
+    >>> import numpy as np
+    >>> from astropy_feedrot.series import KeptSeries
+    >>> def era(tt1, tt2):  # a smooth stand-in for a slow series
+    ...     return np.stack([np.sin(tt2 / 30.0), np.cos(tt2 / 30.0)], axis=-1)
+    >>> series = KeptSeries("doctest-example", era, 12, 2451544.5, 8000.3)
+    >>> tt = np.linspace(0, 40, 7)
+    >>> bool(np.allclose(series.at(tt), era(2451544.5, 8000.3 + tt), atol=1e-12))
+    True
+    """
+
+    def __init__(self, name, evaluate, order, tt1, tt2):
+        super().__init__(evaluate, 1.0, order, tt1, tt2)
+        self.name = name
+        self.shift = (tt1 - KEPT_ORIGIN) + tt2
+
+    def nodes_ready(self, tt):
+        """Whether the kept nodes serve these instants (see `Series.nodes_ready`).
+
+        True when their chunks are in memory; when they are in their files and
+        there are at least as many instants as files to read (a file costs
+        about one evaluation of ERFA's series); or, for 100 instants or more,
+        when a chunk is still to be computed and kept (once for every process
+        after).
+        """
+        if tt.size == 0:
+            return False
+        low = int(np.floor(float(tt.min()) + self.shift)) + int(self.offsets[0])
+        high = int(np.floor(float(tt.max()) + self.shift)) + int(self.offsets[-1])
+        chunks = range(low // KEPT_CHUNK, high // KEPT_CHUNK + 1)
+        if not all(c in _KEPT_CHUNKS for c in chunks):
+            return False
+        with _KEPT_LOCK:
+            missing = [c for c in chunks if (self.name, c) not in _KEPT]
+        if not missing:
+            return True
+        if tt.size < 3:
+            return False
+        if all(kept_path(self.name, c).exists() for c in missing):
+            return len(missing) <= tt.size
+        return tt.size >= 100 and not _UNWRITABLE
+
+    def nodes(self, needed):
+        """Values at whole days ``needed`` (from `KEPT_ORIGIN`), from the kept chunks."""
+        needed = np.asarray(needed, dtype=np.int64)
+        chunks = np.unique(needed // KEPT_CHUNK)
+        if not all(int(c) in _KEPT_CHUNKS for c in chunks):
+            return self._computed(needed)
+        tables = {int(c): self._chunk(int(c)) for c in chunks}
+        out = np.empty((needed.size, next(iter(tables.values())).shape[-1]))
+        which = needed // KEPT_CHUNK
+        for c, table in tables.items():
+            here = which == c
+            out[here] = table[needed[here] - c * KEPT_CHUNK]
+        return out
+
+    def _computed(self, needed):
+        """Nodes outside the kept years, from ERFA (kept in this series only)."""
+        missing = [j for j in needed.tolist() if j not in self._nodes]
+        if missing:
+            days = np.array(missing, dtype=float)
+            for j, row in zip(missing, self.evaluate(KEPT_ORIGIN, days)):
+                self._nodes[j] = row
+        return np.array([self._nodes[j] for j in needed.tolist()])
+
+    def _chunk(self, chunk):
+        key = (self.name, chunk)
+        with _KEPT_LOCK:
+            table = _KEPT.get(key)
+        if table is not None:
+            return table
+        path = kept_path(self.name, chunk)
+        try:
+            table = np.load(path)
+        except (OSError, ValueError):  # not kept yet, or unreadable: compute it
+            table = None
+        if table is None or table.ndim != 2 or len(table) != KEPT_CHUNK:
+            days = chunk * KEPT_CHUNK + np.arange(KEPT_CHUNK, dtype=float)
+            table = in_parallel(self.evaluate, KEPT_ORIGIN, days)
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+                with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".npy",
+                                                 delete=False) as f:
+                    np.save(f, table)
+                os.replace(f.name, path)  # whole or not at all
+            except OSError:  # a read-only cache: this chunk in memory, no new ones
+                global _UNWRITABLE
+                _UNWRITABLE = True
+        with _KEPT_LOCK:
+            _KEPT[key] = table
+        return table
