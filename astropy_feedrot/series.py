@@ -69,10 +69,10 @@ def combine(values, start, weights):
     >>> combine(values, np.array([1]), np.array([[0.5, 0.5]]))
     array([[1.5]])
     """
-    out = weights[:, 0, np.newaxis] * values[start]
-    for k in range(1, weights.shape[1]):
-        out += weights[:, k, np.newaxis] * values[start + k]
-    return out
+    # One gather of every stencil and one contraction: a loop over the nodes
+    # costs two numpy calls per node, which dominates for few instants.
+    stencils = values[start[:, np.newaxis] + np.arange(weights.shape[1])]  # (P, n, ...)
+    return np.einsum("pn,pn...->p...", weights, stencils)
 
 
 #: Spans of instants (days) short enough for one polynomial through ERFA at the
@@ -447,7 +447,7 @@ class KeptSeries(Series):
         when a chunk is still to be computed and kept (once for every process
         after).
         """
-        if tt.size == 0:
+        if tt.size < 3:  # ERFA at one or two instants costs less than the polynomial
             return False
         low = int(np.floor(float(tt.min()) + self.shift)) + int(self.offsets[0])
         high = int(np.floor(float(tt.max()) + self.shift)) + int(self.offsets[-1])
@@ -458,8 +458,6 @@ class KeptSeries(Series):
             missing = [c for c in chunks if (self.name, c) not in _KEPT]
         if not missing:
             return True
-        if tt.size < 3:
-            return False
         if all(kept_path(self.name, c).exists() for c in missing):
             return len(missing) <= tt.size
         return tt.size >= 100 and not _UNWRITABLE

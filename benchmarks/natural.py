@@ -9,8 +9,12 @@ the dense regimes (1 s for a day, 1 min for a week, 2.6 s for 30 days, 30 s
 for a year). For each, the time per epoch, from `~astropy.time.Time` and
 `~astropy.coordinates.SkyCoord` inputs to angles, of
 
-* ``fast``: ``antenna.feed_rotation(source, times)``, cold (every cache of the
-  package cleared before each call: `~astropy_feedrot.earth.clear_orientation_cache`);
+* ``fast``: ``antenna.feed_rotation(source, times)``, cold: the Earth
+  orientations of earlier calls forgotten before each call
+  (`~astropy_feedrot.earth.clear_orientation_cache`); what depends on nothing
+  but the day, the site and the IERS tables (the nodes of the slow series,
+  `~astropy_feedrot.series.KeptSeries`, the IERS arrays, the site's position)
+  stays, as in any process after its first call at those dates;
 * ``warm``: the same call again at the same epochs (fresh objects, caches kept);
 * ``rigorous``: the same with ``astropy_feedrot.conf.fast_path = False``
   (astropy's topocentric ITRS transformation at every epoch);
