@@ -170,6 +170,9 @@ class _Grid(NamedTuple):
     min_sine: float
     shape: tuple
     rotation: np.ndarray = None  # (T, A) angles of 'series' rotators, or None
+    # For fixed natural sources: antenna index -> its directions (T, 1, S, 3), made
+    # when needed (target is then None), so that no (T, A, S, 3) array is held.
+    per_antenna: object = None
 
 
 def _check_targets_objects(targets):
@@ -274,7 +277,31 @@ def _source_directions(sources, antennas, epochs):
     return out
 
 
-def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
+def _antenna_directions(sources, antennas, epochs, masked):
+    """A function: antenna index -> directions (T, 1, S, 3) of fixed natural sources, or None.
+
+    None unless every source is fixed and the epochs' Earth orientation
+    serves them (`~astropy_feedrot.epochs.Epochs.uses_nodes`).
+    """
+    if sources.ndim == 2:  # moving sources
+        return None
+    n_s = sources.shape[-1] if sources.ndim else 1
+    column = sources.reshape((n_s, 1))
+    if not epochs.uses_nodes(column):
+        return None
+    orientation, icrs, n_t = epochs.orientation, sources.icrs, epochs.size
+
+    def directions(i):
+        s = orientation.source_directions(icrs, antennas[i].location)
+        s = np.swapaxes(s.reshape(n_s, n_t, 3), 0, 1)[:, np.newaxis]  # a view
+        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+            s = np.where(masked[:, np.newaxis, np.newaxis, np.newaxis], np.nan, s)
+        return s
+
+    return directions
+
+
+def _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy=False):
     antennas = _check_antennas(antennas)
     kind, targets = _check_targets_objects(targets)
     time = as_time(obstime)
@@ -292,17 +319,23 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
     if kind == "sources" and targets.ndim == 2 and targets.shape[0] != obstime.size:
         raise ValueError(f"moving sources (a 2-d SkyCoord) need one row per epoch: shape "
                          f"{targets.shape} for {obstime.size} epochs")
+    per_antenna = None
     if kind == "satellites":
         target, aligned, transverse, sign = _satellite_arrays(targets, epochs, polarization)
         positions = True
     else:
         sign = np.full(targets.shape[-1] if targets.ndim else 1, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
-        if masked is not None and masked.all():
+        per_antenna = None
+        if lazy and not (masked is not None and masked.all()):
+            per_antenna = _antenna_directions(targets, antennas, epochs, masked)
+        if per_antenna is not None:
+            target = None
+        elif masked is not None and masked.all():
             target = np.full((obstime.size, len(antennas), len(sign), 3), np.nan)
         else:
             target = _source_directions(targets, antennas, epochs)
-        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+        if masked is not None and target is not None:  # NaN: NaN feed rotation
             target[masked] = np.nan
         aligned = transverse = None
         positions = False
@@ -310,7 +343,7 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
     if rotation is not None and masked is not None:
         rotation[masked] = np.nan
     return _Grid(receivers, target, aligned, transverse, positions, form, sign, min_sine,
-                 shape + (len(antennas), len(sign)), rotation)
+                 shape + (len(antennas), len(sign)), rotation, per_antenna)
 
 
 def _dask_block(*arrays, all_rotation=None, block_info=None, **kwargs):
@@ -417,9 +450,20 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     >>> bool(np.all(np.abs((phi[:, 1, 0] - reference).wrap_at(180 * u.deg)) < 1e-9 * u.deg))
     True
     """
-    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
-    out, degenerate = grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
-                                 count=True, **_block_arguments(grid))
+    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy=True)
+    if grid.per_antenna is None:
+        out, degenerate = grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
+                                     count=True, **_block_arguments(grid))
+    else:  # fixed natural sources: one antenna at a time, from the one Earth orientation
+        out = np.empty((int(np.prod(grid.shape[:-2])),) + grid.shape[-2:])
+        degenerate = 0
+        arguments = _block_arguments(grid)
+        for i, antenna in enumerate(_check_antennas(antennas)):
+            arguments["receivers"] = _receivers([antenna])
+            rotation = None if grid.rotation is None else grid.rotation[:, i:i + 1]
+            out[:, i:i + 1], count = grid_block(grid.per_antenna(i), None, None, rotation,
+                                                count=True, **arguments)
+            degenerate += count
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
