@@ -170,7 +170,7 @@ class _Grid(NamedTuple):
     min_sine: float
     shape: tuple
     rotation: np.ndarray = None  # (T, A) angles of 'series' rotators, or None
-    # For fixed natural sources: antenna index -> its directions (T, 1, S, 3), made
+    # For fixed natural sources: antenna index -> its directions (S, T, 3), made
     # when needed (target is then None), so that no (T, A, S, 3) array is held.
     per_antenna: object = None
 
@@ -278,7 +278,7 @@ def _source_directions(sources, antennas, epochs):
 
 
 def _antenna_directions(sources, antennas, epochs, masked):
-    """A function: antenna index -> directions (T, 1, S, 3) of fixed natural sources, or None.
+    """A function: antenna index -> directions (S, T, 3) of fixed natural sources, or None.
 
     None unless every source is fixed and the epochs' Earth orientation
     serves them (`~astropy_feedrot.epochs.Epochs.uses_nodes`).
@@ -292,10 +292,9 @@ def _antenna_directions(sources, antennas, epochs, masked):
     orientation, icrs, n_t = epochs.orientation, sources.icrs, epochs.size
 
     def directions(i):
-        s = orientation.source_directions(icrs, antennas[i].location)
-        s = np.swapaxes(s.reshape(n_s, n_t, 3), 0, 1)[:, np.newaxis]  # a view
+        s = orientation.source_directions(icrs, antennas[i].location).reshape(n_s, n_t, 3)
         if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
-            s = np.where(masked[:, np.newaxis, np.newaxis, np.newaxis], np.nan, s)
+            s[:, masked] = np.nan
         return s
 
     return directions
@@ -327,7 +326,9 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy
         sign = np.full(targets.shape[-1] if targets.ndim else 1, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
         per_antenna = None
-        if lazy and not (masked is not None and masked.all()):
+        plain = all(antenna.rotator is None or antenna.rotator.mode != "series"
+                    for antenna in antennas)
+        if lazy and plain and not (masked is not None and masked.all()):
             per_antenna = _antenna_directions(targets, antennas, epochs, masked)
         if per_antenna is not None:
             target = None
@@ -457,13 +458,14 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     else:  # fixed natural sources: one antenna at a time, from the one Earth orientation
         out = np.empty((int(np.prod(grid.shape[:-2])),) + grid.shape[-2:])
         degenerate = 0
-        arguments = _block_arguments(grid)
+        scale = grid.sign[0] * np.degrees(1.0)  # one hand for every natural source
         for i, antenna in enumerate(_check_antennas(antennas)):
-            arguments["receivers"] = _receivers([antenna])
-            rotation = None if grid.rotation is None else grid.rotation[:, i:i + 1]
-            out[:, i:i + 1], count = grid_block(grid.per_antenna(i), None, None, rotation,
-                                                count=True, **arguments)
-            degenerate += count
+            # The engine on (S, T) lines of sight of one antenna, contiguous as made.
+            s = grid.per_antenna(i)[:, :, np.newaxis, np.newaxis, :]
+            phase, below = engine.feed_rotation(_receivers([antenna]), s, form=grid.form,
+                                                min_sine=grid.min_sine)
+            degenerate += int(np.count_nonzero(engine.degenerate(phase, s, below)))
+            out[:, i, :] = phase[..., 0, 0].T * scale
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
