@@ -23,6 +23,21 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import EarthLocation
 from astropy.table import Table
+from readers import (
+    AXIS_CODES,
+    MOUNT_CODES,
+    read_axistypes,
+    read_casa_sched,
+    read_eht,
+    read_locations,
+    read_ms_mounts,
+    read_observatories,
+    read_paper,
+    read_planner,
+    read_sched_stations,
+    read_sites,
+    validate_axistypes,
+)
 
 HERE = Path(__file__).resolve().parent
 SOURCES = HERE / "sources"
@@ -33,35 +48,134 @@ REPORT = HERE / "crosscheck.txt"
 SCHED = "SCHED 1.29.1 catalogs/"          # pythonsched 1.29.1 (PyPI)
 VPO = "vlbiplanobs 4.9.2 data/stations_catalog.inp"
 CASA = "casadata 2025.9.22 geodetic/Observatories"
+CASA_SCHED = "casadata 2025.9.22 geodetic/SCHED_locations"
 EHTIM = "eht-imaging arrays/EHT2017.txt (commit 1b5dc2c)"
+EHT2025 = "eht-imaging arrays/EHT2025.txt (commit 7acf089)"
+SITES = "astropy-data coordinates/sites.json (commit 1ec3f59)"
 PAPER = "paper"
 
-#: Common epoch (MJD, 2020 Jan 1) at which two geodetic solutions are compared.
+#: Common epoch (MJD, 2020 Jan 1) at which two positions are compared, each
+#: moved there with its own velocity (positions without one stay as given).
 COMPARE_EPOCH = 58849.0
 
 #: Epoch of the paper's simulations (2023 Jan 25, MJD).
 PAPER_EPOCH = 59969.0
 
-#: Tolerance of each kind of cross-check (metres), and what it compares.
+#: Tolerance of each class of comparison (metres), and what it compares.
 TOLERANCES = {
-    "paper": (0.50, "the paper's Tables 1 and 3 vs SCHED's GSFC position moved to 2023 Jan 25"),
-    "geodetic": (0.10, "one GSFC solution vs an older one (2014a, else 2011a, else 2016a), "
-                       "both moved to 2020.0"),
-    "geodetic-seismic": (1.5, "as geodetic, for stations of eastern Japan whose difference is "
-                              "eastward: the 2011 Mar 11 Tohoku earthquake, whose jump and "
-                              "post-seismic motion the two solutions model differently"),
-    "planner": (150.0, "one telescope in two compiled catalogues (SCHED vs the EVN planner)"),
-    "eht": (150.0, "one telescope in SCHED or the EVN planner vs eht-imaging's EHT2017 file"),
-    "observatory": (3000.0, "a telescope or connected array vs casacore's observatory "
-                            "reference position (array centre, rounded coordinates)"),
+    "geodetic": (1.0, "two VLBI solutions (GSFC, USNO, or the paper's Tables 1 and 3), "
+                      "both moved to 2020.0 with their velocities"),
+    "compiled": (50.0, "a position that only an observatory or a compiled list gives "
+                       "(the EVN planner, eht-imaging, casacore's Observatories, "
+                       "astropy-data's sites) against any other"),
 }
 
-#: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
-MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
+#: What each source is, for the report: tag -> (name, geodetic).
+SOURCE_TAGS = {
+    "sched": (f"{SCHED}locations.dat / stations.dat", None),
+    "gsfc2014a": (f"{SCHED}Master_NRAO/locations.dat.gsfc_2014a", True),
+    "gsfc2011a": (f"{SCHED}Master_NRAO/locations.dat.gsfc2011a", True),
+    "gsfc2016a": (f"{SCHED}Master_NRAO/locations_gsfc2016aplus.dat", True),
+    "casa-sched": (CASA_SCHED, None),
+    "planner": (VPO, False),
+    "eht2017": (EHTIM, False),
+    "eht2025": (EHT2025, False),
+    "casa-obs": (CASA, False),
+    "sites": (SITES, False),
+}
 
-#: AXISTYPE values of SCHED's locations files (SPAC, a tracking station, has no code here).
-AXIS_CODES = {"ALTZ": "AZEL", "ALTAZ": "AZEL", "ALTA": "AZEL", "EQUA": "EQUA",
-              "XYEW": "X-YE", "XYNS": "X-YN"}
+TOHOKU_TEXT = ("the 2011 Mar 11 Tohoku earthquake, whose jump and post-seismic motion the "
+               "two solutions model differently")
+OLD_SOLUTION = ("casadata's row is an old solution (USNO 1998-6, or as its FRAME says) at "
+                "epoch 1997.0, moved 23 years with its own velocity")
+
+#: Comparisons allowed beyond their tolerance: (station, source tag) ->
+#: (largest difference allowed in m, the reason). A station whose difference
+#: exceeds both fails the build.
+EXCEPTIONS = {
+    ("VERAMZSW", "gsfc2014a"): (3.5, TOHOKU_TEXT + " (Mizusawa moved about 3 m)"),
+    ("VERAMZSW", "gsfc2011a"): (3.5, TOHOKU_TEXT + " (Mizusawa moved about 3 m)"),
+    ("TSUKUB32", "gsfc2014a"): (1.5, TOHOKU_TEXT),
+    ("TSUKUB32", "gsfc2011a"): (1.5, TOHOKU_TEXT),
+    ("MIZNAO10", "casa-sched"): (1.5, OLD_SOLUTION + ", across " + TOHOKU_TEXT[4:]),
+    ("NOBEY_6M", "casa-sched"): (4.0, OLD_SOLUTION + ", across " + TOHOKU_TEXT[4:]),
+    ("TIDBIN64", "casa-sched"): (2.0, OLD_SOLUTION),
+    ("GGAO7108", "casa-sched"): (1.5, OLD_SOLUTION),
+    ("PARKES", "casa-sched"): (5.0, OLD_SOLUTION),
+    ("WARK30M", "gsfc2016a"): (3.0, "the 2016a solution holds the 30 m antenna's first few "
+                                     "sessions; later solutions moved it by 2.6 m"),
+    ("YEBES", "casa-sched"): (250.0, "casadata's YEBES row has the same position (0.4 m at "
+                                     "its epoch) with a velocity near 9 m/yr, a unit error; "
+                                     "moved to 2020.0 it is 206 m away"),
+    ("TSUKUBA", "casa-sched"): (350.0, "casadata's TSUKUBA (code TS, 'coordinates from RCW') "
+                                       "is another antenna of the Tsukuba site than the GSFC "
+                                       "solution's TSUKUBA (code TS2), 318 m away"),
+    ("NOTO", "sites"): (150.0, "astropy-data's Noto is read off a map ('website & google "
+                               "maps'); SCHED's is the GSFC VLBI solution"),
+    ("FAST", "planner"): (150.0, "two approximate positions of a 500 m dish (SCHED's from "
+                                 "the observatory's web page); no geodetic solution holds it"),
+    ("WETTZELL", "planner"): (150.0, "the planner's [Wettzell] is 123 m from the 20 m "
+                                     "antenna of the GSFC solution: a position of the site"),
+    ("HOBART12", "planner"): (400.0, "the planner's [Hobart 12m] is 383 m from the GSFC "
+                                     "solution's 12 m antenna: an approximate position"),
+    ("DSS63", "planner"): (550.0, "the planner's [Robledo 70] repeats the position of its "
+                                  "[Robledo 34] (DSS65), 534 m from the 70 m antenna"),
+    ("DSS65A", "planner"): (70.0, "the planner's [Robledo 34] is DSS65's position before the "
+                                  "antenna moved about 61 m in July 2005 (SCHED stations.dat)"),
+    ("KP12", "eht2025"): (420.0, "eht-imaging's KP row holds the VLBA antenna's position "
+                                 "(KP-VLBA, 0.1 m away from it), 402 m from the 12 m"),
+    ("LMT", "eht2025"): (100.0, "eht-imaging keeps an older LMT position; SCHED's is the one "
+                                "S. Doeleman provided in Feb 2015 (stations.dat comment)"),
+    ("LMT", "eht2017"): (100.0, "as eht2025"),
+    ("APEX", "planner"): (1300.0, "the planner's [APEX] is 1.29 km north (latitude -22.9942 "
+                                  "deg); eht-imaging and casacore (-23.0057 deg) agree"),
+    ("JCMT", "casa-obs"): (450.0, "casacore's JCMT (1998, whole arcseconds) is 436 m off; "
+                                  "eht-imaging and astropy-data's GPS position (R. Tilanus "
+                                  "2007) agree"),
+    ("ARECIBO", "casa-obs"): (150.0, "casacore's ARECIBO is the observatory's site (rounded "
+                                     "to 0.001 deg), not the dish's phase centre"),
+    ("GREENLAND", "planner"): (1500.0, "the planner's [Greenland] and eht-imaging's GLT "
+                                       "differ by 1.3 km and no third source holds the GLT; "
+                                       "1.3 km tilts the vertical by 0.012 deg"),
+    ("SPT", "planner"): (60.0, "both place SPT at the pole (the EHT's convention); they "
+                               "differ in height"),
+}
+
+#: Reference points: (station, source tag) -> what the source's position is
+#: a position of. The difference is reported, not held to a tolerance: a
+#: connected array's observatory position is its centre, not the pad or dish
+#: the catalogue gives.
+REFERENCE_POINTS = {
+    ("WB_RT1", "casa-obs"): (3000.0, "the Westerbork array's reference point, not the dish RT1"),
+    ("WB_RT1", "planner"): (3000.0, "the planner's [WSRT]: the phased array, not the dish RT1"),
+    ("MEERKAT", "casa-obs"): (8000.0, "the MeerKAT array's reference point, not SCHED's dish"),
+    ("ALMA", "casa-obs"): (16000.0, "the ALMA array's reference point (MMA Memo 261), not the "
+                                    "EHT's phased-array reference point"),
+    ("ALMA", "sites"): (16000.0, "the ALMA site (0.001 deg), not the EHT's phased-array "
+                                 "reference point"),
+    ("NOEMA", "casa-obs"): (1700.0, "the NOEMA array's reference point, not the EHT's "
+                                    "phased-array reference point"),
+    ("SMA", "casa-obs"): (500.0, "casacore's SMA X, Y, Z are 'SMAP' (from a vex file), not "
+                                 "the EHT's phased-array reference point"),
+    ("SMA", "planner"): (500.0, "the planner's [SMA] is another point of the array"),
+    ("ASKAP32", "casa-obs"): (6000.0, "the ASKAP array's reference point, not the antenna "
+                                      "SCHED gives (the phased array's VLBI position)"),
+    ("ASKAP32", "sites"): (6000.0, "the ASKAP site (0.001 deg), not SCHED's antenna"),
+    ("ASKAP32", "planner"): (6000.0, "the planner's [ASKAP], another point of the array"),
+    ("GMRT_C02", "casa-obs"): (25000.0, "the GMRT array's reference point, not the dish C02"),
+    ("GMRT_C02", "sites"): (25000.0, "the GMRT site (pulsar timing), not the dish C02"),
+    ("GMRT_C02", "planner"): (25000.0, "the planner's [GMRT], the phased array, not C02"),
+    ("VLA", "casa-obs"): (36000.0, "the VLA array's reference point, not pad N8 of SCHED's "
+                                   "phased-array VLBI position"),
+    ("VLA", "sites"): (36000.0, "the VLA site, not SCHED's phased-array VLBI position"),
+}
+
+#: Mount or focus statements that the catalogue does not follow:
+#: (station, source tag) -> the reason.
+MOUNT_EXCEPTIONS = {
+    ("HOBART26", "planner"): "Hobart 26 m is an X-Y mount (SCHED stations.dat MOUNT=XYEW and "
+                             "the GSFC AXISTYPE agree); the planner writes ALTAZ for it",
+}
 
 #: Largest distance (m) at which an EVN planner entry is taken to be the same
 #: antenna as a GSFC position, to give it a mount: a nearby but different
@@ -110,189 +224,71 @@ PAPER_ALIASES = {
 #: Names of casacore's Observatories rows and the station each one is (by
 #: name, no position used).
 OBSERVATORY_NAMES = {
-    "ALMA": "ALMA", "ATCA": "ATCA", "GMRT": "GMRT", "SMA": "SMA", "VLA": "VLA",
-    "ASKAP": "ASKAP", "MeerKAT": "MEERKAT", "NOEMA": "NOEMA", "APEX": "APEX", "SMT": "SMT",
+    "ALMA": "ALMA", "ATCA": "ATCA", "GMRT": "GMRT_C02", "SMA": "SMA", "VLA": "VLA",
+    "ASKAP": "ASKAP32", "MeerKAT": "MEERKAT", "NOEMA": "NOEMA", "APEX": "APEX", "SMT": "SMT",
     "JCMT": "JCMT", "PKS": "PARKES", "MOPRA": "MOPRA", "ARECIBO": "ARECIBO",
     "GBT": "GBT-VLBA", "Effelsberg": "EFLSBERG", "WSRT": "WB_RT1", "NRO": "NOBEY_45",
-    "FAST": "FAST", "IRAM_PDB": "PDBURE",
+    "FAST": "FAST", "IRAM_PDB": "NOEMA",
 }
+
+#: astropy-data sites.json keys and the station each one is (by name).
+SITE_NAMES = {
+    "vla": "VLA", "alma": "ALMA", "gbt": "GBT-VLBA", "ao": "ARECIBO", "jcmt": "JCMT",
+    "meerkat": "MEERKAT", "gmrt": "GMRT_C02", "fast": "FAST", "parkes": "PARKES",
+    "effelsberg": "EFLSBERG", "askap": "ASKAP32", "medicina": "MEDICINA", "noto": "NOTO",
+    "srt": "SARDINIA",
+}
+
+#: casadata SCHED_locations DBNAMEs that differ from the catalogue's name.
+CASA_SCHED_NAMES = {"GBT": "GBT-VLBA"}
 
 #: Connected arrays: the network name given to a station by its name.
 CONNECTED = {"VLA": "VLA", "ALMA": "ALMA", "ATCA": "ATCA", "SMA": "SMA", "NOEMA": "NOEMA",
              "PDBURE": "NOEMA", "MEERKAT": "MeerKAT", "GMRT": "GMRT", "ASKAP": "ASKAP",
              "ASKAP32": "ASKAP", "GMRT_C02": "GMRT", "AT_W104": "ATCA"}
 
-#: eht-imaging EHT2017 station names -> SCHED or planner codes (names only).
-EHT_NAMES = {"PV": "Pv", "SMT": "Mg", "SMA": "Sw", "LMT": "Lm", "ALMA": "ALMA",
-             "APEX": "Ap", "JCMT": "Jc", "SPT": "Sz"}
+#: eht-imaging station names -> catalogue names (names only, no position used).
+EHT_NAMES = {"PV": "PICOVEL", "SMT": "SMT", "SMA": "SMA", "LMT": "LMT", "ALMA": "ALMA",
+             "APEX": "APEX", "JCMT": "JCMT", "SPT": "SPT", "KP": "KP12", "GLT": "GREENLAND",
+             "PDB": "NOEMA"}
 
+#: The EHT array of eht-imaging's current file (arrays/EHT2025.txt) that is
+#: the EHT today, and why the file's other rows are not.
+EHT_NOT_CURRENT = {"CARMA": "CARMA closed in 2015; the file keeps it for simulations"}
 
-def _numbers(text, key):
-    found = re.search(rf"\b{key}\s*=\s*([-+0-9.eE]+)", text)
-    return float(found[1]) if found else None
+#: EHT stations whose position the catalogue takes from eht-imaging's current
+#: array file: no geodetic solution used here gives them.
+EHT_POSITIONS = {"APEX", "JCMT", "SMA", "SPT", "GREENLAND", "SMT", "ALMA", "NOEMA"}
 
+#: The EVN planner's entries that are not the antenna its code first matches:
+#: section -> catalogue name (names only).
+PLANNER_STATIONS = {"Robledo 70": "DSS63", "Robledo 34": "DSS65A"}
 
-def sched_blocks(path):
-    """(text, first line number) of each ``/``-terminated entry, comments removed."""
-    blocks, current, start = [], [], None
-    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
-        line = line.split("!")[0]
-        if not line.strip():
-            continue
-        if start is None:
-            start = number
-        if line.strip() == "/":
-            blocks.append((" ".join(current), start))
-            current, start = [], None
-        else:
-            current.append(line)
-    return blocks
+#: Other names by which users know a station (the DSN's DSS-NN names come from
+#: the station names; these are common names no source file spells).
+COMMON_NAMES = {
+    "GBT-VLBA": ["GBT", "Green Bank 100m"],
+    "DSS63": ["Robledo 70", "Madrid 70m", "DSS-63"],
+    "DSS14": ["Goldstone 70m", "Mars"],
+    "TIDBIN64": ["Tidbinbilla 70m", "DSS-43"],
+    "KP12": ["Kitt Peak 12m", "ARO 12m"],
+    "GREENLAND": ["Greenland Telescope"],
+}
 
-
-def _word(text, key):
-    found = re.search(rf"\b{key}\s*=\s*'([^']*)'|\b{key}\s*=\s*(\S+)", text)
-    if not found:
-        return None
-    return (found[1] if found[1] is not None else found[2]).strip()
-
-
-def read_locations(path):
-    """DBNAME -> the entry valid now (END 100000, latest BEGIN)."""
-    entries = {}
-    for text, line in sched_blocks(path):
-        name = _word(text, "DBNAME")
-        x = _numbers(text, "X")
-        end = _numbers(text, "END")
-        if name is None or x is None or (end is not None and end < 99999):
-            continue
-        begin = _numbers(text, "BEGIN") or 0
-        if name in entries and entries[name]["begin"] > begin:
-            continue
-        vel = [_numbers(text, k) for k in ("DXDT", "DYDT", "DZDT")]
-        entries[name] = dict(
-            begin=begin, xyz=[x, _numbers(text, "Y"), _numbers(text, "Z")],
-            vel=vel if None not in vel else [0.0, 0.0, 0.0],
-            epoch=_numbers(text, "EPOCH") if None not in vel else math.nan,
-            frame=_word(text, "FRAME") or "", line=line)
-    return entries
-
-
-def read_axistypes(path):
-    """DBNAME -> (AXISTYPE, DBCODE or '', line) of a locations file that gives them."""
-    found = {}
-    for text, line in sched_blocks(path):
-        name, axis = _word(text, "DBNAME"), _word(text, "AXISTYPE")
-        if name and axis:
-            found.setdefault(name, (axis.upper(), _word(text, "DBCODE") or "", line))
-    return found
-
-
-def validate_axistypes(axistypes, sched):
-    """Compare an AXISTYPE column with stations.dat's MOUNT: (agreements, disagreements)."""
-    mounts = {}
-    for entry in sched:
-        if entry["dbname"] and entry["mount"]:
-            mounts.setdefault(entry["dbname"], set()).add(
-                MOUNT_CODES.get(entry["mount"].upper(), entry["mount"].upper()))
-    agree, disagree = 0, []
-    for name, (axis, _, line) in sorted(axistypes.items()):
-        if name in mounts:
-            if AXIS_CODES.get(axis, axis) in mounts[name]:
-                agree += 1
-            else:
-                disagree.append((name, axis, sorted(mounts[name])))
-    return agree, disagree
-
-
-def read_sched_stations(path):
-    """SCHED station entries in file order."""
-    stations = []
-    for text, line in sched_blocks(path):
-        name = _word(text, "STATION")
-        if name is None:
-            continue
-        xyz = [_numbers(text, k) for k in ("X", "Y", "Z")]
-        vel = [_numbers(text, k) for k in ("DXDT", "DYDT", "DZDT")]
-        stations.append(dict(
-            station=name, code=_word(text, "STCODE"), dbname=_word(text, "DBNAME"),
-            mount=_word(text, "MOUNT"), line=line, frame=_word(text, "FRAME") or "",
-            xyz=xyz if None not in xyz else None,
-            vel=vel if None not in vel else [0.0, 0.0, 0.0],
-            epoch=_numbers(text, "EPOCH") if None not in vel else math.nan))
-    return stations
-
-
-def read_planner(path):
-    """The EVN planner's stations: [section] blocks of ``key = value``."""
-    stations, current = [], None
-    for number, line in enumerate(path.read_text().splitlines(), 1):
-        line = line.split("#")[0].rstrip()
-        if line.startswith("["):
-            current = {"section": line.strip("[]"), "line": number}
-            stations.append(current)
-        elif "=" in line and current is not None:
-            key, value = line.split("=", 1)
-            current[key.strip()] = value.strip()
-    for station in stations:
-        station["xyz"] = [float(v) for v in station["position"].split(",")]
-        station["networks"] = [n.strip() for n in station.get("networks", "").split(",")
-                               if n.strip()]
-    return stations
-
-
-def read_observatories(path):
-    """casacore's Observatories table: name -> ITRF position (m)."""
-    from casacore.tables import table  # optional: python-casacore
-
-    found = {}
-    with table(str(path), ack=False) as tab:
-        for row in tab:
-            lon, lat, height = row["Long"], row["Lat"], row["Height"]
-            if row["Type"] == "ITRF":  # spherical geocentric, Height is the radius
-                if height < 6e6:
-                    continue
-                lon_r, lat_r = math.radians(lon), math.radians(lat)
-                xyz = [height * math.cos(lat_r) * math.cos(lon_r),
-                       height * math.cos(lat_r) * math.sin(lon_r), height * math.sin(lat_r)]
-            else:
-                loc = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
-                xyz = [float(v.to_value(u.m)) for v in (loc.x, loc.y, loc.z)]
-            found.setdefault(row["Name"], xyz)
-    return found
-
-
-def read_eht(path):
-    rows = {}
-    for line in path.read_text().splitlines():
-        if line.startswith("#") or not line.strip():
-            continue
-        parts = line.split()
-        rows[parts[0]] = dict(xyz=[float(v) for v in parts[1:4]],
-                              fr_par=float(parts[6]), fr_elev=float(parts[7]))
-    return rows
-
-
-def read_paper(path):
-    rows = {}
-    for line in path.read_text().splitlines():
-        parts = [p.strip() for p in line.strip().strip("|").split("|")]
-        if len(parts) == 5 and re.fullmatch(r"[-−]?[0-9]+\.[0-9]+", parts[2]):
-            rows[parts[0]] = [float(p.replace("−", "-")) for p in parts[2:]]
-    return rows
-
-
-def read_ms_mounts(path):
-    """The MOUNT strings of a Measurement Set's ANTENNA table (python-casacore)."""
-    from casacore.tables import table  # optional: python-casacore
-
-    with table(str(path), ack=False) as tab:
-        return sorted(set(tab.getcol("MOUNT")))
+#: VGOS stations (names only): the IVS VGOS network as listed by the IVS
+#: Coordinating Center's station pages (https://ivscc.gsfc.nasa.gov/stations/),
+#: those of them that the catalogue holds.
+VGOS = {"GGAO12M", "WETTZ13S", "WETTZ13N", "ISHIOKA", "ONSA13NE", "ONSA13SW", "NYALE13N",
+        "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "SEJONG", "AGGO",
+        "HOBART12", "KATH12M", "YARRA12M", "WESTFORD"}
 
 
 # A real ALMA Measurement Set (pyuvdata 3.1.3 test data, written by CASA 5.1.1's
 # importasdm from the ASDM): its ANTENNA table gives the mount of ALMA's antennas.
 ALMA_MS = ("ALMA Measurement Set X5707_1spw_1scan_10chan_1time_1bl_noatm.ms (pyuvdata 3.1.3 "
            "test data; CASA 5.1.1 importasdm), ANTENNA table")
+
+
 
 
 def _moved(xyz, vel, epoch, to):
@@ -310,8 +306,8 @@ def build():
     axis_2005 = read_axistypes(SOURCES / "sched" / "locations.dat.2005f")
     sched = read_sched_stations(SOURCES / "sched" / "stations.dat")
     planner = read_planner(SOURCES / "vlbiplanobs" / "stations_catalog.inp")
-    observatories = read_observatories(SOURCES / "casadata" / "Observatories")
-    eht = read_eht(SOURCES / "eht-imaging" / "EHT2017.txt")
+    sources = load_sources()
+    eht, eht_now = sources["eht2017"], sources["eht2025"]
     paper = read_paper(SOURCES / "paper" / "tables_1_and_3.txt")
 
     rows = {}  # name -> row dict
@@ -378,6 +374,11 @@ def build():
                     planner_code = station["code"].upper()
                     mount_source = (f"{VPO} [{station['section']}] "
                                     f"(mount = {station['mount']})")
+            if code is None and name in VGOS:
+                code = "AZEL"
+                mount_source = ("assumed: alt-az, as every VGOS antenna (the VGOS design: "
+                                "fast-slewing 12-13 m alt-az antennas); no source used gives "
+                                "its mount")
             if code is None:
                 no_mount.append(name)
                 continue
@@ -397,7 +398,10 @@ def build():
             distance = float(np.linalg.norm(np.subtract(row["xyz"], station["xyz"])))
             if distance < 5000 and (code in row["sched_codes"] or code[:2] in row["sched_codes"]):
                 near.append((distance, row["name"]))
-        if near:
+        if station["section"] in PLANNER_STATIONS and \
+                PLANNER_STATIONS[station["section"]] in rows:
+            row = rows[PLANNER_STATIONS[station["section"]]]
+        elif near:
             row = rows[min(near)[1]]
         else:
             mount = station.get("mount")
@@ -415,7 +419,8 @@ def build():
                 focus_source="", checks=[])
         row["planner"] = station
         row["aliases"] += [station["section"], station["code"], station["station"]]
-        row["networks"].update(n for n in station["networks"])
+        # The EHT tag comes from eht-imaging's current array file (step 4).
+        row["networks"].update(n for n in station["networks"] if n != "EHT")
 
     # 3. The paper's antennas: positions of its Tables 1 and 3, mounts and
     # focus types of the paper.
@@ -435,30 +440,36 @@ def build():
                    focus_source=focus_source)
         row["aliases"] += PAPER_ALIASES.get(name, [])
 
-    # 4. Focus types: eht-imaging's feed-rotation coefficients (Nasmyth
-    # stations), else assumed.
-    by_code = {}
-    for row in rows.values():
-        codes = set(row["sched_codes"])
-        if "planner" in row:
-            codes.add(row["planner"]["code"].upper())
-        for code in codes:
-            by_code.setdefault(code, []).append(row["name"])
-    for eht_name, code in EHT_NAMES.items():
-        targets = by_code.get(code.upper(), [])
-        if len(targets) != 1 or eht_name not in eht:
+    # 4. The EHT: its current array (eht-imaging's EHT2025.txt), positions
+    # of the stations no geodetic solution gives, and the focus each file states.
+    for eht_name, coeff in eht_now.items():
+        if eht_name in EHT_NOT_CURRENT:
             continue
-        row = rows[targets[0]]
-        coeff = eht[eht_name]
-        if coeff["fr_elev"] and row["mount"] == "AZEL":
-            side = "right" if coeff["fr_elev"] > 0 else "left"
-            row["mount"] = "NASR" if side == "right" else "NASL"
-            row["focus"] = f"nasmyth-{side}"
-            row["mount_source"] += (f"; Nasmyth from {EHTIM} FR_ELEV_ANGLE="
-                                    f"{coeff['fr_elev']:+g}")
-            row["focus_source"] = f"{EHTIM}: FR_ELEV_ANGLE={coeff['fr_elev']:+g}"
-        row["eht"] = coeff
+        row = rows[EHT_NAMES[eht_name]]
+        row["networks"].add("EHT")
         row["aliases"].append(eht_name)
+        if row["name"] in EHT_POSITIONS:
+            row.update(xyz=coeff["xyz"], vel=[0.0] * 3, epoch=math.nan, frame="",
+                       position_source=f"{EHT2025} line {coeff['line']} ({eht_name})")
+    for tag, table in (("eht2025", eht_now), ("eht2017", eht)):
+        for eht_name, coeff in table.items():
+            row = rows.get(EHT_NAMES.get(eht_name, ""))
+            if row is None or eht_name in EHT_NOT_CURRENT or not coeff["fr_par"] or \
+                    row["focus_source"] or row["name"] in PAPER_FOCUS:
+                continue
+            label = f"{SOURCE_TAGS[tag][0]} line {coeff['line']} ({eht_name}): " \
+                    f"FR_PAR_ANGLE={coeff['fr_par']:+g}, FR_ELEV_ANGLE={coeff['fr_elev']:+g}"
+            if coeff["fr_elev"]:
+                side = "right" if coeff["fr_elev"] > 0 else "left"
+                row["mount"] = "NASR" if side == "right" else "NASL"
+                row["focus"] = f"nasmyth-{side}"
+                row["mount_source"] += f"; Nasmyth from {label}"
+            elif row["mount"] == "AZEL":
+                row["focus"] = "cassegrain"
+            row["focus_source"] = label
+            if coeff["fr_offset"]:
+                row["feed_offset"] = coeff["fr_offset"]
+                row["feed_offset_source"] = f"{label}, FR_OFFSET={coeff['fr_offset']:g} deg"
     for row in rows.values():
         if row["focus_source"]:
             continue
@@ -473,77 +484,202 @@ def build():
                                    "(a prime or Gregorian focus gives the same feed rotation; "
                                    "a Nasmyth or beam-waveguide focus would not)")
 
-    # 5. Connected arrays and the DSN by name.
+    # 5. Networks and names by name: connected arrays, the DSN, VGOS; the
+    # names of the other sources that hold the station.
     for row in rows.values():
         for label in [row["name"], *row["aliases"]]:
             network = CONNECTED.get(str(label).upper().replace(" ", "")) or \
                 CONNECTED.get(str(label))
             if network:
                 row["networks"].add(network)
-        if "DSS" in row["name"] or any(str(a).startswith("DSS") for a in row["aliases"]):
+        dss = [str(a) for a in [row["name"], *row["aliases"]]
+               if re.fullmatch(r"DSS[0-9]+A?", str(a))]
+        if dss:
             row["networks"].add("DSN")
+            row["aliases"] += [f"DSS-{d[3:].rstrip('A')}" for d in dss]
+        if row["name"] in VGOS:
+            row["networks"].add("VGOS")
+        row["aliases"] += COMMON_NAMES.get(row["name"], [])
+        row["refs"] = references(row, sources)
+        row["aliases"] += [alias for ref in row["refs"]
+                           for alias in source_names(sources, ref)]
 
-    # 6. Cross-checks, best second catalogue first.
-    observatory_of = {}
-    for obs_name, station in OBSERVATORY_NAMES.items():
-        observatory_of.setdefault(station, []).append(obs_name)
+    # 6. Cross-checks against every source that holds the station.
     for row in rows.values():
-        xyz = np.array(row["xyz"], dtype=float)
-        if row.get("position_source", "").startswith(PAPER) and row["name"] in locations:
-            other = locations[row["name"]]
-            there = _moved(other["xyz"], other["vel"], other["epoch"], PAPER_EPOCH)
-            row["checks"].append(("paper", float(np.linalg.norm(xyz - there)),
-                                  f"{SCHED}locations.dat line {other['line']}"))
-        label_set = {str(a).upper() for a in [row["name"], *row["aliases"]]}
-        # One other GSFC solution (never a choice among several): 2014a,
-        # else 2011a, else 2016a, the first that lists the station from a
-        # solution other than the position's own.
-        if row["frame"].startswith("GSFC"):
-            for other_file, solution in (("locations.dat.gsfc_2014a", older),
-                                         ("locations.dat.gsfc2011a", older_2011),
-                                         ("locations_gsfc2016aplus.dat", later_2016)):
-                other = solution.get(row["name"])
-                if other is None or other["frame"] == row["frame"] or \
-                        other["frame"].startswith("VLA"):
-                    continue
-                here = _moved(xyz, row["vel"], row["epoch"], COMPARE_EPOCH)
-                there = _moved(other["xyz"], other["vel"], other["epoch"], COMPARE_EPOCH)
-                kind = "geodetic-seismic" if row["name"] in TOHOKU else "geodetic"
-                row["checks"].append((kind, float(np.linalg.norm(here - there)),
-                                      f"{SCHED}Master_NRAO/{other_file} line "
-                                      f"{other['line']}"))
-                break
-        if "planner" in row and not row["position_source"].startswith(VPO):
-            row["checks"].append(("planner", float(np.linalg.norm(
-                xyz - row["planner"]["xyz"])), f"{VPO} [{row['planner']['section']}]"))
-        if "eht" in row and row["eht"]["xyz"][0] != 0.01:
-            row["checks"].append(("eht", float(np.linalg.norm(xyz - row["eht"]["xyz"])),
-                                  EHTIM))
-        for obs_name, station in OBSERVATORY_NAMES.items():
-            if station.upper() in label_set and obs_name in observatories:
-                row["checks"].append(("observatory", float(np.linalg.norm(
-                    xyz - observatories[obs_name])), f"{CASA} ({obs_name})"))
+        row["checks"] = crosscheck(row["name"], row["xyz"], row["vel"], row["epoch"],
+                                   is_geodetic(row["position_source"]), row["refs"], sources)
+        row["mount_checks"] = mount_checks(row, sources)
 
-    # Stations whose position no second catalogue confirms are left out.
-    # The paper's antennas are kept with the paper as their source even where
-    # no catalogue used here lists them (DBR205, a GNSS antenna; GGAO12M and
-    # WETTZ13S, whose SCHED names differ).
-    kept = [row for row in rows.values() if _best(row) is not None or row["name"] in PAPER_FOCUS]
-    left_out = sorted(row["name"] for row in rows.values()
-                      if _best(row) is None and row["name"] not in PAPER_FOCUS)
-    mount_checks = {
+    # A station is kept if another source confirms its position, or if its
+    # position is the current GSFC VLBI solution (the best there is) and no
+    # other source used holds it; a kept station must agree with every source.
+    confirmed = [row for row in rows.values()
+                 if any(c["status"] != "FAIL" for c in row["checks"])
+                 or (not row["checks"] and "locations.dat line" in row["position_source"]
+                     and row.get("frame", "").startswith("GSFC Jan. 12, 2020"))]
+    kept = [row for row in rows.values() if row in confirmed or row["name"] in PAPER_FOCUS]
+    left_out = sorted(row["name"] for row in rows.values() if row not in kept)
+    axis_checks = {
         "locations.dat": validate_axistypes(axis_now, sched),
         "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched),
     }
-    return kept, left_out, sorted(no_mount), mount_checks
+    return kept, left_out, sorted(no_mount), axis_checks
 
 
-def _best(row):
-    """The first comparison, in the order of TOLERANCES, within its tolerance."""
-    within = [c for c in row["checks"] if c[1] <= TOLERANCES[c[0]][0]]
-    if not within:
-        return None
-    return min(within, key=lambda c: list(TOLERANCES).index(c[0]))
+def load_sources():
+    """Every file that positions are compared with, by source tag."""
+    sched_dir = SOURCES / "sched"
+    return {
+        "sched": read_locations(sched_dir / "locations.dat"),
+        "gsfc2014a": read_locations(sched_dir / "locations.dat.gsfc_2014a"),
+        "gsfc2011a": read_locations(sched_dir / "locations.dat.gsfc2011a"),
+        "gsfc2016a": read_locations(sched_dir / "locations_gsfc2016aplus.dat"),
+        "casa-sched": {str(r["row"]): r for r in
+                       read_casa_sched(SOURCES / "casadata" / "SCHED_locations")},
+        "planner": {s["section"]: s for s in
+                    read_planner(SOURCES / "vlbiplanobs" / "stations_catalog.inp")},
+        "eht2017": read_eht(SOURCES / "eht-imaging" / "EHT2017.txt"),
+        "eht2025": read_eht(SOURCES / "eht-imaging" / "EHT2025.txt"),
+        "casa-obs": read_observatories(SOURCES / "casadata" / "Observatories"),
+        "sites": read_sites(SOURCES / "astropy-data" / "sites.json"),
+    }
+
+
+def is_geodetic(position_source):
+    """Whether a position_source names a VLBI solution (GSFC, USNO) or the paper's tables."""
+    return bool(re.search(r"\((GSFC|USNO)", position_source)) or \
+        position_source.startswith(f"{PAPER} Table")
+
+
+def references(row, sources):
+    """The source records that hold a station, by name: ``tag:key`` strings."""
+    name, refs = row["name"], []
+    if row["position_source"].startswith(PAPER) and name in sources["sched"]:
+        refs.append(f"sched:{name}")
+    if row.get("frame", "").startswith("GSFC"):
+        for tag in ("gsfc2014a", "gsfc2011a", "gsfc2016a"):
+            other = sources[tag].get(name)
+            if other is not None and other["frame"] != row["frame"] and \
+                    not other["frame"].startswith("VLA"):
+                refs.append(f"{tag}:{name}")
+    for key, record in sources["casa-sched"].items():
+        if CASA_SCHED_NAMES.get(record["name"], record["name"]) == name:
+            refs.append(f"casa-sched:{key}")
+    if "planner" in row and not row["position_source"].startswith(VPO):
+        refs.append(f"planner:{row['planner']['section']}")
+    for tag in ("eht2025", "eht2017"):
+        refs += [f"{tag}:{e}" for e in sources[tag]
+                 if EHT_NAMES.get(e) == name and e not in EHT_NOT_CURRENT
+                 and not row["position_source"].startswith(SOURCE_TAGS[tag][0])]
+    refs += [f"casa-obs:{o}" for o, station in OBSERVATORY_NAMES.items()
+             if station == name and o in sources["casa-obs"]]
+    refs += [f"sites:{s}" for s, station in SITE_NAMES.items() if station == name]
+    return refs
+
+
+def source_record(sources, ref):
+    """The record of a ``tag:key`` reference."""
+    tag, key = ref.split(":", 1)
+    record = sources[tag][key]
+    if tag == "casa-obs":
+        return dict(xyz=record, vel=[0.0] * 3, epoch=math.nan, geodetic=False)
+    if tag in ("eht2017", "eht2025", "planner", "sites"):
+        return dict(xyz=record["xyz"], vel=[0.0] * 3, epoch=math.nan, geodetic=False)
+    frame = record["frame"]
+    return dict(xyz=record["xyz"], vel=record["vel"], epoch=record["epoch"],
+                geodetic=bool(re.match(r"(GSFC|USNO)", frame)))
+
+
+def source_names(sources, ref):
+    """The names a source gives the station (aliases of the catalogue's row)."""
+    tag, key = ref.split(":", 1)
+    record = sources[tag][key]
+    if tag == "casa-sched":
+        return [record["code"], record["name"]]
+    if tag == "sites":
+        return record["names"]
+    if tag in ("casa-obs", "eht2025", "eht2017"):
+        return [key]
+    return []
+
+
+def crosscheck(name, xyz, vel, epoch, geodetic, refs, sources):
+    """Compare a station's position with each referenced source, both moved to 2020.0.
+
+    Returns one dict per reference: ``ref``, ``distance`` (m), ``kind``
+    (``geodetic`` or ``compiled``), ``limit`` (m) and ``status`` (``ok``,
+    ``exception``, ``reference point`` or ``FAIL``) with ``reason``.
+    """
+    here = _moved(xyz, vel, epoch, COMPARE_EPOCH)
+    checks = []
+    for ref in refs:
+        other = source_record(sources, ref)
+        there = _moved(other["xyz"], other["vel"], other["epoch"], COMPARE_EPOCH)
+        distance = float(np.linalg.norm(here - there))
+        kind = "geodetic" if geodetic and other["geodetic"] else "compiled"
+        tag = ref.split(":", 1)[0]
+        limit, status, reason = TOLERANCES[kind][0], "ok", ""
+        if (name, tag) in REFERENCE_POINTS:
+            limit, reason = REFERENCE_POINTS[(name, tag)]
+            status = "reference point" if distance <= limit else "FAIL"
+        elif distance > limit and (name, tag) in EXCEPTIONS:
+            limit, reason = EXCEPTIONS[(name, tag)]
+            status = "exception" if distance <= limit else "FAIL"
+        elif distance > limit:
+            status = "FAIL"
+        checks.append(dict(ref=ref, distance=distance, kind=kind, limit=limit,
+                           status=status, reason=reason))
+    return checks
+
+
+def _axis_family(code):
+    return "AZEL" if code in ("AZEL", "NASR", "NASL", "BWG") else code
+
+
+def mount_checks(row, sources):
+    """Mount and focus statements of the other sources: (ref, stated, status, reason)."""
+    found = []
+    for ref in row["refs"]:
+        tag, key = ref.split(":", 1)
+        record = sources[tag][key]
+        stated = None
+        if tag == "casa-sched":
+            stated = AXIS_CODES.get(record["axis"].upper())
+            if stated is not None and _axis_family(stated) != _axis_family(row["mount"]):
+                found.append((ref, f"mount {stated}", "disagree"))
+            elif stated is not None:
+                found.append((ref, f"mount {stated}", "agree"))
+        elif tag == "planner" and record.get("mount"):
+            stated = MOUNT_CODES.get(record["mount"].upper())
+            agree = _axis_family(stated) == _axis_family(row["mount"])
+            found.append((ref, f"mount {stated}", "agree" if agree else "disagree"))
+        elif tag in ("eht2017", "eht2025") and record["fr_par"]:
+            side = {1: "nasmyth-right", -1: "nasmyth-left"}.get(int(record["fr_elev"]))
+            if side is None:
+                agree = not row["focus"].startswith(("nasmyth", "bwg"))
+                stated = "not Nasmyth"
+            else:
+                agree, stated = row["focus"] == side, side
+            found.append((ref, f"focus {stated}", "agree" if agree else "disagree"))
+    return [(ref, stated, "exception" if status == "disagree" and
+             (row["name"], ref.split(":")[0]) in MOUNT_EXCEPTIONS else status,
+             MOUNT_EXCEPTIONS.get((row["name"], ref.split(":")[0]), ""))
+            for ref, stated, status in found]
+
+
+def failures(rows):
+    """Every unexplained disagreement among the kept rows, one line each."""
+    lines = []
+    for row in rows:
+        for check in row["checks"]:
+            if check["status"] == "FAIL":
+                lines.append(f"{row['name']}: {check['distance']:.3f} m from {check['ref']} "
+                             f"(tolerance {check['limit']:g} m, {check['kind']})")
+        for ref, stated, status, _ in row["mount_checks"]:
+            if status == "disagree":
+                lines.append(f"{row['name']}: {ref} states {stated}; the catalogue has "
+                             f"mount {row['mount']}, focus {row['focus'] or 'default'}")
+    return lines
 
 
 def _clean_aliases(rows):
@@ -559,12 +695,17 @@ def _clean_aliases(rows):
         row["aliases"] = keep
 
 
+def largest(row):
+    """The largest position difference to a source (reference points aside), or None."""
+    checks = [c for c in row["checks"] if c["status"] != "reference point"]
+    return max(checks, key=lambda c: c["distance"]) if checks else None
+
+
 def to_table(rows):
     order = {name: i for i, name in enumerate(PAPER_ORDER)}
     rows = sorted(rows, key=lambda r: (order.get(r["name"], len(order)), r["name"]))
     _clean_aliases(rows)
-    best = [_best(row) or ("none", math.nan, "none: the paper is the only source")
-            for row in rows]
+    worst = [largest(row) for row in rows]
     table = Table()
     table["name"] = [row["name"] for row in rows]
     table["aliases"] = [",".join(row["aliases"]) for row in rows]
@@ -576,15 +717,17 @@ def to_table(rows):
     table["epoch"] = [row["epoch"] for row in rows]
     table["mount"] = [row["mount"] for row in rows]
     table["focus"] = [row["focus"] for row in rows]
+    table["feed_offset"] = [row.get("feed_offset", 0.0) for row in rows] * u.deg
     table["position_source"] = [row["position_source"] for row in rows]
     table["mount_source"] = [row["mount_source"] for row in rows]
     table["focus_source"] = [row["focus_source"] for row in rows]
+    table["feed_offset_source"] = [row.get("feed_offset_source", "") for row in rows]
     table["rotator"] = [ROTATORS.get(row["name"], ("", ""))[0] for row in rows]
     table["rotator_source"] = [ROTATORS.get(row["name"], ("", ""))[1] for row in rows]
-    table["check_kind"] = [c[0] for c in best]
-    table["check_distance"] = np.round([c[1] for c in best], 4) * u.m
-    table["check_tolerance"] = [TOLERANCES.get(c[0], (math.nan,))[0] for c in best] * u.m
-    table["check_source"] = [c[2] for c in best]
+    table["crosschecks"] = [",".join(row["refs"]) for row in rows]
+    table["largest_difference"] = np.round(
+        [w["distance"] if w else math.nan for w in worst], 3) * u.m
+    table["largest_difference_source"] = [w["ref"] if w else "" for w in worst]
     descriptions = {
         "name": "IVS eight-character name where one exists (SCHED DBNAME)",
         "aliases": "other names, comma-separated (case and punctuation do not matter)",
@@ -594,15 +737,19 @@ def to_table(rows):
         "vz": "velocity in Z", "epoch": "MJD of the position (nan: no velocity model)",
         "mount": "geodetic station-catalogue mount code",
         "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
+        "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
+                       "0 where none does; not applied by get_antenna",
         "position_source": "file and line, or paper table, of the position",
         "mount_source": "where the mount comes from",
         "focus_source": "where the focus comes from, or 'assumed: <reason>'",
+        "feed_offset_source": "where the feed offset comes from",
         "rotator": "field rotator mode (sky: the feed keeps its angle on the sky), or empty",
         "rotator_source": "where the rotator comes from",
-        "check_kind": "kind of the second, independent catalogue position",
-        "check_distance": "distance to the second catalogue's position",
-        "check_tolerance": "tolerance of that kind of comparison",
-        "check_source": "the second catalogue",
+        "crosschecks": "the other sources that hold the station (tag:key, comma-separated; "
+                       "see catalogue/build_stations.py SOURCE_TAGS)",
+        "largest_difference": "largest distance to another source's position at 2020.0 "
+                              "(reference points aside)",
+        "largest_difference_source": "the source of that largest distance",
     }
     for column, text in descriptions.items():
         table[column].description = text
@@ -614,33 +761,66 @@ def to_table(rows):
     return table
 
 
-def report(rows, left_out, no_mount, mount_checks):
-    lines = ["Cross-check of the station catalogue: each position against a second, "
-             "independent catalogue.", "", "Tolerances:"]
+def report(rows, left_out, no_mount, axis_checks):
+    lines = ["Cross-check of the station catalogue: each position against every other "
+             "source that holds the station, both moved to 2020.0.", "", "Tolerances:"]
     for kind, (tol, what) in TOLERANCES.items():
-        lines.append(f"  {kind:16s} {tol:8.2f} m  {what}")
-    lines.append("")
-    for kind in TOLERANCES:
-        d = np.array([c[1] for row in rows for c in row["checks"] if c[0] == kind])
-        if d.size:
-            lines.append(f"{kind:16s} n={d.size:4d}  median {np.median(d):10.3f} m  "
-                         f"max {d.max():10.3f} m  over tolerance "
-                         f"{int(np.sum(d > TOLERANCES[kind][0]))}")
-    lines += ["", "Every comparison (station, kind, distance in m, within tolerance):"]
+        lines.append(f"  {kind:9s} {tol:6.1f} m  {what}")
+    lines += ["", "Sources (tag: file):"]
+    lines += [f"  {tag:10s} {name}" for tag, (name, _) in SOURCE_TAGS.items()]
+    lines += ["", summary(rows), "",
+              "Exceptions beyond the tolerance (station, source: limit, reason):"]
+    lines += [f"  {s:10s} {t:10s} {limit:8.1f} m  {why}"
+              for (s, t), (limit, why) in sorted(EXCEPTIONS.items())]
+    lines += ["", "Reference points (station, source: what the source's position is):"]
+    lines += [f"  {s:10s} {t:10s} {limit:8.0f} m  {why}"
+              for (s, t), (limit, why) in sorted(REFERENCE_POINTS.items())]
+    lines += ["", "Mount and focus statements not followed (station, source: reason):"]
+    lines += [f"  {s:10s} {t:10s} {why}" for (s, t), why in sorted(MOUNT_EXCEPTIONS.items())]
+    lines += ["", "Every comparison (station, source, kind, distance in m, status):"]
     for row in sorted(rows, key=lambda r: r["name"]):
-        for kind, distance, where in row["checks"]:
-            ok = "ok" if distance <= TOLERANCES[kind][0] else "OVER"
-            lines.append(f"  {row['name']:12s} {kind:16s} {distance:12.3f}  {ok:4s}  {where}")
-    lines += ["", "Left out (no second catalogue confirms the position within tolerance): "
+        for c in row["checks"]:
+            lines.append(f"  {row['name']:12s} {c['ref']:28s} {c['kind']:9s} "
+                         f"{c['distance']:12.3f}  {c['status']}")
+        for ref, stated, status, _ in row["mount_checks"]:
+            lines.append(f"  {row['name']:12s} {ref:28s} {stated:9s} (catalogue: "
+                         f"{row['mount']} {row['focus'] or '-'})  {status}")
+    single = sorted(row["name"] for row in rows if not row["checks"])
+    lines += ["", "Kept with one source (the current GSFC solution, or the paper; no other "
+              "source used holds them): " + (", ".join(single) or "none")]
+    lines += ["", "Left out (no other source confirms the position): "
               + (", ".join(left_out) or "none")]
     lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "
               + (", ".join(no_mount) or "none")]
     lines += ["", "AXISTYPE columns used for mounts, against stations.dat MOUNT on the stations "
               "both give:"]
-    for name, (agree, disagree) in mount_checks.items():
+    for name, (agree, disagree) in axis_checks.items():
         lines.append(f"  {SCHED}{name}: {agree} agree, {len(disagree)} disagree"
                      + "".join(f"; {n} {a} vs {m}" for n, a, m in disagree))
     return "\n".join(lines) + "\n"
+
+
+def summary(rows):
+    """Stations per source, median and largest difference per class, disagreements."""
+    lines = ["Stations per source:"]
+    for tag in SOURCE_TAGS:
+        n = sum(any(c["ref"].startswith(f"{tag}:") for c in row["checks"]) for row in rows)
+        if n:
+            lines.append(f"  {tag:10s} {n:4d}")
+    lines.append("Position differences per class (reference points aside):")
+    for kind in TOLERANCES:
+        d = np.array([c["distance"] for row in rows for c in row["checks"]
+                      if c["kind"] == kind and c["status"] != "reference point"])
+        if d.size:
+            beyond = int(np.sum(d > TOLERANCES[kind][0]))
+            lines.append(f"  {kind:9s} n={d.size:4d}  median {np.median(d):9.3f} m  "
+                         f"max {d.max():9.3f} m  beyond tolerance {beyond} (each a listed "
+                         "exception)")
+    mounts = [m for row in rows for m in row["mount_checks"]]
+    lines.append(f"Mount and focus statements: {len(mounts)}, "
+                 f"{sum(m[2] == 'agree' for m in mounts)} agree, "
+                 f"{sum(m[2] == 'exception' for m in mounts)} listed exceptions")
+    return "\n".join(lines)
 
 
 def main(argv=None):
@@ -648,17 +828,23 @@ def main(argv=None):
     parser.add_argument("--output", default=str(OUTPUT))
     parser.add_argument("--report", default=str(REPORT))
     args = parser.parse_args(argv)
-    rows, left_out, no_mount, mount_checks = build()
+    rows, left_out, no_mount, axis_checks = build()
     mounts = read_ms_mounts(SOURCES / "alma_ms" / "ANTENNA")
     for row in rows:
         if row["name"] == "ALMA" and mounts == ["ALT-AZ"]:
             row["mount"] = "AZEL"
             row["mount_source"] = f"{ALMA_MS}: MOUNT 'ALT-AZ' for its antennas DA41, DA42"
+    failed = failures(rows)
+    if failed:
+        print("Unexplained disagreements (fix the row, or list the reason in "
+              "EXCEPTIONS, REFERENCE_POINTS or MOUNT_EXCEPTIONS):\n  " + "\n  ".join(failed),
+              file=sys.stderr)
+        return 1
     table = to_table(rows)
     table.write(args.output, format="ascii.ecsv", overwrite=True)
-    Path(args.report).write_text(report(rows, left_out, no_mount, mount_checks))
-    print(f"{len(table)} stations written to {args.output}; {len(left_out)} left out",
-          file=sys.stderr)
+    Path(args.report).write_text(report(rows, left_out, no_mount, axis_checks))
+    print(summary(rows))
+    print(f"{len(table)} stations written to {args.output}; {len(left_out)} left out")
     return 0
 
 
