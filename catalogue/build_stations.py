@@ -126,7 +126,8 @@ EXCEPTIONS = {
                                  "(KP-VLBA, 0.1 m away from it), 402 m from the 12 m"),
     ("LMT", "eht2025"): (100.0, "eht-imaging keeps an older LMT position; SCHED's is the one "
                                 "S. Doeleman provided in Feb 2015 (stations.dat comment)"),
-    ("LMT", "eht2017"): (100.0, "as eht2025"),
+    ("LMT", "eht2017"): (100.0, "eht-imaging keeps an older LMT position; SCHED's is the one "
+                                "S. Doeleman provided in Feb 2015 (stations.dat comment)"),
     ("APEX", "planner"): (1300.0, "the planner's [APEX] is 1.29 km north (latitude -22.9942 "
                                   "deg); eht-imaging and casacore (-23.0057 deg) agree"),
     ("JCMT", "casa-obs"): (450.0, "casacore's JCMT (1998, whole arcseconds) is 436 m off; "
