@@ -274,6 +274,8 @@ COMMON_NAMES = {
     "TIDBIN64": ["Tidbinbilla 70m", "DSS-43"],
     "KP12": ["Kitt Peak 12m", "ARO 12m"],
     "GREENLAND": ["Greenland Telescope"],
+    # SCHED's PDBURE repeats NOEMA's position and is left out: its name stays.
+    "NOEMA": ["PDBURE", "Plateau de Bure"],
 }
 
 #: VGOS stations (names only): the IVS VGOS network as listed by the IVS
