@@ -34,6 +34,7 @@ from readers import (
     read_observatories,
     read_paper,
     read_planner,
+    read_pyuvdata_telescopes,
     read_sched_stations,
     read_sites,
     validate_axistypes,
@@ -52,6 +53,7 @@ CASA_SCHED = "casadata 2025.9.22 geodetic/SCHED_locations"
 EHTIM = "eht-imaging arrays/EHT2017.txt (commit 1b5dc2c)"
 EHT2025 = "eht-imaging arrays/EHT2025.txt (commit 7acf089)"
 SITES = "astropy-data coordinates/sites.json (commit 1ec3f59)"
+PYUVDATA = "pyuvdata 3.2.8 telescopes.py KNOWN_TELESCOPES"
 PAPER = "paper"
 
 #: Common epoch (MJD, 2020 Jan 1) at which two positions are compared, each
@@ -82,6 +84,7 @@ SOURCE_TAGS = {
     "eht2025": (EHT2025, False),
     "casa-obs": (CASA, False),
     "sites": (SITES, False),
+    "pyuvdata": (PYUVDATA, False),
 }
 
 TOHOKU_TEXT = ("the 2011 Mar 11 Tohoku earthquake, whose jump and post-seismic motion the "
@@ -159,6 +162,8 @@ REFERENCE_POINTS = {
     ("SMA", "casa-obs"): (500.0, "casacore's SMA X, Y, Z are 'SMAP' (from a vex file), not "
                                  "the EHT's phased-array reference point"),
     ("SMA", "planner"): (500.0, "the planner's [SMA] is another point of the array"),
+    ("SMA", "pyuvdata"): (500.0, "pyuvdata's SMA is the array's position of Ho, Moran & Lo "
+                                 "2004, not the EHT's phased-array reference point"),
     ("ASKAP32", "casa-obs"): (6000.0, "the ASKAP array's reference point, not the antenna "
                                       "SCHED gives (the phased array's VLBI position)"),
     ("ASKAP32", "sites"): (6000.0, "the ASKAP site (0.001 deg), not SCHED's antenna"),
@@ -168,6 +173,11 @@ REFERENCE_POINTS = {
     ("GMRT_C02", "planner"): (25000.0, "the planner's [GMRT], the phased array, not C02"),
     ("VLA", "casa-obs"): (36000.0, "the VLA array's reference point, not pad N8 of SCHED's "
                                    "phased-array VLBI position"),
+    ("ATA", "casa-obs"): (300.0, "casacore's ATA and pyuvdata's (D. DeBoer 2024) are two "
+                                 "reference points of the array (its antennas span 300 m)"),
+    ("HERA", "casa-obs"): (1000.0, "casacore's HERA and pyuvdata's (hera_mc) are two "
+                                   "reference points of the array (with its outriggers "
+                                   "about 1 km across)"),
     ("VLA", "sites"): (36000.0, "the VLA site, not SCHED's phased-array VLBI position"),
 }
 
@@ -229,7 +239,8 @@ OBSERVATORY_NAMES = {
     "ASKAP": "ASKAP32", "MeerKAT": "MEERKAT", "NOEMA": "NOEMA", "APEX": "APEX", "SMT": "SMT",
     "JCMT": "JCMT", "PKS": "PARKES", "MOPRA": "MOPRA", "ARECIBO": "ARECIBO",
     "GBT": "GBT-VLBA", "Effelsberg": "EFLSBERG", "WSRT": "WB_RT1", "NRO": "NOBEY_45",
-    "FAST": "FAST", "IRAM_PDB": "NOEMA",
+    "FAST": "FAST", "IRAM_PDB": "NOEMA", "ATA": "ATA", "HERA": "HERA", "OVRO-LWA": "OVRO-LWA",
+    "MWA": "MWA",
 }
 
 #: astropy-data sites.json keys and the station each one is (by name).
@@ -237,11 +248,29 @@ SITE_NAMES = {
     "vla": "VLA", "alma": "ALMA", "gbt": "GBT-VLBA", "ao": "ARECIBO", "jcmt": "JCMT",
     "meerkat": "MEERKAT", "gmrt": "GMRT_C02", "fast": "FAST", "parkes": "PARKES",
     "effelsberg": "EFLSBERG", "askap": "ASKAP32", "medicina": "MEDICINA", "noto": "NOTO",
-    "srt": "SARDINIA",
+    "srt": "SARDINIA", "mwa": "MWA",
 }
 
+#: Connected arrays of pyuvdata's known telescopes: name -> (catalogue name,
+#: the source of the position, why the mount code). A ``fixed`` or ``phased``
+#: array's elements are fixed to the ground: the geodetic code GNSS, a
+#: stationary antenna (astropy_feedrot.labels reads pyuvdata's ``fixed`` so).
+PYUVDATA_ARRAYS = {
+    "ATA": ("ATA", "pyuvdata", "AZEL"),
+    "HERA": ("HERA", "pyuvdata", "GNSS"),
+    "OVRO-LWA": ("OVRO-LWA", "pyuvdata", "GNSS"),
+    "MWA": ("MWA", "sites:mwa", "GNSS"),  # pyuvdata takes MWA's location from astropy
+}
+
+#: pyuvdata's known telescopes and the catalogue's stations (by name).
+PYUVDATA_NAMES = {"ATA": "ATA", "HERA": "HERA", "OVRO-LWA": "OVRO-LWA", "SMA": "SMA"}
+
+#: pyuvdata mount_type values and the mount code and focus each states.
+PYUVDATA_MOUNTS = {"alt-az": ("AZEL", None), "alt-az+nasmyth-l": ("NASL", "nasmyth-left"),
+                   "fixed": ("GNSS", ""), "phased": ("GNSS", "")}
+
 #: casadata SCHED_locations DBNAMEs that differ from the catalogue's name.
-CASA_SCHED_NAMES = {"GBT": "GBT-VLBA"}
+CASA_SCHED_NAMES = {"GBT": "GBT-VLBA", "ATCA_104": "AT_W104"}
 
 #: Connected arrays: the network name given to a station by its name.
 CONNECTED = {"VLA": "VLA", "ALMA": "ALMA", "ATCA": "ATCA", "SMA": "SMA", "NOEMA": "NOEMA",
@@ -260,6 +289,17 @@ EHT_NOT_CURRENT = {"CARMA": "CARMA closed in 2015; the file keeps it for simulat
 #: EHT stations whose position the catalogue takes from eht-imaging's current
 #: array file: no geodetic solution used here gives them.
 EHT_POSITIONS = {"APEX", "JCMT", "SMA", "SPT", "GREENLAND", "SMT", "ALMA", "NOEMA"}
+
+#: Pads of connected arrays in SCHED's locations.dat, by the FRAME of their
+#: entries: (network, the SCHED station whose MOUNT the array's antennas share).
+PADS = {
+    "VLA antenna data Sep. 28, 2011 adjusted to N8 from gsfc2014a.": ("VLA", "VLA27"),
+    "Calculated by offset from AT_W104 pad": ("ATCA", "ATCA"),
+}
+
+#: Pads whose position SCHED derives from another pad's: confirmed when that
+#: pad is (no other source holds them).
+DERIVED_FROM = {"Calculated by offset from AT_W104 pad": "AT_W104"}
 
 #: The EVN planner's entries that are not the antenna its code first matches:
 #: section -> catalogue name (names only).
@@ -392,6 +432,28 @@ def build():
                 position_source=f"{SCHED}{file_name} line {loc['line']} ({loc['frame']})",
                 mount_source=mount_source, focus_source="", checks=[])
 
+    # 1c. The pads of the VLA and the ATCA in SCHED's locations.dat (the
+    # antennas move between them): alt-az antennas, as SCHED's VLA and ATCA
+    # stations say.
+    station_line = {entry["station"]: entry["line"] for entry in sched}
+    by_key = {_key(name): name for name in rows}
+    for name, loc in locations.items():
+        array = PADS.get(loc["frame"])
+        if array is None or name in rows:
+            continue
+        network, station = array
+        if _key(name) in by_key:  # the pad is a geodetic station (VLA-N8): one row
+            rows[by_key[_key(name)]]["networks"].add(network)
+            continue
+        rows[name] = dict(
+            name=name, aliases=[], networks={network}, xyz=loc["xyz"], vel=loc["vel"],
+            epoch=loc["epoch"], mount="AZEL", focus="cassegrain", frame=loc["frame"],
+            sched_codes=set(),
+            position_source=f"{SCHED}locations.dat line {loc['line']} ({loc['frame']})",
+            mount_source=f"{SCHED}stations.dat line {station_line[station]} ({station}: "
+                         f"MOUNT=ALTAZ, the antennas of the {network})",
+            focus_source="", checks=[])
+
     # 2. The EVN planner: networks for SCHED stations (same code, within 5 km),
     # and stations SCHED lacks.
     for station in planner:
@@ -442,6 +504,30 @@ def build():
         row.update(mount=mount, focus=focus, mount_source=mount_source,
                    focus_source=focus_source)
         row["aliases"] += PAPER_ALIASES.get(name, [])
+
+    # 3b. Connected arrays of pyuvdata's known telescopes: reference positions
+    # and the mount pyuvdata states.
+    for key, (name, where, code) in PYUVDATA_ARRAYS.items():
+        entry = sources["pyuvdata"][key]
+        if where == "pyuvdata":
+            xyz, source = entry["xyz"], f"{PYUVDATA} line {entry['line']} ({key}: " \
+                f"{entry['citation']})"
+        else:
+            site = sources["sites"][where.split(":")[1]]
+            xyz, source = site["xyz"], f"{SITES} ({where.split(':')[1]}: {site['source']})"
+        stationary = code == "GNSS"
+        rows[name] = dict(
+            name=name, aliases=[key], networks={name}, xyz=xyz, vel=[0.0] * 3,
+            epoch=math.nan, frame="", sched_codes=set(), mount=code,
+            focus="" if stationary else "cassegrain", position_source=source,
+            mount_source=f"{PYUVDATA} line {entry['line']} (mount_type "
+                         f"'{entry['mount_type']}'" + ("; elements fixed to the ground)"
+                                                       if stationary else ")"),
+            focus_source=("none: elements fixed to the ground have no focus that moves"
+                          if stationary else
+                          "assumed: Cassegrain; pyuvdata gives none (the ATA's offset "
+                          "Gregorian optics give the same feed rotation)"),
+            checks=[])
 
     # 4. The EHT: its current array (eht-imaging's EHT2025.txt), positions
     # of the stations no geodetic solution gives, and the focus each file states.
@@ -520,6 +606,8 @@ def build():
                  if any(c["status"] != "FAIL" for c in row["checks"])
                  or (not row["checks"] and "locations.dat line" in row["position_source"]
                      and row.get("frame", "").startswith("GSFC Jan. 12, 2020"))]
+    confirmed += [row for row in rows.values() if row not in confirmed and
+                  rows.get(DERIVED_FROM.get(row.get("frame"), "")) in confirmed]
     kept = [row for row in rows.values() if row in confirmed or row["name"] in PAPER_FOCUS]
     left_out = sorted(row["name"] for row in rows.values() if row not in kept)
     axis_checks = {
@@ -545,6 +633,7 @@ def load_sources():
         "eht2025": read_eht(SOURCES / "eht-imaging" / "EHT2025.txt"),
         "casa-obs": read_observatories(SOURCES / "casadata" / "Observatories"),
         "sites": read_sites(SOURCES / "astropy-data" / "sites.json"),
+        "pyuvdata": read_pyuvdata_telescopes(SOURCES / "pyuvdata" / "telescopes.py"),
     }
 
 
@@ -576,7 +665,11 @@ def references(row, sources):
                  and not row["position_source"].startswith(SOURCE_TAGS[tag][0])]
     refs += [f"casa-obs:{o}" for o, station in OBSERVATORY_NAMES.items()
              if station == name and o in sources["casa-obs"]]
-    refs += [f"sites:{s}" for s, station in SITE_NAMES.items() if station == name]
+    refs += [f"sites:{s}" for s, station in SITE_NAMES.items() if station == name
+             and not row["position_source"].startswith(f"{SITES} ({s}:")]
+    refs += [f"pyuvdata:{k}" for k, e in sources["pyuvdata"].items()
+             if "xyz" in e and PYUVDATA_NAMES.get(k) == name
+             and not row["position_source"].startswith(PYUVDATA)]
     return refs
 
 
@@ -586,7 +679,7 @@ def source_record(sources, ref):
     record = sources[tag][key]
     if tag == "casa-obs":
         return dict(xyz=record, vel=[0.0] * 3, epoch=math.nan, geodetic=False)
-    if tag in ("eht2017", "eht2025", "planner", "sites"):
+    if tag in ("eht2017", "eht2025", "planner", "sites", "pyuvdata"):
         return dict(xyz=record["xyz"], vel=[0.0] * 3, epoch=math.nan, geodetic=False)
     frame = record["frame"]
     return dict(xyz=record["xyz"], vel=record["vel"], epoch=record["epoch"],
@@ -601,7 +694,7 @@ def source_names(sources, ref):
         return [record["code"], record["name"]]
     if tag == "sites":
         return record["names"]
-    if tag in ("casa-obs", "eht2025", "eht2017"):
+    if tag in ("casa-obs", "eht2025", "eht2017", "pyuvdata"):
         return [key]
     return []
 
@@ -656,6 +749,11 @@ def mount_checks(row, sources):
             stated = MOUNT_CODES.get(record["mount"].upper())
             agree = _axis_family(stated) == _axis_family(row["mount"])
             found.append((ref, f"mount {stated}", "agree" if agree else "disagree"))
+        elif tag == "pyuvdata" and record.get("mount_type") in PYUVDATA_MOUNTS:
+            code, focus = PYUVDATA_MOUNTS[record["mount_type"]]
+            agree = _axis_family(code) == _axis_family(row["mount"]) and \
+                (focus is None or focus == row["focus"])
+            found.append((ref, f"mount {record['mount_type']}", "agree" if agree else "disagree"))
         elif tag in ("eht2017", "eht2025") and record["fr_par"]:
             side = {1: "nasmyth-right", -1: "nasmyth-left"}.get(int(record["fr_elev"]))
             if side is None:
@@ -683,6 +781,10 @@ def failures(rows):
                 lines.append(f"{row['name']}: {ref} states {stated}; the catalogue has "
                              f"mount {row['mount']}, focus {row['focus'] or 'default'}")
     return lines
+
+
+def _key(name):
+    return re.sub(r"[^0-9A-Z]", "", str(name).upper())
 
 
 def _clean_aliases(rows):

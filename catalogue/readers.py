@@ -10,7 +10,7 @@ import math
 import re
 
 from astropy import units as u
-from astropy.coordinates import EarthLocation
+from astropy.coordinates import Angle, EarthLocation
 
 #: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
 MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
@@ -212,3 +212,38 @@ def read_ms_mounts(path):
 
     with table(str(path), ack=False) as tab:
         return sorted(set(tab.getcol("MOUNT")))
+
+
+def read_pyuvdata_telescopes(path):
+    """pyuvdata's ``KNOWN_TELESCOPES`` (its ``telescopes.py``), read without running it.
+
+    Returns name -> dict with ``lat``, ``lon`` (angle strings as written),
+    ``height`` (m) where the entry gives a location, ``mount_type``,
+    ``citation`` and ``line``.
+    """
+    import ast
+
+    tree = ast.parse(path.read_text())
+    found = {}
+    for node in tree.body:
+        if not (isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "")
+                == "KNOWN_TELESCOPES"):
+            continue
+        for key, value in zip(node.value.keys, node.value.values):
+            entry = {"line": key.lineno}
+            for field, item in zip(value.keys, value.values):
+                if isinstance(item, ast.Constant):
+                    entry[field.value] = item.value
+                elif field.value == "location":
+                    for keyword in item.keywords:
+                        if keyword.arg in ("lat", "lon"):
+                            entry[keyword.arg] = keyword.value.args[0].value
+                        elif keyword.arg == "height":
+                            entry["height"] = keyword.value.left.value
+            if "lat" in entry:
+                loc = EarthLocation.from_geodetic(u.Quantity(Angle(entry["lon"]), u.deg),
+                                                  u.Quantity(Angle(entry["lat"]), u.deg),
+                                                  entry["height"] * u.m)
+                entry["xyz"] = [float(v.to_value(u.m)) for v in (loc.x, loc.y, loc.z)]
+            found[key.value] = entry
+    return found

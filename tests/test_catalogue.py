@@ -60,6 +60,10 @@ def test_size_and_provenance():
     ("LBA", {"PARKES", "MOPRA", "HOBART26", "CEDUNA"}),
     ("EHT", {"PICOVEL", "LMT", "ALMA"}),
     ("DSN", {"DSS14", "TIDBIN64", "DSS63"}),
+    # SCHED locations.dat's pads; pyuvdata's known telescopes.
+    ("VLA", {"VLA", "VLA_E1", "VLA_W72", "VLA_N72", "VLA-N8"}),
+    ("ATCA", {"AT_W104", "AT_N2", "AT_W392"}),
+    ("ATA", {"ATA"}), ("HERA", {"HERA"}), ("MWA", {"MWA"}), ("OVRO-LWA", {"OVRO-LWA"}),
     ("VGOS", {"GGAO12M", "WETTZ13S", "ISHIOKA", "RAEGSMAR", "SEJONG", "AGGO", "RAEGYEB"}),
     ("GMVA", {"EFLSBERG", "PICOVEL"}),
     ("IVS", {"WETTZELL", "HOBART26", "KOKEE"}),
@@ -286,6 +290,15 @@ def test_ambiguous_alias_in_a_users_catalogue():
     assert catalogue.networks() == []
     with pytest.raises(ValueError, match=r"unknown network 'VLBA'.*Known networks: none"):
         catalogue.get_network("VLBA")
+
+
+def test_connected_arrays_of_pyuvdata():
+    # pyuvdata 3.2.8 KNOWN_TELESCOPES mount_type: 'alt-az' (ATA), 'fixed' (HERA,
+    # OVRO-LWA), 'phased' (MWA, whose dipoles are fixed to the ground).
+    from astropy_feedrot import StationaryMount
+    assert get_antenna("ATA").mount == AltAzMount()
+    for name in ("HERA", "OVRO-LWA", "MWA"):
+        assert isinstance(get_antenna(name).mount, StationaryMount)
 
 
 def test_eht_is_the_current_array():
