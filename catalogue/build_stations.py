@@ -171,14 +171,11 @@ REFERENCE_POINTS = {
     ("GMRT_C02", "casa-obs"): (25000.0, "the GMRT array's reference point, not the dish C02"),
     ("GMRT_C02", "sites"): (25000.0, "the GMRT site (pulsar timing), not the dish C02"),
     ("GMRT_C02", "planner"): (25000.0, "the planner's [GMRT], the phased array, not C02"),
-    ("VLA", "casa-obs"): (36000.0, "the VLA array's reference point, not pad N8 of SCHED's "
-                                   "phased-array VLBI position"),
     ("ATA", "casa-obs"): (300.0, "casacore's ATA and pyuvdata's (D. DeBoer 2024) are two "
                                  "reference points of the array (its antennas span 300 m)"),
     ("HERA", "casa-obs"): (1000.0, "casacore's HERA and pyuvdata's (hera_mc) are two "
                                    "reference points of the array (with its outriggers "
                                    "about 1 km across)"),
-    ("VLA", "sites"): (36000.0, "the VLA site, not SCHED's phased-array VLBI position"),
 }
 
 #: Mount or focus statements that the catalogue does not follow:
@@ -303,7 +300,8 @@ DERIVED_FROM = {"Calculated by offset from AT_W104 pad": "AT_W104"}
 
 #: The EVN planner's entries that are not the antenna its code first matches:
 #: section -> catalogue name (names only).
-PLANNER_STATIONS = {"Robledo 70": "DSS63", "Robledo 34": "DSS65A"}
+PLANNER_STATIONS = {"Robledo 70": "DSS63", "Robledo 34": "DSS65A", "ARO12m": "KP12",
+                    "Usuda": "USUDA64", "Tidbinbilla-70": "TIDBIN64", "VLA 27": "VLA"}
 
 #: Other names by which users know a station (the DSN's DSS-NN names come from
 #: the station names; these are common names no source file spells).
@@ -715,13 +713,15 @@ def crosscheck(name, xyz, vel, epoch, geodetic, refs, sources):
         kind = "geodetic" if geodetic and other["geodetic"] else "compiled"
         tag = ref.split(":", 1)[0]
         limit, status, reason = TOLERANCES[kind][0], "ok", ""
-        if (name, tag) in REFERENCE_POINTS:
+        if distance <= limit:
+            pass
+        elif (name, tag) in REFERENCE_POINTS:
             limit, reason = REFERENCE_POINTS[(name, tag)]
             status = "reference point" if distance <= limit else "FAIL"
-        elif distance > limit and (name, tag) in EXCEPTIONS:
+        elif (name, tag) in EXCEPTIONS:
             limit, reason = EXCEPTIONS[(name, tag)]
             status = "exception" if distance <= limit else "FAIL"
-        elif distance > limit:
+        else:
             status = "FAIL"
         checks.append(dict(ref=ref, distance=distance, kind=kind, limit=limit,
                            status=status, reason=reason))
@@ -769,8 +769,15 @@ def mount_checks(row, sources):
 
 
 def failures(rows):
-    """Every unexplained disagreement among the kept rows, one line each."""
-    lines = []
+    """Every unexplained disagreement among the kept rows, one line each, and every
+    listed exception or reference point that no comparison needs (a stale reason)."""
+    used = {(row["name"], c["ref"].split(":")[0]) for row in rows for c in row["checks"]
+            if c["status"] in ("exception", "reference point")}
+    used |= {(row["name"], m[0].split(":")[0]) for row in rows for m in row["mount_checks"]
+             if m[2] == "exception"}
+    lines = [f"{name}: the listed reason for {tag} is not needed (no such difference)"
+             for name, tag in sorted({**EXCEPTIONS, **REFERENCE_POINTS, **MOUNT_EXCEPTIONS})
+             if (name, tag) not in used]
     for row in rows:
         for check in row["checks"]:
             if check["status"] == "FAIL":

@@ -390,3 +390,8 @@ def test_build_fails_on_an_unexplained_disagreement(monkeypatch):
     rows, *_ = module.build()
     failed = module.failures(rows)
     assert any(line.startswith("APEX: 1287.") and "planner:APEX" in line for line in failed)
+    # A reason that no comparison needs fails it too (Effelsberg agrees with
+    # the planner to 0.16 m).
+    monkeypatch.setitem(module.EXCEPTIONS, ("EFLSBERG", "planner"), (5.0, "none needed"))
+    assert "EFLSBERG: the listed reason for planner is not needed (no such difference)" in \
+        module.failures(rows)
