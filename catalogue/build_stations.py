@@ -30,6 +30,8 @@ from readers import (
     read_casa_sched,
     read_eht,
     read_locations,
+    read_antenna_info,
+    read_difx_antennas,
     read_ms_mounts,
     read_observatories,
     read_paper,
@@ -54,6 +56,8 @@ EHTIM = "eht-imaging arrays/EHT2017.txt (commit 1b5dc2c)"
 EHT2025 = "eht-imaging arrays/EHT2025.txt (commit 7acf089)"
 SITES = "astropy-data coordinates/sites.json (commit 1ec3f59)"
 PYUVDATA = "pyuvdata 3.2.8 telescopes.py KNOWN_TELESCOPES"
+DIFX = "DiFX libraries/difxio/difxio/antenna_db.c (commit ed8d571)"
+ANTINFO = "IVS antenna-info.txt (A. Nothnagel, commit 9ec66be)"
 PAPER = "paper"
 
 #: Common epoch (MJD, 2020 Jan 1) at which two positions are compared, each
@@ -85,6 +89,8 @@ SOURCE_TAGS = {
     "casa-obs": (CASA, False),
     "sites": (SITES, False),
     "pyuvdata": (PYUVDATA, False),
+    "difx": (DIFX, False),
+    "antinfo": (ANTINFO, None),  # mounts and foci, no positions
 }
 
 TOHOKU_TEXT = ("the 2011 Mar 11 Tohoku earthquake, whose jump and post-seismic motion the "
@@ -141,8 +147,14 @@ EXCEPTIONS = {
     ("GREENLAND", "planner"): (1500.0, "the planner's [Greenland] and eht-imaging's GLT "
                                        "differ by 1.3 km and no third source holds the GLT; "
                                        "1.3 km tilts the vertical by 0.012 deg"),
-    ("SPT", "planner"): (60.0, "both place SPT at the pole (the EHT's convention); they "
-                               "differ in height"),
+    ("SPT", "planner"): (1200.0, "the planner places SPT at the pole; DiFX's antenna_db "
+                                 "1.16 km from it, at longitude -45 deg"),
+    ("SPT", "eht2025"): (1200.0, "eht-imaging places SPT at the pole (0.01, 0.01 m: the "
+                                 "EHT's convention); at the pole the longitude is arbitrary "
+                                 "and the feed rotation of the two positions differs by a "
+                                 "near-constant angle; DiFX's antenna_db places it 1.16 km "
+                                 "from the pole at longitude -45 deg"),
+    ("SPT", "eht2017"): (1200.0, "as in eht-imaging's current file: SPT at the pole"),
 }
 
 #: Reference points: (station, source tag) -> what the source's position is
@@ -162,6 +174,8 @@ REFERENCE_POINTS = {
     ("SMA", "casa-obs"): (500.0, "casacore's SMA X, Y, Z are 'SMAP' (from a vex file), not "
                                  "the EHT's phased-array reference point"),
     ("SMA", "planner"): (500.0, "the planner's [SMA] is another point of the array"),
+    ("SMA", "difx"): (500.0, "DiFX's SMA is 'SMAP' (as casacore's), not the EHT's "
+                             "phased-array reference point"),
     ("SMA", "pyuvdata"): (500.0, "pyuvdata's SMA is the array's position of Ho, Moran & Lo "
                                  "2004, not the EHT's phased-array reference point"),
     ("ASKAP32", "casa-obs"): (6000.0, "the ASKAP array's reference point, not the antenna "
@@ -178,9 +192,21 @@ REFERENCE_POINTS = {
                                    "about 1 km across)"),
 }
 
+ALTZ_EVERYWHERE = ("casadata's SCHED_locations, like SCHED's locations.dat.2005f that it "
+                   "descends from, writes AXISTYPE 'altz' for this polar or X-Y mount; the "
+                   "IVS antenna-info file gives its mount (and the large axis offset of both "
+                   "files is that of a polar or X-Y mount)")
+
 #: Mount or focus statements that the catalogue does not follow:
 #: (station, source tag) -> the reason.
 MOUNT_EXCEPTIONS = {
+    **{(name, "casa-sched"): ALTZ_EVERYWHERE for name in (
+        "MARPOINT", "NRAO85_1", "NRAO85_3", "SANTIA12", "HATCREEK", "HRAS_085", "KAUAI",
+        "MOJAVE12", "RICHMOND")},
+    ("APEX", "difx"): "APEX has Nasmyth cabins on both sides; the EHT's receiver is in the "
+                      "right-handed one as eht-imaging's current and 2017 files say "
+                      "(FR_ELEV_ANGLE +1); DiFX's antenna_db (names and rough positions) "
+                      "writes NASL",
     ("HOBART26", "planner"): "Hobart 26 m is an X-Y mount (SCHED stations.dat MOUNT=XYEW and "
                              "the GSFC AXISTYPE agree); the planner writes ALTAZ for it",
 }
@@ -258,6 +284,25 @@ PYUVDATA_ARRAYS = {
     "OVRO-LWA": ("OVRO-LWA", "pyuvdata", "GNSS"),
     "MWA": ("MWA", "sites:mwa", "GNSS"),  # pyuvdata takes MWA's location from astropy
 }
+
+#: DiFX antenna_db names (or IVS names as DiFX spells them) and the
+#: catalogue's stations, where DiFX gives no IVS name or spells it otherwise.
+DIFX_NAMES = {"Apex": "APEX", "LMT": "LMT", "Pico Veleta": "PICOVEL", "SMA": "SMA",
+              "SMT": "SMT", "JCMT": "JCMT", "Kitt Peak 12": "KP12", "South Pole": "SPT",
+              "ALMA": "ALMA", "NYALES13S": "NYALE13S", "ONSALS60": "ONSALA60",
+              "DSS43": "TIDBIN64"}
+
+#: Stations whose position the catalogue takes from DiFX's antenna_db (the
+#: only source used that holds them off the pole): name -> DiFX name.
+DIFX_POSITIONS = {"SPT": "South Pole"}
+
+#: antenna-info mount codes and the catalogue's.
+ANTINFO_MOUNTS = {"MO_AZEL": "AZEL", "MO_EQUA": "EQUA", "MO_XYNO": "X-YN", "MO_XYEA": "X-YE",
+                  "MO_RICH": "RICH"}
+
+#: DiFX antenna_db mount strings and the catalogue's codes.
+DIFX_MOUNTS = {"NASL": "NASL", "NASR": "NASR", "EQUA": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN",
+               "AZEL": "AZEL"}
 
 #: pyuvdata's known telescopes and the catalogue's stations (by name).
 PYUVDATA_NAMES = {"ATA": "ATA", "HERA": "HERA", "OVRO-LWA": "OVRO-LWA", "SMA": "SMA"}
@@ -399,9 +444,17 @@ def build():
                     (entries is older and name in locations):
                 continue
             code, mount_source, dbcode, planner_code = None, "", "", None
-            for axes, axes_file in ((axis_now, "locations.dat"),
+            # locations.dat's AXISTYPE, else the IVS antenna-info file, else the
+            # 2005f AXISTYPE (which writes 'altz' for some polar and X-Y mounts).
+            info = sources["antinfo"].get(name)
+            for axes, axes_file in ((axis_now, "locations.dat"), (None, "antinfo"),
                                     (axis_2005, "Master_NRAO/locations.dat.2005f")):
-                if name in axes:
+                if axes is None and info is not None and info["mount"] in ANTINFO_MOUNTS:
+                    code = ANTINFO_MOUNTS[info["mount"]]
+                    mount_source = f"{ANTINFO} line {info['line']} ({info['mount']})"
+                    dbcode = axis_2005.get(name, ("", "", 0))[1]
+                    break
+                if axes is not None and name in axes:
                     axis, dbcode, line = axes[name]
                     code = AXIS_CODES.get(axis)
                     mount_source = f"{SCHED}{axes_file} line {line} (AXISTYPE={axis})"
@@ -535,7 +588,11 @@ def build():
         row = rows[EHT_NAMES[eht_name]]
         row["networks"].add("EHT")
         row["aliases"].append(eht_name)
-        if row["name"] in EHT_POSITIONS:
+        if row["name"] in DIFX_POSITIONS:
+            entry = sources["difx"][DIFX_POSITIONS[row["name"]]]
+            row.update(xyz=entry["xyz"], vel=[0.0] * 3, epoch=math.nan, frame="",
+                       position_source=f"{DIFX} line {entry['line']} ({entry['name']})")
+        elif row["name"] in EHT_POSITIONS:
             row.update(xyz=coeff["xyz"], vel=[0.0] * 3, epoch=math.nan, frame="",
                        position_source=f"{EHT2025} line {coeff['line']} ({eht_name})")
     for tag, table in (("eht2025", eht_now), ("eht2017", eht)):
@@ -557,6 +614,17 @@ def build():
             if coeff["fr_offset"]:
                 row["feed_offset"] = coeff["fr_offset"]
                 row["feed_offset_source"] = f"{label}, FR_OFFSET={coeff['fr_offset']:g} deg"
+    for row in rows.values():
+        info = sources["antinfo"].get(row["name"])
+        if row["focus_source"] or info is None or row["mount"] in ("NASR", "NASL", "BWG"):
+            continue
+        if info["focus"] == "FO_PRIM":
+            row["focus"] = "prime"
+            row["focus_source"] = f"{ANTINFO} line {info['line']} (FO_PRIM: prime focus)"
+        elif info["focus"] == "FO_SECN":
+            row["focus_source"] = (f"assumed: Cassegrain; {ANTINFO} line {info['line']} gives "
+                                   "a secondary focus (FO_SECN), which may also be a Nasmyth "
+                                   "or beam-waveguide one")
     for row in rows.values():
         if row["focus_source"]:
             continue
@@ -632,6 +700,8 @@ def load_sources():
         "casa-obs": read_observatories(SOURCES / "casadata" / "Observatories"),
         "sites": read_sites(SOURCES / "astropy-data" / "sites.json"),
         "pyuvdata": read_pyuvdata_telescopes(SOURCES / "pyuvdata" / "telescopes.py"),
+        "difx": {e["name"]: e for e in read_difx_antennas(SOURCES / "difx" / "antenna_db.c")},
+        "antinfo": read_antenna_info(SOURCES / "antenna-info" / "antenna-info.txt"),
     }
 
 
@@ -665,6 +735,10 @@ def references(row, sources):
              if station == name and o in sources["casa-obs"]]
     refs += [f"sites:{s}" for s, station in SITE_NAMES.items() if station == name
              and not row["position_source"].startswith(f"{SITES} ({s}:")]
+    refs += [f"difx:{k}" for k, e in sources["difx"].items()
+             if (DIFX_NAMES.get(k) or DIFX_NAMES.get(e["ivs"]) or
+                 next((r for r in (e["ivs"],) if r and _key(r) == _key(name)), None)) in
+             (name, _key(name)) and not row["position_source"].startswith(DIFX)]
     refs += [f"pyuvdata:{k}" for k, e in sources["pyuvdata"].items()
              if "xyz" in e and PYUVDATA_NAMES.get(k) == name
              and not row["position_source"].startswith(PYUVDATA)]
@@ -677,7 +751,7 @@ def source_record(sources, ref):
     record = sources[tag][key]
     if tag == "casa-obs":
         return dict(xyz=record, vel=[0.0] * 3, epoch=math.nan, geodetic=False)
-    if tag in ("eht2017", "eht2025", "planner", "sites", "pyuvdata"):
+    if tag in ("eht2017", "eht2025", "planner", "sites", "pyuvdata", "difx"):
         return dict(xyz=record["xyz"], vel=[0.0] * 3, epoch=math.nan, geodetic=False)
     frame = record["frame"]
     return dict(xyz=record["xyz"], vel=record["vel"], epoch=record["epoch"],
@@ -735,10 +809,32 @@ def _axis_family(code):
 def mount_checks(row, sources):
     """Mount and focus statements of the other sources: (ref, stated, status, reason)."""
     found = []
-    for ref in row["refs"]:
+    refs = list(row["refs"])
+    if row["name"] in sources["antinfo"]:
+        refs.append(f"antinfo:{row['name']}")
+    for ref in refs:
         tag, key = ref.split(":", 1)
         record = sources[tag][key]
         stated = None
+        if tag == "antinfo":
+            stated = ANTINFO_MOUNTS.get(record["mount"])
+            if stated is not None:
+                agree = _axis_family(stated) == _axis_family(row["mount"])
+                found.append((ref, f"mount {stated}", "agree" if agree else "disagree"))
+            if record["focus"] == "FO_PRIM":
+                agree = row["focus"] == "prime"
+                found.append((ref, "focus prime", "agree" if agree else "disagree"))
+            elif record["focus"] == "FO_SECN":
+                agree = row["focus"] != "prime" and not (row["focus"] == "" and
+                                                         row["mount"] == "GNSS")
+                found.append((ref, "focus secondary", "agree" if agree else "disagree"))
+            continue
+        if tag == "difx" and record["mount"]:
+            stated = DIFX_MOUNTS.get(record["mount"])
+            agree = _axis_family(stated) == _axis_family(row["mount"]) and (
+                stated not in ("NASL", "NASR") or stated == row["mount"])
+            found.append((ref, f"mount {stated}", "agree" if agree else "disagree"))
+            continue
         if tag == "casa-sched":
             stated = AXIS_CODES.get(record["axis"].upper())
             if stated is not None and _axis_family(stated) != _axis_family(row["mount"]):
@@ -898,8 +994,9 @@ def report(rows, left_out, no_mount, axis_checks):
             lines.append(f"  {row['name']:12s} {ref:28s} {stated:9s} (catalogue: "
                          f"{row['mount']} {row['focus'] or '-'})  {status}")
     single = sorted(row["name"] for row in rows if not row["checks"])
-    lines += ["", "Kept with one source (the current GSFC solution, or the paper; no other "
-              "source used holds them): " + (", ".join(single) or "none")]
+    lines += ["", "Kept with one source (the current GSFC solution, the paper, or an ATCA pad "
+              "that SCHED derives from AT_W104; no other source used holds them): "
+              + (", ".join(single) or "none")]
     lines += ["", "Left out (no other source confirms the position): "
               + (", ".join(left_out) or "none")]
     lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "

@@ -247,3 +247,38 @@ def read_pyuvdata_telescopes(path):
                 entry["xyz"] = [float(v.to_value(u.m)) for v in (loc.x, loc.y, loc.z)]
             found[key.value] = entry
     return found
+
+
+def read_antenna_info(path):
+    """Nothnagel's IVS antenna-info file: IVS name -> focus, mount and line.
+
+    ``focus`` is ``FO_PRIM`` (prime) or ``FO_SECN`` (secondary: Cassegrain,
+    Gregorian, and also Nasmyth or beam waveguide, which the file does not
+    tell apart), or empty; ``mount`` is ``MO_AZEL``, ``MO_EQUA``, ``MO_XYNO``,
+    ``MO_XYEA`` or ``MO_RICH``.
+    """
+    found = {}
+    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+        if line.startswith("ANTENNA_INFO"):
+            name = line[14:22].strip()
+            found.setdefault(name, dict(focus=line[24:31].strip(), mount=line[32:39].strip(),
+                                        line=number))
+    return found
+
+
+def read_difx_antennas(path):
+    """DiFX's ``antenna_db.c`` table: entries in file order.
+
+    Each: ``name``, ``ivs`` (IVS name or empty), ``xyz`` (m), ``mount`` (as
+    written: ``NASL``, ``NASR``, ``EQUA``, ``XYEW``... or empty) and ``line``.
+    """
+    entries = []
+    pattern = re.compile(r'^\s*\{\s*"([^"]*)",\s*"([^"]*)",\s*([-0-9.]+),\s*([-0-9.]+),\s*'
+                         r'([-0-9.]+),\s*([-0-9.]+)(?:,\s*([-0-9.]+))?(?:,\s*"([^"]*)")?')
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        found = pattern.match(line)
+        if found and found[1]:
+            entries.append(dict(name=found[1], ivs=found[2],
+                                xyz=[float(found[i]) for i in (3, 4, 5)],
+                                mount=found[8] or "", line=number))
+    return entries

@@ -168,7 +168,7 @@ def test_usual_names_resolve(name, expected):
     # Two-letter codes that SCHED, casadata and eht-imaging give two stations.
     ("Ap", "ALGOPARK.*APEX"), ("KP", "KP-VLBA.*KP12"), ("Go", "DSS13.*DSS15"),
     ("On", "ONSALA60.*ONSALA85"), ("YK", "YELLOWKN.*YLOW7296"), ("Jb", "JB_Mk_2.*JODLMKI"),
-    ("Ti", "DSS34.*DSS36.*TIDBIN64"), ("Ro", "DSS63.*DSS65A"),
+    ("Ti", "DSS34.*DSS36.*TIDBIN64"), ("Ro", "DSS54.*DSS63.*DSS65A"),
     # The planner's [Kitt Peak] is the VLBA antenna, SCHED's KITTPEAK the 12 m.
     ("Kitt Peak", "KP-VLBA.*KP12"),
 ])
@@ -292,6 +292,25 @@ def test_ambiguous_alias_in_a_users_catalogue():
         catalogue.get_network("VLBA")
 
 
+@pytest.mark.parametrize("name, code", [
+    # IVS antenna-info (Nothnagel) MO_EQUA, MO_XYNO, MO_RICH; SCHED's 2005f file
+    # and casadata's copy say 'altz' for all of them.
+    ("HATCREEK", "EQUA"), ("MARPOINT", "EQUA"), ("NRAO85_1", "EQUA"), ("NRAO85_3", "EQUA"),
+    ("HRAS_085", "EQUA"), ("KAUAI", "X-YN"), ("MOJAVE12", "X-YN"), ("SANTIA12", "X-YN"),
+    ("RICHMOND", "RICH"), ("HOBART26", "X-YE"), ("ONSALA85", "EQUA"), ("HARTRAO", "EQUA"),
+])
+def test_polar_and_xy_mounts(name, code):
+    assert TABLE["mount"][list(TABLE["name"]).index(name)] == code
+    assert get_antenna(name).mount == mount_from_label(code, "geodetic")[0]
+
+
+def test_prime_focus_from_antenna_info():
+    # antenna-info FO_PRIM for WESTFORD and PARKES (the paper: prime focus too).
+    from astropy_feedrot import PrimeFocus
+    assert get_antenna("WESTFORD").focus == PrimeFocus()
+    assert get_antenna("PARKES").focus == PrimeFocus()
+
+
 def test_connected_arrays_of_pyuvdata():
     # pyuvdata 3.2.8 KNOWN_TELESCOPES mount_type: 'alt-az' (ATA), 'fixed' (HERA,
     # OVRO-LWA), 'phased' (MWA, whose dipoles are fixed to the ground).
@@ -338,7 +357,7 @@ def test_cli_filters():
 
 @pytest.mark.parametrize("args, match", [
     (("--network", "VLBB"), r"--network: unknown network 'VLBB'.*did you mean"),
-    (("--mount", "RICH"), r"--mount: no station has the mount code 'RICH'; the catalogue's "
+    (("--mount", "NASP"), r"--mount: no station has the mount code 'NASP'; the catalogue's "
                           r"codes are AZEL"),
 ])
 def test_cli_filter_errors(args, match, capsys):
