@@ -2,13 +2,15 @@
 """A catalogue of antennas: positions, mounts and focus types by name.
 
 The embedded catalogue holds the stations of the VLBI networks (VLBA, EVN and
-e-MERLIN, IVS, KVN, VERA and the EAVN, the LBA, the GMVA, the EHT) and
-reference positions of connected arrays, built by
-``catalogue/build_stations.py`` from public station files (the catalogues of
-the VLBI scheduling program SCHED, the EVN observation planner, casacore's
-observatory table, eht-imaging's EHT array file; see :doc:`/stations`). Each
-row gives the source of its position, mount and focus; a focus that no source
-gives is marked "assumed" with the reason. The paper's antennas come first,
+e-MERLIN, IVS and VGOS, KVN, VERA and the EAVN, the LBA, the GMVA, the EHT, the
+DSN), the pads of the VLA and the ATCA, and reference positions of connected
+arrays, built by ``catalogue/build_stations.py`` from public station files (the
+catalogues of the VLBI scheduling program SCHED, the EVN observation planner,
+casacore's tables, eht-imaging's EHT array files, astropy-data's sites,
+pyuvdata's known telescopes, DiFX's antenna table, the IVS antenna-info file;
+see :doc:`/stations`) and checked against every other source that holds each
+station. Each row gives the source of its position, mount and focus; a focus
+that no source gives is marked "assumed" with the reason. The paper's antennas come first,
 with the positions of its Tables 1 and 3 (DBR205, FD-VLBA, GGAO12M, WETTZ13S),
 its mounts and focus types, and the mirror trains of YEBES40M and WARK30M
 (Appendix C). Mounts are written as the geodetic station-catalogue codes (see

@@ -146,6 +146,11 @@ CONNECTED = {"VLA": "VLA", "ALMA": "ALMA", "ATCA": "ATCA", "SMA": "SMA", "NOEMA"
 #: array file: no geodetic solution used here gives them.
 EHT_POSITIONS = {"APEX", "JCMT", "SMA", "SPT", "GREENLAND", "SMT", "ALMA", "NOEMA"}
 
+#: Stations the catalogue must hold: the EHT's current array and the DSN's
+#: 70 m antennas. The build fails if the cross-check leaves one out.
+REQUIRED = {*(name for code, name in EHT_NAMES.items() if code not in EHT_NOT_CURRENT),
+            "DSS14", "TIDBIN64", "DSS63"}
+
 #: Pads of connected arrays in SCHED's locations.dat, by the FRAME of their
 #: entries: (network, the SCHED station whose MOUNT the array's antennas share).
 PADS = {
@@ -618,6 +623,9 @@ def main(argv=None):
             row["mount"] = "AZEL"
             row["mount_source"] = f"{ALMA_MS}: MOUNT 'ALT-AZ' for its antennas DA41, DA42"
     failed = failures(rows)
+    kept = {row["name"] for row in rows}
+    failed += [f"{name}: left out, but the catalogue must hold it (REQUIRED)"
+               for name in sorted(REQUIRED - kept)]
     if failed:
         print("Unexplained disagreements (fix the row, or list the reason in "
               "EXCEPTIONS, REFERENCE_POINTS or MOUNT_EXCEPTIONS):\n  " + "\n  ".join(failed),
