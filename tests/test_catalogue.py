@@ -327,7 +327,7 @@ def test_eht_is_the_current_array():
     assert names == {"ALMA", "APEX", "GREENLAND", "JCMT", "KP12", "LMT", "NOEMA", "PICOVEL",
                      "SMA", "SMT", "SPT"}
     assert set(_eht_file()) - {"CARMA"} == {"ALMA", "APEX", "GLT", "JCMT", "KP", "LMT", "PDB",
-                                              "PV", "SMA", "SMT", "SPT"}
+                                            "PV", "SMA", "SMT", "SPT"}
 
 
 def test_nasmyth_from_eht_imaging():
