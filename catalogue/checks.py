@@ -138,10 +138,10 @@ EXCEPTIONS = {
     ("SPT", "planner"): (1200.0, "the planner places SPT at the pole; DiFX's antenna_db "
                                  "1.16 km from it, at longitude -45 deg"),
     ("SPT", "eht2025"): (1200.0, "eht-imaging places SPT at the pole (0.01, 0.01 m: the "
-                                 "EHT's convention); at the pole the longitude is arbitrary "
-                                 "and the feed rotation of the two positions differs by a "
-                                 "near-constant angle; DiFX's antenna_db places it 1.16 km "
-                                 "from the pole at longitude -45 deg"),
+                                 "EHT's convention), DiFX's antenna_db 1.16 km from it at "
+                                 "longitude -45 deg; there the zenith is the celestial pole "
+                                 "and the parallactic angle 180 deg for every source: the "
+                                 "two positions' feed rotations differ by less than 0.02 deg"),
     ("SPT", "eht2017"): (1200.0, "as in eht-imaging's current file: SPT at the pole"),
 }
 
