@@ -414,3 +414,36 @@ def test_build_fails_on_an_unexplained_disagreement(monkeypatch):
     monkeypatch.setitem(module.EXCEPTIONS, ("EFLSBERG", "planner"), (5.0, "none needed"))
     assert "EFLSBERG: the listed reason for planner is not needed (no such difference)" in \
         module.failures(rows)
+
+
+def test_every_alias_names_its_station_or_is_refused_naming_it():
+    # Every code and name the sources give a station (the aliases column)
+    # resolves to it, or is refused as shared, naming it among the others.
+    catalogue = default_catalogue()
+    for row in ROWS:
+        name = str(TABLE["name"][row])
+        for alias in filter(None, (a.strip() for a in _text(row, "aliases").split(","))):
+            try:
+                assert catalogue.get_antenna(alias).name == name, (alias, name)
+            except ValueError as error:
+                assert str(error).startswith(f"ambiguous antenna name {alias!r}")
+                assert f" {name} (" in str(error) or str(error).endswith(f" {name}") or \
+                    f" {name};" in str(error), (alias, name, str(error))
+
+
+def test_spt_near_the_pole():
+    # Closed form: at the pole the zenith is the celestial pole, so the
+    # parallactic angle is 180 deg for every source; the catalogue's SPT (DiFX,
+    # 1.16 km from the pole) and eht-imaging's (on the pole) agree to 0.02 deg.
+    from astropy.coordinates import EarthLocation, SkyCoord
+    from astropy.time import Time
+
+    from astropy_feedrot import Antenna
+    times = Time("2024-04-01T00:00") + np.arange(0, 24, 3) * u.hour
+    source = SkyCoord("17h45m40s -29d00m28s")
+    spt = get_antenna("SPT")
+    on_pole = Antenna(EarthLocation.from_geocentric(*_eht_file()["SPT"][:3], unit=u.m),
+                      AltAzMount())
+    for antenna in (spt, on_pole):
+        angle = antenna.feed_rotation(source, times).wrap_at(360 * u.deg)
+        assert np.all(np.abs(angle.deg - 180) < 0.02)
