@@ -469,9 +469,10 @@ def name_key(name):
 
 def summary(rows):
     """Stations per source, median and largest difference per class, disagreements."""
-    lines = ["Stations per source:"]
+    lines = ["Stations per source (positions compared; antinfo: mounts and foci):"]
     for tag in SOURCE_TAGS:
-        n = sum(any(c["ref"].startswith(f"{tag}:") for c in row["checks"]) for row in rows)
+        n = sum(any(c["ref"].startswith(f"{tag}:") for c in row["checks"]) or
+                any(m[0].startswith(f"{tag}:") for m in row["mount_checks"]) for row in rows)
         if n:
             lines.append(f"  {tag:10s} {n:4d}")
     lines.append("Position differences per class (reference points aside):")
@@ -487,4 +488,14 @@ def summary(rows):
     lines.append(f"Mount and focus statements: {len(mounts)}, "
                  f"{sum(m[2] == 'agree' for m in mounts)} agree, "
                  f"{sum(m[2] == 'exception' for m in mounts)} listed exceptions")
+    lines.append("Disagreements beyond tolerance (each with its reason in checks.py):")
+    for row in sorted(rows, key=lambda r: r["name"]):
+        for c in row["checks"]:
+            if c["status"] in ("exception", "reference point"):
+                lines.append(f"  {row['name']:10s} {c['ref']:24s} {c['distance']:10.3f} m  "
+                             f"({c['status']})")
+        for ref, stated, status, _ in row["mount_checks"]:
+            if status == "exception":
+                lines.append(f"  {row['name']:10s} {ref:24s} states {stated}; catalogue "
+                             f"{row['mount']} {row['focus'] or '-'}")
     return "\n".join(lines)
