@@ -447,3 +447,15 @@ def test_spt_near_the_pole():
     for antenna in (spt, on_pole):
         angle = antenna.feed_rotation(source, times).wrap_at(360 * u.deg)
         assert np.all(np.abs(angle.deg - 180) < 0.02)
+
+
+def test_cli_coverage_station_names(capsys):
+    # feedrot coverage --stations: NAME@NETWORK chooses; a shared name alone is
+    # refused on one line.
+    span = ["--source", "3C84=03h19m48.16s +41d30m42.1s", "--start", "2024-03-01T00:00",
+            "--stop", "2024-03-01T06:00", "--step", "60min"]
+    assert cli_main(["coverage", "--stations", "KP@EHT", "EFLSBERG", *span]) == 0
+    assert "KP12" in capsys.readouterr().out
+    assert cli_main(["coverage", "--stations", "KP", "EFLSBERG", *span]) != 0
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and "ambiguous antenna name 'KP'" in error[0], error

@@ -51,8 +51,8 @@ CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalac
 
 ANTENNA_HELP = (
     "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
-    "not matter) or a site 'LAT,LON,HEIGHT' in degrees, degrees and metres with "
-    "--mount and --focus"
+    "not matter; NAME@NETWORK for a name two stations share, e.g. KP@EHT) or a site "
+    "'LAT,LON,HEIGHT' in degrees, degrees and metres with --mount and --focus"
 )
 
 
