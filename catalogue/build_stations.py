@@ -180,9 +180,9 @@ COMMON_NAMES = {
     "NOEMA": ["PDBURE", "Plateau de Bure"],
 }
 
-#: VGOS stations (names only): the IVS VGOS network as listed by the IVS
-#: Coordinating Center's station pages (https://ivscc.gsfc.nasa.gov/stations/),
-#: those of them that the catalogue holds.
+#: VGOS stations (names only, their IVS names): the 12-13 m broadband antennas
+#: of the IVS's VGOS network (the paper's Table 3 names two; DiFX's antenna_db
+#: marks the others "VGOS"); a station is tagged when the catalogue holds it.
 VGOS = {"GGAO12M", "WETTZ13S", "WETTZ13N", "ISHIOKA", "ONSA13NE", "ONSA13SW", "NYALE13N",
         "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "SEJONG", "AGGO",
         "HOBART12", "KATH12M", "YARRA12M", "WESTFORD"}
