@@ -180,12 +180,13 @@ COMMON_NAMES = {
     "NOEMA": ["PDBURE", "Plateau de Bure"],
 }
 
-#: VGOS stations (names only, their IVS names): the 12-13 m broadband antennas
-#: of the IVS's VGOS network (the paper's Table 3 names two; DiFX's antenna_db
-#: marks the others "VGOS"); a station is tagged when the catalogue holds it.
+#: VGOS stations (names only, their IVS names; no source used here lists the
+#: network): the broadband antennas of the IVS's VGOS network that the
+#: catalogue holds. AGGO (6 m) and SEJONG (22 m; antenna-info gives both) are
+#: S/X antennas, not VGOS ones, and are not tagged.
 VGOS = {"GGAO12M", "WETTZ13S", "WETTZ13N", "ISHIOKA", "ONSA13NE", "ONSA13SW", "NYALE13N",
-        "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "SEJONG", "AGGO",
-        "HOBART12", "KATH12M", "YARRA12M", "WESTFORD"}
+        "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "HOBART12", "KATH12M",
+        "YARRA12M", "WESTFORD"}
 
 
 # A real ALMA Measurement Set (pyuvdata 3.1.3 test data, written by CASA 5.1.1's

@@ -64,7 +64,8 @@ def test_size_and_provenance():
     ("VLA", {"VLA", "VLA_E1", "VLA_W72", "VLA_N72", "VLA-N8"}),
     ("ATCA", {"AT_W104", "AT_N2", "AT_W392"}),
     ("ATA", {"ATA"}), ("HERA", {"HERA"}), ("MWA", {"MWA"}), ("OVRO-LWA", {"OVRO-LWA"}),
-    ("VGOS", {"GGAO12M", "WETTZ13S", "ISHIOKA", "RAEGSMAR", "SEJONG", "AGGO", "RAEGYEB"}),
+    ("VGOS", {"GGAO12M", "WETTZ13S", "ISHIOKA", "RAEGSMAR", "RAEGYEB", "ONSA13NE", "NYALE13S",
+              "WETTZ13N", "HOBART12", "KATH12M", "YARRA12M", "WESTFORD"}),
     ("GMVA", {"EFLSBERG", "PICOVEL"}),
     ("IVS", {"WETTZELL", "HOBART26", "KOKEE"}),
 ])
