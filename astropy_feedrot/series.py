@@ -442,26 +442,23 @@ class KeptSeries(Series):
     def nodes_ready(self, tt):
         """Whether the kept nodes serve these instants (see `Series.nodes_ready`).
 
-        True when their chunks are in memory; when they are in their files and
-        there are at least as many instants as files to read (a file costs
-        about one evaluation of ERFA's series); or, for 100 instants or more,
-        when a chunk is still to be computed and kept (once for every process
-        after).
+        Always, within the kept years, unless a chunk is missing and cannot be
+        written: each instant's value is then the polynomial through the same
+        nodes whatever other instants are computed with it (a file corrected
+        in chunks is the file corrected at once, bit for bit).
         """
-        if tt.size < 3:  # ERFA at one or two instants costs less than the polynomial
+        if tt.size == 0:
             return False
         low = int(np.floor(float(tt.min()) + self.shift)) + int(self.offsets[0])
         high = int(np.floor(float(tt.max()) + self.shift)) + int(self.offsets[-1])
         chunks = range(low // KEPT_CHUNK, high // KEPT_CHUNK + 1)
         if not all(c in _KEPT_CHUNKS for c in chunks):
             return False
+        if not _UNWRITABLE:
+            return True
         with _KEPT_LOCK:
             missing = [c for c in chunks if (self.name, c) not in _KEPT]
-        if not missing:
-            return True
-        if all(kept_path(self.name, c).exists() for c in missing):
-            return len(missing) <= tt.size
-        return tt.size >= 100 and not _UNWRITABLE
+        return all(kept_path(self.name, c).exists() for c in missing)
 
     def nodes(self, needed):
         """Values at whole days ``needed`` (from `KEPT_ORIGIN`), from the kept chunks."""
