@@ -40,7 +40,7 @@ Examples
 ('G01',)
 """
 
-from ._common import FileFormatError
+from ._common import TIME_SYSTEMS, FileFormatError, check_epoch, epochs_to_time
 from .orbex import ORBEXData, read_orbex
 from .sp3 import SP3Data, read_sp3
 from .tle import TLE, check_tle_line, check_tle_pair, read_tle
@@ -68,6 +68,9 @@ __all__ = [
     "check_tle_line",
     "check_tle_pair",
     "FileFormatError",
+    "TIME_SYSTEMS",
+    "check_epoch",
+    "epochs_to_time",
     "fitsidi_antennas",
     "uvfits_antennas",
     "correct_fitsidi",
