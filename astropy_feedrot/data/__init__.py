@@ -7,6 +7,15 @@
 ``sample.obx``
     An ORBEX file with yaw-steering attitude quaternions (Earth-fixed to body)
     for the same satellites over the first minute. Synthetic.
+``gnss_sample.sp3``, ``gnss_sample.rnx``
+    Synthetic GNSS files made by ``tests/data/gnss/make_samples.py``
+    (`astropy_feedrot.gnss.synthetic`): an SP3-d orbit file of 16 simulated
+    satellites (GPS, Galileo, GLONASS, BeiDou; circular orbits with their
+    systems' planes and periods) over 3 hours at 15 minutes on 2023-01-25,
+    GPS time, long enough for the default 10-point interpolation; and a
+    RINEX 3.04 observation file of the same satellites at 30 s for 20
+    minutes, three frequencies each, seen from GGAO12M. Made-up numbers,
+    not measurements.
 ``stations.ecsv``
     The station catalogue of `astropy_feedrot.stations` (positions cited in
     its header).
@@ -23,7 +32,8 @@ from pathlib import Path
 __all__ = ["sample_file", "SAMPLES"]
 
 #: Names of the shipped sample files.
-SAMPLES = ("sample.sp3", "sample.obx", "stations.ecsv", "vla_day2_8chan.uvfits")
+SAMPLES = ("sample.sp3", "sample.obx", "gnss_sample.sp3", "gnss_sample.rnx", "stations.ecsv",
+           "vla_day2_8chan.uvfits")
 
 
 def sample_file(name):
@@ -31,7 +41,8 @@ def sample_file(name):
 
     Parameters
     ----------
-    name : {'sample.sp3', 'sample.obx', 'stations.ecsv', 'vla_day2_8chan.uvfits'}
+    name : {'sample.sp3', 'sample.obx', 'gnss_sample.sp3', 'gnss_sample.rnx', 'stations.ecsv', \
+'vla_day2_8chan.uvfits'}
 
     Returns
     -------

@@ -38,6 +38,7 @@ from astropy.coordinates import EarthLocation
 from ..attitude import Attitude, NominalAttitude, QuaternionAttitude
 from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
 from ..frames import check_station_xyz, local_frame
+from ..engine import check_form
 from ..grid import wind_up
 from ..io import read_orbex
 from ..io.sp3 import join_sp3
@@ -304,7 +305,7 @@ def _as_list(value, what):
 
 
 def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300 * u.s,
-                  points=None, position=None, overwrite=False):
+                  points=None, position=None, form="beyerle", overwrite=False):
     """Write a copy of a RINEX observation file with the carrier-phase wind-up removed.
 
     Parameters
@@ -331,6 +332,11 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     position : array-like, shape (3,), optional
         The antenna's ITRS position in metres, if the header has no ``APPROX
         POSITION XYZ`` (or to override it).
+    form : {'beyerle', 'wu'}, optional
+        The crossed-dipole form of Eq 30 (Beyerle 2009, default) or the
+        effective-dipole form of Eq 31 (Wu et al. 1993, as RTKLIB and the IGS
+        analysis centres use it); they differ by up to ~0.01 deg for a
+        receiver whose boresight (up) is not along the line of sight.
     overwrite : bool, optional
         Whether an existing ``output`` may be replaced.
 
@@ -379,12 +385,14 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.gnss import correct_rinex
     >>> out = os.path.join(tempfile.mkdtemp(), "corrected.rnx")
-    >>> report = correct_rinex(sample_file("sample.rnx"), out, sample_file("sample.sp3"))
-    >>> report.epochs, report.phases, report.untouched
-    (3, 14, {})
+    >>> report = correct_rinex(sample_file("gnss_sample.rnx"), out,
+    ...                        sample_file("gnss_sample.sp3"))
+    >>> report.epochs, report.phases, report.arcs, report.untouched
+    (40, 1920, 16, {})
     """
     if attitude is None:
         attitude = "orbex" if orbex is not None else "nominal"
+    form = check_form(form)
     if attitude not in ATTITUDES:
         raise ValueError(f"attitude must be one of {ATTITUDES}, got {attitude!r}")
     orbex_files = _as_list(orbex, "orbex")
@@ -410,7 +418,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
             axes = receiver_axes(xyz, header.zero_direction)
             writer.write_header(header, f"L - WIND-UP (CYCLES, RHCP, {attitude.upper()} ATTITUDE) "
                                 "astropy_feedrot")
-            state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap))
+            state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap), form)
             block = []
             for record in reader:
                 block.append(record)
@@ -442,7 +450,8 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
 class _Block:
     """Correct blocks of epoch records, carrying the arcs from block to block."""
 
-    def __init__(self, header, xyz, axes, orbits, satellites, continuity):
+    def __init__(self, header, xyz, axes, orbits, satellites, continuity, form):
+        self.form = form
         self.header = header
         self.xyz = np.asarray(xyz, dtype=float)
         self.axes = axes
@@ -500,7 +509,7 @@ class _Block:
         aligned, transverse = _dipoles(attitudes, times, positions)
         phase = wind_up(self.xyz[np.newaxis], self.axes[np.newaxis], [True],
                         np.swapaxes(positions, 0, 1), np.swapaxes(aligned, 0, 1),
-                        np.swapaxes(transverse, 0, 1))[:, 0, :]
+                        np.swapaxes(transverse, 0, 1), form=self.form)[:, 0, :]
         rows_t = np.asarray(rows_t)
         rows_s = np.asarray(rows_s)
         wrapped = phase[rows_t, rows_s] / _TWO_PI

@@ -57,6 +57,7 @@ __all__ = [
     "RinexWriter",
     "read_rinex_header",
     "comment_line",
+    "record_times",
 ]
 
 #: The satellite systems of RINEX: code -> name.
@@ -230,7 +231,7 @@ class EpochRecord:
     ... G    2 C1C L1C                                              SYS / # / OBS TYPES
     ...                                                             END OF HEADER
     ... > 2023 01 25 00 00  0.0000000  0  1
-    ... G05  20000000.000 1 105100000.123 7
+    ... G05  20000000.000 7 105100000.12317
     ... '''
     >>> with RinexReader(io.StringIO(text)) as reader:
     ...     record = next(iter(reader))
@@ -240,7 +241,7 @@ class EpochRecord:
     (105100000.123, 1)
     >>> record.set_value(0, 0, 19, 105100000.0)
     >>> record.lines[1]
-    'G05  20000000.000 1 105100000.000 7\\n'
+    'G05  20000000.000 7 105100000.00017\\n'
     """
 
     __slots__ = ("lineno", "lines", "flag", "epoch", "satellites", "starts")
@@ -725,9 +726,9 @@ def read_rinex_header(source):
     --------
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.gnss import read_rinex_header
-    >>> header = read_rinex_header(sample_file("sample.rnx"))
+    >>> header = read_rinex_header(sample_file("gnss_sample.rnx"))
     >>> header.version, sorted(header.obs_types)
-    ('3.04', ['E', 'G', 'R'])
+    ('3.04', ['C', 'E', 'G', 'R'])
     """
     with RinexReader(source) as reader:
         return reader.header
