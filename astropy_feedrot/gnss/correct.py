@@ -34,6 +34,8 @@ from typing import NamedTuple
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import EarthLocation
+from astropy.table import QTable
+from astropy.time import Time
 
 from ..attitude import Attitude, NominalAttitude, QuaternionAttitude
 from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
@@ -75,6 +77,10 @@ class RinexCorrection(NamedTuple):
         Satellite arcs along which the wind-up was kept continuous.
     untouched : dict of str to str
         Satellites (some of) whose phases were left as they were, and why.
+    windup : `~astropy.table.QTable` or None
+        With ``table=True``: columns ``time`` (`~astropy.time.Time`), ``prn``
+        and ``windup`` (`~astropy.units.Quantity` in cycles, as removed), one
+        row per epoch and satellite in the order of the file.
 
     Examples
     --------
@@ -89,6 +95,7 @@ class RinexCorrection(NamedTuple):
     phases: int
     arcs: int
     untouched: dict
+    windup: QTable = None
 
 
 def receiver_axes(xyz, zero_direction=0.0):
@@ -305,7 +312,7 @@ def _as_list(value, what):
 
 
 def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300 * u.s,
-                  points=None, position=None, form="beyerle", overwrite=False):
+                  points=None, position=None, form="beyerle", table=False, overwrite=False):
     """Write a copy of a RINEX observation file with the carrier-phase wind-up removed.
 
     Parameters
@@ -337,6 +344,9 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         effective-dipole form of Eq 31 (Wu et al. 1993, as RTKLIB and the IGS
         analysis centres use it); they differ by up to ~0.01 deg for a
         receiver whose boresight (up) is not along the line of sight.
+    table : bool, optional
+        Also return the wind-up removed, one row per epoch and satellite
+        (``RinexCorrection.windup``; its memory grows with the file).
     overwrite : bool, optional
         Whether an existing ``output`` may be replaced.
 
@@ -419,6 +429,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
             writer.write_header(header, f"L - WIND-UP (CYCLES, RHCP, {attitude.upper()} ATTITUDE) "
                                 "astropy_feedrot")
             state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap), form)
+            state.rows = [] if table else None
             block = []
             for record in reader:
                 block.append(record)
@@ -431,6 +442,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
             for record in block:
                 writer.write_record(record)
         report.update(state.totals)
+        report["rows"] = state.rows
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OrbitWarning)
@@ -443,8 +455,22 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     if untouched:
         listed = "; ".join(f"{prn}: {why}" for prn, why in sorted(untouched.items()))
         warn_caller(f"phases left untouched: {listed}", OrbitWarning)
+    windup = None
+    if table:
+        rows = report["rows"]
+        if rows:
+            times = Time(np.concatenate([r[0] for r in rows]),
+                         np.concatenate([r[1] for r in rows]), format="jd", scale="tai")
+            times.format = "isot"
+            prns = np.concatenate([r[2] for r in rows]).astype(str)
+            cycles = np.concatenate([r[3] for r in rows])
+        else:
+            times, prns, cycles = Time([], format="jd", scale="tai"), np.array([], str), []
+        windup = QTable({"time": times, "prn": prns, "windup": np.asarray(cycles) * u.cycle})
+        windup.meta.update({"file": str(getattr(source, "name", source)), "attitude": attitude,
+                            "form": form, "polarization": "RCP"})
     return RinexCorrection(path, report["epochs"], report["observations"], report["phases"],
-                           report["arcs"], untouched)
+                           report["arcs"], untouched, windup)
 
 
 class _Block:
@@ -460,6 +486,7 @@ class _Block:
         self.continuity = continuity
         self.fields = {code: header.phase_fields(code) for code in header.obs_types}
         self.totals = {"epochs": 0, "observations": 0, "phases": 0, "arcs": 0, "gaps": {}}
+        self.rows = None
         self.first = orbits.epochs[0]
         self.span = (orbits.epochs[-1] - self.first).sec
 
@@ -522,6 +549,10 @@ class _Block:
         total = self.continuity.apply(names, seconds[rows_t[good]], wrapped[good],
                                       np.asarray(rows_new, dtype=bool)[good])
         self.totals["arcs"] = self.continuity.arcs
+        if self.rows is not None:
+            tai = times.tai
+            index = rows_t[good]  # rows are in the file's order
+            self.rows.append((tai.jd1[index], tai.jd2[index], names, total))
         changed = 0
         for (record, i, fields), cycles in zip((w for w, g in zip(where, good) if g), total):
             for line, col, _ in fields:

@@ -1,0 +1,53 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""``feedrot rinex``."""
+
+import numpy as np
+import pytest
+from astropy import units as u
+from astropy.table import QTable
+
+from astropy_feedrot.cli import main
+from astropy_feedrot.data import sample_file
+
+RNX = str(sample_file("gnss_sample.rnx"))
+SP3 = str(sample_file("gnss_sample.sp3"))
+
+
+def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
+    out, table = tmp_path / "out.rnx", tmp_path / "windup.ecsv"
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--table", str(table)]) == 0
+    assert "1920 carrier phases of 640 observations at 40 epochs corrected, 16 arcs" in \
+        capsys.readouterr().err
+    windup = QTable.read(table)
+    assert len(windup) == 640 and windup["windup"].unit == u.cycle
+    assert list(windup["prn"][:3]) == ["G01", "G02", "G03"]
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "deg.rnx"), "--table",
+                 str(tmp_path / "deg.ecsv"), "--units", "deg"]) == 0
+    degrees = QTable.read(tmp_path / "deg.ecsv")["windup"]
+    # 1 cycle = 360 deg (the unit's definition).
+    np.testing.assert_allclose(degrees.to_value(u.deg), windup["windup"].value * 360)
+    assert (tmp_path / "deg.rnx").read_bytes() == out.read_bytes()
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["-o", "{tmp}/a.crx"], "names a Compact RINEX"),
+    (["-o", RNX], "is the input file, which is never overwritten"),
+    (["-o", "{tmp}/a.rnx", "--attitude", "orbex"], "--attitude orbex needs --orbex"),
+    (["-o", "{tmp}/a.rnx", "--orbex", "x.obx", "--attitude", "nominal"],
+     "--orbex goes with --attitude orbex"),
+    (["-o", "{tmp}/a.rnx", "--position", "1,2"], "--position: expected X,Y,Z"),
+    (["-o", "{tmp}/a.rnx", "--table", "{tmp}/t.txt"], "--table: cannot tell a format"),
+])
+def test_rinex_errors(tmp_path, capsys, argv, match):
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    assert main(["rinex", RNX, "--sp3", SP3] + argv) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and match in err
+    assert not (tmp_path / "a.rnx").exists()
+
+
+def test_rinex_output_exists(tmp_path, capsys):
+    (tmp_path / "a.rnx").write_text("keep")
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "a.rnx")]) == 1
+    assert "-o/--output: output" in capsys.readouterr().err
+    assert (tmp_path / "a.rnx").read_text() == "keep"
