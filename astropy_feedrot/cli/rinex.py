@@ -12,26 +12,12 @@ from astropy import units as u
 from ..gnss import correct_rinex
 from ..outputs import TABLE_FORMATS, CommandError, check_outputs, table_format, table_writer
 from ..outputs import write_files
-from .common import one_line, parse_quantity
+from .common import add_units_option, in_units, one_line, parse_quantity
 
-__all__ = ["register", "UNITS", "add_units_option", "in_units"]
-
-#: Units of ``--units``: the wind-up as a phase.
-UNITS = {"cycles": u.cycle, "rad": u.rad, "deg": u.deg}
+__all__ = ["register"]
 
 # Compact RINEX names: written only as plain or gzip-compressed RINEX.
 _COMPACT = re.compile(r"(\.crx|\.\d\dd)(\.gz)?$", re.IGNORECASE)
-
-
-def add_units_option(parser, default):
-    """Add ``--units cycles|rad|deg`` to a parser."""
-    parser.add_argument("--units", choices=tuple(UNITS), default=default,
-                        help=f"unit of the wind-up in the table (default {default})")
-
-
-def in_units(quantity, units):
-    """A phase quantity in the unit named by ``--units``."""
-    return quantity.to(UNITS[units])
 
 
 def _position(text):
@@ -71,8 +57,7 @@ def _run_rinex(args):
     except ImportError as error:
         raise CommandError(one_line(error)) from None
     if table is not None:
-        windup = report.windup
-        windup["windup"] = in_units(windup["windup"], args.units)
+        windup = in_units(report.windup, args.units, ["windup"])
         write_files([(table, table_writer(windup, table_format(table)))])
     satellites = f", {len(report.untouched)} satellites untouched" if report.untouched else ""
     print(f"feedrot: {report.output}: {report.phases} carrier phases of {report.observations} "
