@@ -33,7 +33,11 @@ law           behaviour (source)
               along the velocity) while the beta angle at the last orbit
               quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
               steering otherwise (Montenbruck et al. 2015).
+``orbit-      BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
+normal``      2015).
 ============  =================================================================
+
+Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
 
 Angles follow Kouba (2009): the orbit angle ``mu`` is counted from orbit
 midnight in the direction of motion, the beta angle is the Sun's elevation
@@ -51,6 +55,7 @@ from astropy import units as u
 from astropy.coordinates import Angle
 
 from .attitude import Attitude, sun_position
+from .data import sample_file
 from .exceptions import DegenerateGeometryWarning, warn_caller
 from .frames import as_time
 from .io import read_satellite_metadata
@@ -78,8 +83,8 @@ class YawLaw(NamedTuple):
     Attributes
     ----------
     kind : str
-        ``'gps-iir'``, ``'gps-iif'``, ``'glonass-m'``, ``'galileo'`` or
-        ``'beidou-on'``.
+        ``'gps-iir'``, ``'gps-iif'``, ``'glonass-m'``, ``'galileo'``,
+        ``'beidou-on'`` or ``'orbit-normal'``.
     max_yaw_rate : float or None
         Maximum yaw rate in deg/s (turn laws).
     yaw_bias : float
@@ -106,6 +111,7 @@ _IIR = YawLaw("gps-iir", 0.20)
 _IIF = YawLaw("gps-iif", 0.11, -0.7)
 _GLONASS = YawLaw("glonass-m", 0.25)
 _BEIDOU = YawLaw("beidou-on")
+_GEO = YawLaw("orbit-normal")
 
 #: The law of each satellite block of the IGS metadata (``SATELLITE/IDENTIFIER``).
 LAWS = {
@@ -114,7 +120,7 @@ LAWS = {
     "GLO-M": _GLONASS, "GLO-M+": _GLONASS,
     "GAL-1": YawLaw("galileo", beta_y=2.0, beta_x=15.0),
     "GAL-2": YawLaw("galileo", beta_y=4.1, beta_x=10.0),
-    "BDS-2M": _BEIDOU, "BDS-2I": _BEIDOU,
+    "BDS-2M": _BEIDOU, "BDS-2I": _BEIDOU, "BDS-2G": _GEO,
 }
 
 #: The blocks each law serves.
@@ -282,6 +288,8 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
         shy = 0.5 * ((-np.sin(beta) - s)
                      + (np.sin(beta) - s) * np.cos(np.pi * np.abs(c) / np.sin(beta_x)))
         yaw = np.where(inside, np.arctan2(shy, c), yaw)
+    elif law.kind == "orbit-normal":
+        yaw = np.zeros_like(yaw)
     elif law.kind == "beidou-on":
         quadrature = beta if beta_quadrature is None else np.asarray(beta_quadrature)
         yaw = np.where(np.abs(quadrature) < BEIDOU_BETA, 0.0, yaw)
@@ -518,7 +526,5 @@ def default_metadata():
     'IGS satellite meta data of GNSS satellites, release 2404'
     """
     if not _DEFAULT:
-        from .data import sample_file
-
         _DEFAULT.append(read_satellite_metadata(sample_file("igs_satellite_metadata.snx")))
     return _DEFAULT[0]

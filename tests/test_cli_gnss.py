@@ -100,3 +100,13 @@ def test_units(capsys, command):
         np.testing.assert_allclose(radians[column].value, np.radians(degrees[column].value))
     assert cycles[prefix + "rate"].unit == u.cycle / u.s
     assert cycles[prefix + "elevation"].unit == u.deg
+
+
+def test_rinex_model_attitude(tmp_path, capsys):
+    out = tmp_path / "out.rnx"
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--attitude", "model"]) == 0
+    assert "16 arcs" in capsys.readouterr().err
+    assert "MODEL ATTITUDE" in out.read_text()
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "x.rnx"),
+                 "--metadata", str(sample_file("igs_satellite_metadata.snx"))]) == 1
+    assert "--metadata goes with --attitude model" in capsys.readouterr().err

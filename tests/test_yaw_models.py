@@ -142,7 +142,9 @@ def test_outside_turns_the_dipoles_are_nominal():
     times = EPOCH + np.arange(0, 86400, 900.0) * u.s
     position = orbit.position(times)
     sun = sun_position(times)
-    for block in LAWS:
+    for block, law in LAWS.items():
+        if law.kind == "orbit-normal":  # BeiDou GEO: never yaw steering
+            continue
         aligned, transverse = ModelAttitude(orbit, block).sun_and_dipoles(times, position, sun)
         a, t = nominal_dipoles(position, sun)  # Eqs 26-27
         np.testing.assert_allclose(aligned, a, atol=1e-9)
@@ -178,6 +180,13 @@ def test_from_metadata_and_errors():
     assert ModelAttitude(orbit, "GPS-IIF", max_yaw_rate=0.13).law.max_yaw_rate == 0.13
     with pytest.raises(ValueError, match="unknown yaw law 'x'"):
         model_yaw(LAWS["GPS-IIF"]._replace(kind="x"), 0.0, 0.0, 1e-4, 2.6e7)
+
+
+def test_beidou_geo_always_orbit_normal():
+    orbit = _orbit(20.0, BEIDOU)
+    yaw, nominal = ModelAttitude(orbit, "BDS-2G").yaw(EPOCH + np.arange(3) * u.h)
+    np.testing.assert_array_equal(yaw.deg, 0.0)
+    assert np.all(np.abs(nominal.deg) > 1)
 
 
 def test_scalar_time():

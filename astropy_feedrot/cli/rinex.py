@@ -36,14 +36,17 @@ def _run_rinex(args):
                            "file, which is not written; name it .rnx (or .rnx.gz) and "
                            "compress it with rnx2crx if needed")
     inputs = [("OBS", args.obs)] + [("--sp3", p) for p in args.sp3] + [
-        ("--orbex", p) for p in args.orbex or []]
+        ("--orbex", p) for p in args.orbex or []] + [
+        ("--metadata", p) for p in [args.metadata] if p is not None]
     table = check_outputs([("--table", args.table, tuple(TABLE_FORMATS))], inputs,
                           args.overwrite)[0]
     attitude = args.attitude
     if attitude == "orbex" and not args.orbex:
         raise CommandError("--attitude orbex needs --orbex FILE...")
-    if args.orbex and attitude == "nominal":
+    if args.orbex and attitude in ("nominal", "model"):
         raise CommandError("--orbex goes with --attitude orbex (the default when it is given)")
+    if args.metadata is not None and attitude != "model":
+        raise CommandError("--metadata goes with --attitude model")
     max_gap = parse_quantity(args.max_gap, u.s, "--max-gap")
     try:
         report = correct_rinex(args.obs, args.output, args.sp3, orbex=args.orbex,
@@ -51,6 +54,7 @@ def _run_rinex(args):
                                position=None if args.position is None else
                                _position(args.position),
                                form=args.form, table=table is not None,
+                               metadata=args.metadata,
                                overwrite=args.overwrite)
     except FileExistsError as error:
         raise CommandError(f"-o/--output: {one_line(error)}") from None
@@ -88,9 +92,13 @@ def register(commands):
                        help="SP3 orbit files covering the observations (days are joined)")
     rinex.add_argument("--orbex", nargs="+", metavar="OBX",
                        help="ORBEX attitude files (then --attitude orbex is the default)")
-    rinex.add_argument("--attitude", choices=("nominal", "orbex"),
+    rinex.add_argument("--attitude", choices=("nominal", "model", "orbex"),
                        help="transmitter attitude: nominal yaw steering (default without "
-                       "--orbex) or the ORBEX quaternions")
+                       "--orbex), the yaw model of each satellite's block through noon and "
+                       "midnight turns and shadows, or the ORBEX quaternions")
+    rinex.add_argument("--metadata", metavar="SNX",
+                       help="IGS satellite metadata SINEX file for --attitude model (default: "
+                       "the shipped copy, release 2404)")
     rinex.add_argument("-o", "--output", required=True, metavar="OUT",
                        help="the corrected copy (.gz: gzip-compressed); never the input")
     rinex.add_argument("--max-gap", default="300s", metavar="DURATION",

@@ -37,21 +37,22 @@ from astropy.coordinates import EarthLocation
 from astropy.table import QTable
 from astropy.time import Time
 
-from ..attitude import Attitude, NominalAttitude, QuaternionAttitude
+from ..attitude import Attitude, NominalAttitude, QuaternionAttitude, sun_position
 from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
 from ..frames import check_station_xyz, local_frame
 from ..engine import check_form
 from ..grid import wind_up
-from ..io import read_orbex
+from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
 from ..io.sp3 import join_sp3
 from ..orbits import Orbit, SP3Orbit
 from ..outputs import same_file, write_files
+from ..yaw_models import LAWS, ModelAttitude, default_metadata
 from .rinex import RinexReader, RinexWriter, record_times
 
 __all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]
 
 #: The transmitter attitudes `correct_rinex` offers.
-ATTITUDES = ("nominal", "orbex")
+ATTITUDES = ("nominal", "model", "orbex")
 
 #: Data epochs per block: the working memory of a block is about 1 kB per
 #: observation line (2880 epochs of 40 satellites: about 120 MB at most).
@@ -193,7 +194,8 @@ def join_orbex(sources, frame=None):
 class _Satellites:
     """The orbit and attitude of each PRN, made on first use; why a PRN has none."""
 
-    def __init__(self, sp3, orbex, attitude, points):
+    def __init__(self, sp3, orbex, attitude, points, metadata=None):
+        self.metadata = metadata
         self.sp3 = sp3
         self.orbex = orbex
         self.attitude = attitude
@@ -215,8 +217,23 @@ class _Satellites:
             except ValueError as error:
                 self.why[prn] = f"no usable orbit ({error})"
             else:
-                att = NominalAttitude() if self.attitude == "nominal" else self.orbex[prn]
-                model = (orbit, att)
+                if self.attitude == "nominal":
+                    att = NominalAttitude()
+                elif self.attitude == "orbex":
+                    att = self.orbex[prn]
+                else:
+                    att = None
+                    try:
+                        block = self.metadata.block(prn, self.sp3.epochs[0])
+                    except ValueError:
+                        self.why[prn] = "not in the satellite metadata on that date"
+                    else:
+                        if block in LAWS:
+                            att = ModelAttitude.from_metadata(orbit, prn, self.sp3.epochs[0],
+                                                              self.metadata)
+                        else:
+                            self.why[prn] = f"no yaw model for its block {block}"
+                model = None if att is None else (orbit, att)
         self.models[prn] = model
         return model
 
@@ -229,8 +246,13 @@ def _dipoles(attitudes, times, positions):
     if nominal:
         a, t = Attitude.dipoles_many([attitudes[i] for i in nominal], times, positions[nominal])
         aligned[nominal], transverse[nominal] = a, t
+    models = [i for i, a in enumerate(attitudes) if isinstance(a, ModelAttitude)]
+    if models:
+        sun = sun_position(times)  # once for every modelled satellite
+        for i in models:
+            aligned[i], transverse[i] = attitudes[i].sun_and_dipoles(times, positions[i], sun)
     for i, attitude in enumerate(attitudes):
-        if attitude.needs_sun:
+        if attitude.needs_sun or i in models:
             continue
         first, last = attitude.epochs[0], attitude.epochs[-1]
         inside = ((times - first).sec >= -1e-6) & ((last - times).sec >= -1e-6)
@@ -312,7 +334,8 @@ def _as_list(value, what):
 
 
 def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300 * u.s,
-                  points=None, position=None, form="beyerle", table=False, overwrite=False):
+                  points=None, position=None, form="beyerle", metadata=None, table=False,
+                  overwrite=False):
     """Write a copy of a RINEX observation file with the carrier-phase wind-up removed.
 
     Parameters
@@ -328,9 +351,12 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         SP3 orbit files covering the observations (several days are joined).
     orbex : str, path-like, file object or a sequence of them, optional
         ORBEX attitude files; with them the attitude defaults to ``'orbex'``.
-    attitude : {'nominal', 'orbex'}, optional
+    attitude : {'nominal', 'model', 'orbex'}, optional
         The transmitter attitude: nominal yaw steering (Eqs 26-27, default
-        without ``orbex``) or the ORBEX quaternions.
+        without ``orbex``), the yaw-attitude model of each satellite's block
+        through noon and midnight turns and shadows
+        (`~astropy_feedrot.ModelAttitude`; satellites of blocks without a
+        model are left untouched), or the ORBEX quaternions.
     max_gap : `~astropy.units.Quantity`, optional
         A satellite's gap longer than this starts a new arc (default 300 s).
     points : int, optional
@@ -344,6 +370,9 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         effective-dipole form of Eq 31 (Wu et al. 1993, as RTKLIB and the IGS
         analysis centres use it); they differ by up to ~0.01 deg for a
         receiver whose boresight (up) is not along the line of sight.
+    metadata : str, path-like or `~astropy_feedrot.io.SatelliteMetadata`, optional
+        The IGS satellite metadata SINEX file giving each PRN's block for
+        ``attitude='model'`` (default: the shipped copy, release 2404).
     table : bool, optional
         Also return the wind-up removed, one row per epoch and satellite
         (``RinexCorrection.windup``; its memory grows with the file).
@@ -415,7 +444,12 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     if points is None:
         points = min(10, len(orbits.epochs))
     attitudes = join_orbex(orbex_files) if attitude == "orbex" else {}
-    satellites = _Satellites(orbits, attitudes, attitude, points)
+    if attitude == "model":
+        if metadata is None:
+            metadata = default_metadata()
+        elif not isinstance(metadata, SatelliteMetadata):
+            metadata = read_satellite_metadata(metadata)
+    satellites = _Satellites(orbits, attitudes, attitude, points, metadata)
     report = {}
 
     def write(name):
