@@ -165,8 +165,8 @@ def orbit_angles(position, velocity, sun):
     (0.0, 0.0)
     """
     position = np.asarray(position, dtype=float)
-    inertial = np.asarray(velocity, dtype=float) + np.cross([0.0, 0.0, EARTH_ROTATION],
-                                                             position)
+    rotation = np.array([0.0, 0.0, EARTH_ROTATION])
+    inertial = np.asarray(velocity, dtype=float) + np.cross(rotation, position)
     r = np.linalg.norm(position, axis=-1, keepdims=True)
     r_hat = position / r
     momentum = np.cross(position, inertial)
@@ -274,8 +274,8 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
             entry, exit_ = nominal_yaw(beta, -half), nominal_yaw(beta, half)
             elapsed = (night + half) / rate_orbit
             if law.kind == "gps-iif":
-                shadow = entry + (exit_ - entry) * (night + half) / np.where(half > 0, 2 * half,
-                                                                               1)
+                fraction = (night + half) / np.where(half > 0, 2 * half, 1)
+                shadow = entry + (exit_ - entry) * fraction
             else:
                 change = exit_ - entry
                 shadow = entry + np.sign(change) * np.minimum(rate * elapsed, np.abs(change))

@@ -85,9 +85,8 @@ def test_default_interpolation_on_the_shipped_sample(capsys):
 
 @pytest.mark.parametrize("command", ["satellite", "baseline"])
 def test_units(capsys, command):
-    argv = ([command, "GGAO12M"] + (["WETTZ13S", "--frequency", "1575.42MHz"]
-                                     if command == "baseline" else [])
-            + ["--sp3", SP3, "--sat", "G03", "--step", "1h"])
+    second = ["WETTZ13S", "--frequency", "1575.42MHz"] if command == "baseline" else []
+    argv = [command, "GGAO12M"] + second + ["--sp3", SP3, "--sat", "G03", "--step", "1h"]
     degrees, _ = _table(capsys, *argv)
     cycles, _ = _table(capsys, *argv, "--units", "cycles")
     radians, _ = _table(capsys, *argv, "--units", "rad")

@@ -335,7 +335,8 @@ def test_sp3_not_covering(tmp_path, sp3):
     source = _rinex(tmp_path / "a.rnx", epochs=10, start=START + 5 * u.h)
     with pytest.raises(ValueError, match=r"the SP3 files cover 2023-01-25T00:00:19.000 to "
                                          r"2023-01-25T04:00:19.000 TAI, but .* has observations "
-                                         r"at 2023-01-25T05:00:19.000 TAI \(line 12\); give the SP3 files"):
+                                         r"at 2023-01-25T05:00:19.000 TAI \(line 12\); give the "
+                                         r"SP3 files"):
         correct_rinex(source, tmp_path / "b.rnx", sp3)
     assert not (tmp_path / "b.rnx").exists()
 

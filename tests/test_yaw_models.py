@@ -20,7 +20,7 @@ from astropy_feedrot import ModelAttitude, TLEOrbit
 from astropy_feedrot.attitude import nominal_dipoles, sun_position
 from astropy_feedrot.yaw_models import LAWS, model_yaw, nominal_yaw, orbit_angles
 
-from yaw_orbits import EPOCH, beta_of, noon, orbit_at_beta
+from yaw_orbits import EPOCH, noon, orbit_at_beta
 
 GPS = (55.0, 2.0056)
 GALILEO = (56.0, 1.7047)
@@ -117,8 +117,8 @@ def test_beidou_orbit_normal_below_four_degrees(beta, orbit_normal):
     if orbit_normal:
         np.testing.assert_allclose(yaw.deg, 0, atol=1e-12)
         # The x axis in the orbit plane, along the inertial velocity: normal to r x v.
-        normal = np.cross(orbit.position(times), velocity + np.cross([0, 0, 7.292115e-5],
-                                                                    orbit.position(times)))
+        rotation = np.cross([0, 0, 7.292115e-5], orbit.position(times))
+        normal = np.cross(orbit.position(times), velocity + rotation)
         cosine = np.sum(aligned * normal, axis=-1) / np.linalg.norm(normal, axis=-1)
         np.testing.assert_allclose(cosine, 0, atol=1e-6)
     else:
