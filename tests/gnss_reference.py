@@ -5,9 +5,9 @@ Nothing of astropy_feedrot's geometry is used: the geometric Sun from
 ERFA's ``epv00`` (astropy's ``get_body_barycentric``, Sun minus Earth, the
 ephemeris the package uses too: the apparent Sun, 20.8" away, moves the
 wind-up near noon turns by up to 0.1 deg) rotated from GCRS to ITRS by
-astropy, the nominal yaw-steering axes of Kouba (2009, GPS Solutions 13, 1-12, eqs 1-3), the local east and
-north from the geodetic latitude and longitude, and Wu's formula with the
-receiver dipoles east (x) and north (y):
+astropy, the nominal yaw-steering axes of Kouba (2009, GPS Solutions 13,
+1-12, eqs 1-3), the local east and north from the geodetic latitude and
+longitude, and Wu's formula with the receiver dipoles east (x) and north (y):
 
     D_s = x_s - k (k . x_s) - k x y_s,    D_r = x_r - k (k . x_r) + k x y_r,
     dphi = sign(k . (D_s x D_r)) arccos(D_s . D_r / |D_s| |D_r|),
