@@ -8,34 +8,35 @@ the satellite cannot see in the Earth's shadow. Real satellites follow
 published laws instead; `ModelAttitude` implements them from the satellite's
 orbit and the Sun, in the satellite's orbital frame:
 
-============  =================================================================
-law           behaviour (source)
-============  =================================================================
-``gps-iir``   noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
-              starting where the nominal rate would exceed it (Kouba 2009,
-              GPS Solutions 13:1-12); nominal in the shadow.
-``gps-iif``   noon turns at 0.11 deg/s, in the wrong direction for a beta
-              between the yaw bias (-0.7 deg) and 0; through the shadow a
-              constant yaw rate that takes the nominal yaw at shadow entry to
-              the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
-              values of Kouba's eclips.f, May 2017). Also used for GPS III,
-              an assumption (no law was published when this was written).
-``glonass-m`` noon turns at 0.25 deg/s; in the shadow, a turn at the maximum
-              rate towards the nominal yaw at shadow exit, then a stop
-              (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
-              Adv. Space Res. 56:1015-1029).
-``galileo``   the smoothed yaw steering of the Galileo satellite metadata
-              (European GNSS Service Centre): within ``beta_x`` of noon and
-              midnight for a beta below ``beta_y``, an auxiliary Sun
-              direction whose out-of-plane component is smoothed;
-              ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
-``beidou-on`` BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
-              along the velocity) while the beta angle at the last orbit
-              quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
-              steering otherwise (Montenbruck et al. 2015).
-``orbit-      BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
-normal``      2015).
-============  =================================================================
+================  ==============================================================
+law               behaviour (source)
+================  ==============================================================
+``gps-iir``       noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
+                  starting where the nominal rate would exceed it (Kouba 2009,
+                  GPS Solutions 13:1-12); nominal in the shadow.
+``gps-iif``       noon turns at 0.11 deg/s, in the wrong direction for a beta
+                  between the yaw bias (-0.7 deg) and 0; through the shadow a
+                  constant yaw rate that takes the nominal yaw at shadow entry to
+                  the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
+                  values of Kouba's eclips.f, May 2017). Also used for GPS III,
+                  an assumption (no law was published when this was written).
+``glonass-m``     noon turns at 0.25 deg/s; in the shadow, a turn at the maximum
+                  rate towards the nominal yaw at shadow exit, then a stop
+                  (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
+                  Adv. Space Res. 56:1015-1029).
+``galileo``       the smoothed yaw steering of the Galileo satellite metadata
+                  (European GNSS Service Centre): within ``beta_x`` of noon and
+                  midnight for a beta below ``beta_y``, an auxiliary Sun
+                  direction whose out-of-plane component is smoothed;
+                  ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
+``beidou-on``     BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
+                  along the velocity) while the beta angle at the last orbit
+                  quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
+                  steering otherwise (Montenbruck et al. 2015).
+``orbit-normal``  BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
+                  2015).
+================  ==============================================================
+                  
 
 Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
 
