@@ -36,7 +36,7 @@ law               behaviour (source)
 ``orbit-normal``  BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
                   2015).
 ================  ==============================================================
-                  
+
 
 Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
 
