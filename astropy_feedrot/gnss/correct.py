@@ -37,7 +37,13 @@ from astropy.coordinates import EarthLocation
 from astropy.table import QTable
 from astropy.time import Time
 
-from ..attitude import Attitude, NominalAttitude, QuaternionAttitude, sun_position
+from ..attitude import (
+    Attitude,
+    NominalAttitude,
+    QuaternionAttitude,
+    interpolated_sun_position,
+)
+from ..earth import EarthOrientation
 from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
 from ..frames import check_station_xyz, local_frame
 from ..engine import check_form
@@ -238,17 +244,18 @@ class _Satellites:
         return model
 
 
-def _dipoles(attitudes, times, positions):
+def _dipoles(attitudes, times, positions, orientation):
     """Dipoles (S, T, 3) of the satellites; NaN outside an attitude's coverage."""
     nominal = [i for i, a in enumerate(attitudes) if a.needs_sun]
     aligned = np.full(positions.shape, np.nan)
     transverse = np.full(positions.shape, np.nan)
     if nominal:
-        a, t = Attitude.dipoles_many([attitudes[i] for i in nominal], times, positions[nominal])
+        a, t = Attitude.dipoles_many([attitudes[i] for i in nominal], times, positions[nominal],
+                                     orientation)
         aligned[nominal], transverse[nominal] = a, t
     models = [i for i, a in enumerate(attitudes) if isinstance(a, ModelAttitude)]
     if models:
-        sun = sun_position(times)  # once for every modelled satellite
+        sun = interpolated_sun_position(orientation)  # once for every modelled satellite
         for i in models:
             aligned[i], transverse[i] = attitudes[i].sun_and_dipoles(times, positions[i], sun)
     for i, attitude in enumerate(attitudes):
@@ -464,14 +471,15 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
                                 "astropy_feedrot")
             state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap), form)
             state.rows = [] if table else None
-            block = []
+            block, epochs = [], 0
             for record in reader:
                 block.append(record)
-                if state.data_epochs(block) >= BLOCK_EPOCHS:
+                epochs += record.flag < 2
+                if epochs >= BLOCK_EPOCHS:
                     state.correct(block, reader.name)
                     for record in block:
                         writer.write_record(record)
-                    block = []
+                    block, epochs = [], 0
             state.correct(block, reader.name)
             for record in block:
                 writer.write_record(record)
@@ -524,10 +532,6 @@ class _Block:
         self.first = orbits.epochs[0]
         self.span = (orbits.epochs[-1] - self.first).sec
 
-    @staticmethod
-    def data_epochs(block):
-        return sum(1 for record in block if record.flag < 2)
-
     def correct(self, block, name):
         data = [record for record in block if record.flag < 2]
         if not data:
@@ -555,19 +559,19 @@ class _Block:
                 if j is None:
                     continue
                 fields = self.fields[sat[0]]
-                lost = record.flag == 1 or any(record.lli(i, line, col) & 1
-                                               for line, col, _ in fields)
+                values, lost = record.phases(i, fields)
                 rows_t.append(t)
                 rows_s.append(j)
-                rows_new.append(lost)
-                where.append((record, i, fields))
+                rows_new.append(lost or record.flag == 1)
+                where.append((record, i, fields, values))
         self.totals["epochs"] += len(data)
         if not usable or not rows_t:
             return
         orbits = [models[prn][0] for prn in usable]
         attitudes = [models[prn][1] for prn in usable]
-        positions = Orbit.positions(orbits, times)
-        aligned, transverse = _dipoles(attitudes, times, positions)
+        orientation = EarthOrientation(times)  # its Sun: 1e-13 rad from the exact one
+        positions = Orbit.positions(orbits, times, orientation)
+        aligned, transverse = _dipoles(attitudes, times, positions, orientation)
         phase = wind_up(self.xyz[np.newaxis], self.axes[np.newaxis], [True],
                         np.swapaxes(positions, 0, 1), np.swapaxes(aligned, 0, 1),
                         np.swapaxes(transverse, 0, 1), form=self.form)[:, 0, :]
@@ -588,10 +592,7 @@ class _Block:
             index = rows_t[good]  # rows are in the file's order
             self.rows.append((tai.jd1[index], tai.jd2[index], names, total))
         changed = 0
-        for (record, i, fields), cycles in zip((w for w, g in zip(where, good) if g), total):
-            for line, col, _ in fields:
-                value = record.value(i, line, col)
-                if value is not None:
-                    record.set_value(i, line, col, value - cycles)
-                    changed += 1
+        kept = (w for w, g in zip(where, good) if g)
+        for (record, i, fields, values), cycles in zip(kept, total):
+            changed += record.subtract(i, fields, values, cycles)
         self.totals["phases"] += changed

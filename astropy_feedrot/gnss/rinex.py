@@ -282,6 +282,80 @@ class EpochRecord:
         flag = self._field(i, line, col)[_VALUE:_VALUE + 1]
         return int(flag) if flag.strip() else 0
 
+    def phases(self, i, fields):
+        """The values of fields of satellite ``i`` and whether one has lost lock.
+
+        Parameters
+        ----------
+        i : int
+            The satellite's index in `satellites`.
+        fields : list of (int, int, str)
+            As `RinexHeader.phase_fields` gives them.
+
+        Returns
+        -------
+        values : list of float or None
+            None where a field is blank.
+        lost : bool
+            Whether bit 0 of a field's loss-of-lock indicator is set.
+
+        Examples
+        --------
+        See `subtract`.
+        """
+        values, lost = [], False
+        start = self.starts[i]
+        for line, col, _ in fields:
+            text = self.lines[start + line]
+            field = text[col:col + _VALUE]
+            values.append(float(field) if field.strip() else None)
+            flag = text[col + _VALUE:col + _VALUE + 1]
+            if flag.isdigit() and int(flag) & 1:
+                lost = True
+        return values, lost
+
+    def subtract(self, i, fields, values, amount):
+        """Subtract ``amount`` from the non-blank ``values`` read by `phases` (F14.3).
+
+        Returns
+        -------
+        int
+            The number of fields changed.
+
+        Raises
+        ------
+        ValueError
+            If a new value does not fit in 14 characters.
+
+        Examples
+        --------
+        >>> from astropy_feedrot.gnss.rinex import EpochRecord
+        >>> record = EpochRecord(1, ["> epoch\\n", "G05  20000000.000 7 105100000.12317\\n"], 0,
+        ...                      (2023, 1, 25, 0, 0, 0.0), ["G05"], [1])
+        >>> fields = [(0, 19, "L1C")]
+        >>> values, lost = record.phases(0, fields)
+        >>> values, lost
+        ([105100000.123], True)
+        >>> record.subtract(0, fields, values, 0.25)
+        1
+        >>> record.lines[1]
+        'G05  20000000.000 7 105099999.87317\\n'
+        """
+        start = self.starts[i]
+        changed = 0
+        for (line, col, _), value in zip(fields, values):
+            if value is None:
+                continue
+            new = f"{value - amount:14.3f}"
+            if len(new) != _VALUE:
+                raise ValueError(f"{value - amount!r} does not fit the 14 characters (F14.3) of "
+                                 f"a RINEX observation (satellite {self.satellites[i]}, epoch "
+                                 f"{self.epoch})")
+            text = self.lines[start + line]
+            self.lines[start + line] = text[:col] + new + text[col + _VALUE:]
+            changed += 1
+        return changed
+
     def set_value(self, i, line, col, value):
         """Replace a field's value (F14.3), keeping every other character of the line.
 

@@ -244,37 +244,44 @@ def write_rinex(path, version, types, sats, start, epochs, interval=30.0, *,
         lines = _header_3(version, {k: v for k, v in types.items() if k in systems},
                           position, zero_direction, interval, cal[0],
                           "M" if len(systems) > 1 else sats[0][0])
-    for t, c in enumerate(cal):
-        for text in events.get(t, []):
-            if v2:
-                lines.append(f"{'':26}  4{len([text]):3d}\n")
-            else:
-                lines.append(f">{'':30}4{1:3d}\n")
-            lines.append(f"{text:<60}COMMENT\n")
-        seen = [s for s in sats if (t, s) not in missing]
-        if v2:
-            head = (f" {c['year'] % 100:02d} {c['month']:2d} {c['day']:2d} {c['hour']:2d} "
-                    f"{c['minute']:2d}{c['second']:11.7f}  0{len(seen):3d}")
-            for k in range(0, len(seen), 12):
-                prefix = head if k == 0 else " " * 32
-                lines.append(prefix + "".join(seen[k:k + 12]) + "\n")
-        else:
-            lines.append(f"> {c['year']:4d} {c['month']:02d} {c['day']:02d} {c['hour']:02d} "
-                         f"{c['minute']:02d}{c['second']:11.7f}  0{len(seen):3d}\n")
-        for s_index, sat in enumerate(sats):
-            if (t, sat) not in seen and sat not in seen:
-                continue
-            codes = next(iter(types.values())) if v2 else types[sat[0]]
-            fields = []
-            for k, code in enumerate(codes):
-                flag = lli.get((t, sat), 0) if code[0] == "L" else 0
-                ssi = "7" if code[0] in "LC" else " "
-                fields.append(f"{_value(t, s_index, k, code):14.3f}"
-                              f"{flag if flag else ' '}{ssi}")
-            if v2:
-                for k in range(0, len(fields), 5):
-                    lines.append("".join(fields[k:k + 5]).rstrip() + "\n")
-            else:
-                lines.append(sat + "".join(fields).rstrip() + "\n")
-    with open(path, "w") as fh:
+    with open(path, "w") as fh:  # epoch by epoch: a day at 1 s never sits in memory
         fh.writelines(lines)
+        for t, c in enumerate(cal):
+            fh.writelines(_epoch_lines(t, c, sats, types, v2, lli, missing, events))
+
+
+def _epoch_lines(t, c, sats, types, v2, lli, missing, events):
+    """The lines of epoch ``t`` (calendar ``c``) of `write_rinex`, events first."""
+    lines = []
+    for text in events.get(t, []):
+        if v2:
+            lines.append(f"{'':26}  4{len([text]):3d}\n")
+        else:
+            lines.append(f">{'':30}4{1:3d}\n")
+        lines.append(f"{text:<60}COMMENT\n")
+    seen = [s for s in sats if (t, s) not in missing]
+    if v2:
+        head = (f" {c['year'] % 100:02d} {c['month']:2d} {c['day']:2d} {c['hour']:2d} "
+                f"{c['minute']:2d}{c['second']:11.7f}  0{len(seen):3d}")
+        for k in range(0, len(seen), 12):
+            prefix = head if k == 0 else " " * 32
+            lines.append(prefix + "".join(seen[k:k + 12]) + "\n")
+    else:
+        lines.append(f"> {c['year']:4d} {c['month']:02d} {c['day']:02d} {c['hour']:02d} "
+                     f"{c['minute']:02d}{c['second']:11.7f}  0{len(seen):3d}\n")
+    for s_index, sat in enumerate(sats):
+        if sat not in seen:
+            continue
+        codes = next(iter(types.values())) if v2 else types[sat[0]]
+        fields = []
+        for k, code in enumerate(codes):
+            flag = lli.get((t, sat), 0) if code[0] == "L" else 0
+            ssi = "7" if code[0] in "LC" else " "
+            fields.append(f"{_value(t, s_index, k, code):14.3f}"
+                          f"{flag if flag else ' '}{ssi}")
+        if v2:
+            for k in range(0, len(fields), 5):
+                lines.append("".join(fields[k:k + 5]).rstrip() + "\n")
+        else:
+            lines.append(sat + "".join(fields).rstrip() + "\n")
+    return lines
