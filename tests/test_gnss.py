@@ -417,3 +417,29 @@ def test_model_attitude(tmp_path, sp3, orbits):
         beta = np.degrees(orbit_angles(position, velocity, sun)[0])
         if np.min(np.abs(beta)) > 15:  # far from any turn: the model is nominal
             assert all(model[t, prn] == nominal[t, prn] for t in range(120)), prn
+
+
+def test_join_orbex_and_sp3(tmp_path, orbits, sp3):
+    from astropy_feedrot.data import sample_file
+    from astropy_feedrot.gnss import join_orbex
+    from astropy_feedrot.io import read_sp3
+    from astropy_feedrot.io.sp3 import join_sp3
+
+    one = join_orbex([sample_file("sample.obx")])
+    two = join_orbex([sample_file("sample.obx"), sample_file("sample.obx")])
+    assert sorted(one) == sorted(two) == ["E11", "G01", "G05"]
+    np.testing.assert_array_equal(one["G05"].quaternions, two["G05"].quaternions)
+    text = sample_file("sample.obx").read_text()
+    eci = tmp_path / "eci.obx"
+    eci.write_text(text.replace("FRAME_TYPE          ECEF", "FRAME_TYPE          ECI"))
+    with pytest.raises(ValueError, match=r"the ORBEX files refer to different frames \('itrs' "
+                                         r"and 'gcrs'\); give files of one series"):
+        join_orbex([sample_file("sample.obx"), eci])
+    coarse = tmp_path / "coarse.sp3"
+    write_sp3(coarse, orbits, START, 5, interval=1800.0)
+    with pytest.raises(ValueError, match=r"the SP3 files differ in interval: 900.0 and 1800.0; "
+                                         "join files of one product series"):
+        join_sp3([sp3, coarse])
+    with pytest.raises(ValueError, match="sources is empty; give at least one SP3 file"):
+        join_sp3([])
+    assert len(join_sp3([sp3, read_sp3(sp3)]).epochs) == 17  # the same epochs once
