@@ -53,7 +53,8 @@ from ..io.sp3 import join_sp3
 from ..orbits import Orbit, SP3Orbit
 from ..outputs import same_file, write_files
 from ..yaw_models import LAWS, ModelAttitude, default_metadata
-from .rinex import RinexReader, RinexWriter, record_times
+from .rinex import RinexReader, record_times
+from .streams import RinexWriter
 
 __all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]
 

@@ -38,25 +38,18 @@ astropy_feedrot[gnss]``), streamed through a pipe.
 
 import contextlib
 import dataclasses
-import gzip
-import io
-import os
-import shutil
-import subprocess
-import threading
 
 import numpy as np
 
 from ..io import TIME_SYSTEMS, FileFormatError, check_epoch, epochs_to_time
+from .streams import open_rinex_lines, source_name
 
 __all__ = [
     "SYSTEMS",
     "RinexHeader",
     "EpochRecord",
     "RinexReader",
-    "RinexWriter",
     "read_rinex_header",
-    "comment_line",
     "record_times",
 ]
 
@@ -377,72 +370,6 @@ class EpochRecord:
         self.lines[k] = text[:col] + new + text[col + _VALUE:]
 
 
-def _name(source):
-    if isinstance(source, (str, os.PathLike)):
-        return os.fsdecode(os.fspath(source))
-    name = getattr(source, "name", None)
-    return name if isinstance(name, str) and name else "<stream>"
-
-
-def _crx2rnx():
-    """Path of the ``crx2rnx`` program of the optional hatanaka package."""
-    try:
-        import hatanaka.bin  # optional dependency, imported on use
-    except ImportError:
-        raise ImportError("reading Hatanaka-compressed RINEX (Compact RINEX) needs the "
-                          "hatanaka package: pip install astropy_feedrot[gnss]") from None
-    from importlib.resources import files
-
-    program = files(hatanaka.bin).joinpath("crx2rnx.exe" if os.name == "nt" else "crx2rnx")
-    return str(program)
-
-
-class _Pipe:
-    """Text lines of a Compact RINEX stream decompressed by ``crx2rnx`` through a pipe."""
-
-    def __init__(self, binary, name):
-        self.name = name
-        self.process = subprocess.Popen([_crx2rnx(), "-"], stdin=subprocess.PIPE,
-                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        self.error = []
-
-        def feed():
-            try:
-                shutil.copyfileobj(binary, self.process.stdin, 1 << 20)
-            except (BrokenPipeError, OSError) as error:  # crx2rnx stopped: reported below
-                self.error.append(error)
-            finally:
-                with contextlib.suppress(OSError):
-                    self.process.stdin.close()
-
-        self.thread = threading.Thread(target=feed, daemon=True)
-        self.thread.start()
-        self.stderr = []
-        self.err_thread = threading.Thread(
-            target=lambda: self.stderr.append(self.process.stderr.read()), daemon=True)
-        self.err_thread.start()
-        self.text = io.TextIOWrapper(self.process.stdout, encoding="latin-1", newline="")
-
-    def check(self):
-        """Raise if crx2rnx failed (after its output was read to the end)."""
-        code = self.process.wait()
-        self.thread.join()
-        self.err_thread.join()
-        if code not in (0, 2):
-            message = b"".join(self.stderr).decode("latin-1").strip().splitlines()
-            raise FileFormatError(self.name, 0, "a Compact RINEX (Hatanaka) file that crx2rnx "
-                                  "decompresses", " ".join(message)[:200] or f"exit {code}")
-
-    def close(self):
-        if self.process.poll() is None:
-            self.process.kill()
-        self.process.wait()
-        self.thread.join()
-        self.err_thread.join()
-        self.text.close()
-        self.process.stderr.close()
-
-
 class RinexReader:
     """Stream the epoch records of a RINEX observation file (2.11, 3.0x, 4.0x).
 
@@ -492,11 +419,11 @@ class RinexReader:
     """
 
     def __init__(self, source, *, name=None):
-        self.name = name or _name(source)
+        self.name = name or source_name(source)
         self._stack = contextlib.ExitStack()
         self._pipe = None
         try:
-            self._lines = self._open(source)
+            self._lines, self._pipe = open_rinex_lines(source, self._stack, self.name)
             self.lineno = 0
             self.header = self._read_header()
         except BaseException:
@@ -504,28 +431,6 @@ class RinexReader:
             raise
 
     # -- opening ---------------------------------------------------------------------
-
-    def _open(self, source):
-        if isinstance(source, (str, os.PathLike)):
-            binary = self._stack.enter_context(open(source, "rb"))
-        elif hasattr(source, "read"):
-            if isinstance(source.read(0), str):
-                return iter(source.readline, "")
-            binary = source
-        else:
-            raise TypeError("source must be a path (str or os.PathLike) or a file object, got "
-                            f"{type(source).__name__}")
-        binary = io.BufferedReader(binary) if not hasattr(binary, "peek") else binary
-        if binary.peek(2)[:2] == b"\x1f\x8b":
-            binary = self._stack.enter_context(gzip.GzipFile(fileobj=binary, mode="rb"))
-            binary = io.BufferedReader(binary)
-        if binary.peek(80)[60:80].startswith(b"CRINEX VERS"):
-            self._pipe = _Pipe(binary, self.name)
-            self._stack.callback(self._pipe.close)
-            return iter(self._pipe.text.readline, "")
-        text = io.TextIOWrapper(binary, encoding="latin-1", newline="")
-        self._stack.callback(text.detach)
-        return iter(text.readline, "")
 
     def close(self):
         """Close the file (and stop ``crx2rnx``)."""
@@ -662,8 +567,8 @@ class RinexReader:
                 continue  # a blank line at the end
             yield parse(line)
 
-    def _satellites(self, record, count, what):
-        """Read the observation lines of ``record.satellites`` (flags 0, 1, 6)."""
+    def _satellites_2(self, record):
+        """Read the observation lines of ``record.satellites`` (RINEX 2, flags 0, 1, 6)."""
         header = self.header
         for sat in record.satellites:
             system = sat[0]
@@ -672,17 +577,11 @@ class RinexReader:
                                   f"header declares ({', '.join(header.obs_types)})",
                                   f"{sat} in the epoch record", record.lineno)
             types = header.obs_types[system]
-            n_lines = header.record_lines(system)
             record.starts.append(len(record.lines))
-            for k in range(n_lines):
+            for k in range(header.record_lines(system)):
                 line = self._next(f"observations of {sat} ({len(record.satellites)} "
                                   f"satellites announced by the epoch line {record.lineno})")
-                if header.major > 2:
-                    if line[:3] != sat:
-                        raise self._error(f"the observations of {sat}, as listed", line)
-                    width = 3 + FIELD * len(types)
-                else:
-                    width = FIELD * min(_PER_LINE_2, len(types) - _PER_LINE_2 * k)
+                width = FIELD * min(_PER_LINE_2, len(types) - _PER_LINE_2 * k)
                 if len(line.rstrip()) > width:
                     raise self._error(f"at most {len(types)} observations of {sat} (the "
                                       f"types the header declares for system {system}: "
@@ -775,7 +674,7 @@ class RinexReader:
                 raise self._error(f"{count} satellites (A1,I2 each) from column 33", line,
                                   lineno)
             record.satellites.append(f"{code}{int(number):02d}")
-        self._satellites(record, count, "")
+        self._satellites_2(record)
         return record
 
 
@@ -806,104 +705,6 @@ def read_rinex_header(source):
     """
     with RinexReader(source) as reader:
         return reader.header
-
-
-def comment_line(text, line_end="\n"):
-    """A RINEX header ``COMMENT`` line (text in columns 1-60).
-
-    Raises
-    ------
-    ValueError
-        If ``text`` is longer than 60 characters.
-
-    Examples
-    --------
-    >>> from astropy_feedrot.gnss import comment_line
-    >>> len(comment_line("hello").rstrip("\\n")), comment_line("hello")[60:]
-    (67, 'COMMENT\\n')
-    """
-    if len(text) > 60:
-        raise ValueError(f"a RINEX comment holds 60 characters, got {len(text)}: {text!r}")
-    return f"{text:<60}COMMENT{line_end}"
-
-
-class RinexWriter:
-    """Write a RINEX observation file line by line, as read (gzip for ``.gz`` names).
-
-    Parameters
-    ----------
-    target : str, path-like or file object
-        Where to write: a path (compressed with gzip if it ends in ``.gz``)
-        or a text file object.
-
-    Examples
-    --------
-    >>> import io
-    >>> from astropy_feedrot.gnss import RinexReader, RinexWriter
-    >>> text = '''     3.04           OBSERVATION DATA    G                   RINEX VERSION / TYPE
-    ... G    1 L1C                                                  SYS / # / OBS TYPES
-    ...                                                             END OF HEADER
-    ... > 2023 01 25 00 00  0.0000000  0  1
-    ... G05 105100000.123 7
-    ... '''
-    >>> out = io.StringIO()
-    >>> with RinexReader(io.StringIO(text)) as reader, RinexWriter(out) as writer:
-    ...     writer.write_header(reader.header, "example")
-    ...     for record in reader:
-    ...         writer.write_record(record)
-    >>> print(out.getvalue().splitlines()[2])
-    example                                                     COMMENT
-    """
-
-    def __init__(self, target):
-        self._stack = contextlib.ExitStack()
-        if isinstance(target, (str, os.PathLike)):
-            name = os.fsdecode(os.fspath(target))
-            if name.endswith(".gz"):
-                binary = self._stack.enter_context(gzip.open(name, "wb", compresslevel=6))
-            else:
-                binary = self._stack.enter_context(open(name, "wb"))
-            self._file = self._stack.enter_context(
-                io.TextIOWrapper(binary, encoding="latin-1", newline=""))
-        elif hasattr(target, "write"):
-            self._file = target
-        else:
-            raise TypeError("target must be a path or a text file object, got "
-                            f"{type(target).__name__}")
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def close(self):
-        """Flush and close the file (a file object given is left open)."""
-        self._stack.close()
-
-    def write_header(self, header, comment=None):
-        """Write the header as read, with one ``COMMENT`` line before ``END OF HEADER``.
-
-        Examples
-        --------
-        See `RinexWriter`.
-        """
-        lines = header.lines
-        write = self._file.write
-        for line in lines[:-1]:
-            write(line)
-        if comment is not None:
-            write(comment_line(comment, header.line_end))
-        write(lines[-1])
-
-    def write_record(self, record):
-        """Write an epoch record's lines.
-
-        Examples
-        --------
-        See `RinexWriter`.
-        """
-        self._file.writelines(record.lines)
 
 
 def record_times(records, time_system):
