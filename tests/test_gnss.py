@@ -443,3 +443,48 @@ def test_join_orbex_and_sp3(tmp_path, orbits, sp3):
     with pytest.raises(ValueError, match="sources is empty; give at least one SP3 file"):
         join_sp3([])
     assert len(join_sp3([sp3, read_sp3(sp3)]).epochs) == 17  # the same epochs once
+
+
+def test_cycle_slip_records_kept(tmp_path, sp3):
+    # Epoch flag 6 announces cycle-slip records in the observation format: kept as read.
+    source = _rinex(tmp_path / "a.rnx", epochs=3)
+    lines = source.read_text().splitlines(keepends=True)
+    k = next(i for i, line in enumerate(lines) if line.startswith(">"))
+    slip = lines[k].replace("  0 13", "  6  1", 1)
+    lines[k + 14:k + 14] = [slip, "G01         0.000 1        1.000 1\n"]
+    source.write_text("".join(lines))
+    correct_rinex(source, tmp_path / "b.rnx", sp3)
+    written = (tmp_path / "b.rnx").read_text()
+    assert slip + "G01         0.000 1        1.000 1\n" in written
+
+
+def test_hatanaka_file_broken(tmp_path, sp3):
+    hatanaka = pytest.importorskip("hatanaka")
+    source = _rinex(tmp_path / "a.rnx", epochs=20)
+    compact = hatanaka.rnx2crx(source.read_bytes())
+    broken = tmp_path / "a.crx"
+    broken.write_bytes(compact[:len(compact) // 2] + b"&garbage\n" * 5)
+    with pytest.raises(FileFormatError, match="Compact RINEX"):
+        correct_rinex(broken, tmp_path / "b.rnx", sp3)
+    assert not (tmp_path / "b.rnx").exists()
+
+
+def test_glonass_only_rinex_2_in_utc(tmp_path, sp3, orbits):
+    # A GLONASS file (system R): its epochs are UTC (GLO), the SP3 file's GPS time.
+    glonass = {prn: orbit for prn, orbit in orbits.items() if prn[0] == "R"}
+    source = tmp_path / "r.rnx"
+    start = START + 3600 * u.s
+    write_rinex(source, "2.11", {"R": ("C1", "L1", "L2")}, list(glonass), start, 20)
+    text = source.read_text().replace("M (MIXED)", "R (GLO)  ")
+    source.write_text(text.replace("     GPS         TIME", "     GLO         TIME"))
+    header = read_rinex_header(source)
+    assert header.system == "R" and header.time_system == "GLO"
+    report = correct_rinex(source, tmp_path / "b.rnx", sp3, form="wu")
+    assert report.arcs == 4
+    # Read as UTC, the epochs are 18 s later than the GPS readings: the wind-up
+    # removed is Wu's at those instants.
+    times = start + (np.arange(20) * 30 + 18) * u.s
+    names, expected = _reference(glonass, times)
+    before, after = _phases(source), _phases(tmp_path / "b.rnx")
+    removed = np.array([[before[t, s][0] - after[t, s][0] for s in names] for t in range(20)])
+    assert np.max(np.abs((removed - expected + 0.5) % 1 - 0.5)) < 1.1e-3

@@ -17,6 +17,7 @@ import pytest
 from astropy import units as u
 
 from astropy_feedrot import ModelAttitude, TLEOrbit
+from astropy_feedrot.io import FileFormatError
 from astropy_feedrot.attitude import nominal_dipoles, sun_position
 from astropy_feedrot.yaw_models import LAWS, model_yaw, nominal_yaw, orbit_angles
 
@@ -194,3 +195,35 @@ def test_scalar_time():
     yaw, nominal = ModelAttitude(orbit, "GPS-IIF").yaw(EPOCH)
     assert yaw.shape == () and yaw.deg == pytest.approx(nominal.deg)
     assert isinstance(orbit, TLEOrbit)
+
+
+def test_yaw_rate_from_the_metadata_block():
+    # Files of some analysis software add SATELLITE/YAW_BIAS_RATE (per SVN).
+    import io
+
+    from astropy_feedrot.io import read_satellite_metadata
+
+    text = """%=SNX 2.02 XXX 23:001:00000 XXX 00:000:00000 00:000:00000 P 00000 0
++SATELLITE/IDENTIFIER
+ G063 2011-036A  37753 GPS-IIF         Launched 2011-07-16; NAVSTAR 66
+-SATELLITE/IDENTIFIER
++SATELLITE/PRN
+ G063 2011:197:00000 0000:000:00000 G01
+-SATELLITE/PRN
++SATELLITE/YAW_BIAS_RATE
+*SVN_ Valid_From____ Valid_To______   YB Yaw Rate  Comment
+ G063 2011:197:00000 0000:000:00000    P   0.1100  from the metadata
+-SATELLITE/YAW_BIAS_RATE
+%ENDSNX
+"""
+    metadata = read_satellite_metadata(io.StringIO(text))
+    assert metadata.yaw_rate("G01", EPOCH) == ("P", 0.11)
+    model = ModelAttitude.from_metadata(_orbit(20.0, GPS), "G01", EPOCH, metadata)
+    assert model.law.max_yaw_rate == 0.11 and model.block == "GPS-IIF"
+    with pytest.raises(FileFormatError, match=r"line 4: expected '-SATELLITE/IDENTIFIER' "
+                                              "before a new block, got '\\+SATELLITE/PRN'"):
+        read_satellite_metadata(io.StringIO(text.replace("-SATELLITE/IDENTIFIER\n", "", 1)))
+    with pytest.raises(FileFormatError, match=r"line 1: expected a SINEX header line"):
+        read_satellite_metadata(io.StringIO("IGS\n"))
+    with pytest.raises(FileFormatError, match=r"expected a SATELLITE/PRN block, got end of file"):
+        read_satellite_metadata(io.StringIO(text.split("+SATELLITE/PRN")[0]))
