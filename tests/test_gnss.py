@@ -58,7 +58,7 @@ def _phases(path):
         header = reader.header
         t = -1
         for record in reader:
-            if record.flag > 1:
+            if not record.observations:
                 continue
             t += 1
             for i, sat in enumerate(record.satellites):
@@ -73,7 +73,7 @@ def _without_phases(path):
         header = reader.header
         lines = list(header.lines)
         for record in reader:
-            if record.flag < 2:
+            if record.observations:
                 for i, sat in enumerate(record.satellites):
                     for line, col, _ in header.phase_fields(sat[0]):
                         if record.value(i, line, col) is not None:
@@ -488,3 +488,11 @@ def test_glonass_only_rinex_2_in_utc(tmp_path, sp3, orbits):
     before, after = _phases(source), _phases(tmp_path / "b.rnx")
     removed = np.array([[before[t, s][0] - after[t, s][0] for s in names] for t in range(20)])
     assert np.max(np.abs((removed - expected + 0.5) % 1 - 0.5)) < 1.1e-3
+
+
+def test_blank_lines_kept(tmp_path, sp3):
+    source = _rinex(tmp_path / "a.rnx", epochs=3)
+    source.write_text(source.read_text() + "\n\n")
+    report = correct_rinex(source, tmp_path / "b.rnx", sp3)
+    assert report.epochs == 3
+    assert (tmp_path / "b.rnx").read_text().endswith("\n\n\n")

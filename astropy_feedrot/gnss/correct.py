@@ -475,7 +475,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
             block, epochs = [], 0
             for record in reader:
                 block.append(record)
-                epochs += record.flag < 2
+                epochs += record.observations
                 if epochs >= BLOCK_EPOCHS:
                     state.correct(block, reader.name)
                     for record in block:
@@ -534,7 +534,7 @@ class _Block:
         self.span = (orbits.epochs[-1] - self.first).sec
 
     def correct(self, block, name):
-        data = [record for record in block if record.flag < 2]
+        data = [record for record in block if record.observations]
         if not data:
             return
         times = record_times(data, self.header.time_system)

@@ -205,9 +205,10 @@ class EpochRecord:
         The record's lines, each with its line end: the epoch line (and its
         continuation lines in RINEX 2), then the satellites' observations or
         the event's header lines.
-    flag : int
+    flag : int or None
         The epoch flag: 0 (OK), 1 (power failure since the previous epoch),
-        2-5 (events), 6 (cycle slips).
+        2-5 (events), 6 (cycle slips); None for a blank line, which is kept
+        as a record of its own so that it is written back.
     epoch : tuple or None
         ``(year, month, day, hour, minute, second)``; None for an event that
         gives no time.
@@ -250,6 +251,11 @@ class EpochRecord:
     def __repr__(self):
         return (f"<EpochRecord line {self.lineno} flag {self.flag} {self.epoch} "
                 f"{len(self.satellites)} satellites>")
+
+    @property
+    def observations(self):
+        """Whether the record holds observations (epoch flag 0 or 1)."""
+        return self.flag in (0, 1)
 
     def _field(self, i, line, col):
         text = self.lines[self.starts[i] + line]
@@ -563,8 +569,9 @@ class RinexReader:
                     self._pipe.check()
                 return
             self.lineno += 1
-            if not line.strip():
-                continue  # a blank line at the end
+            if not line.strip():  # a blank line (at the end): kept as it is
+                yield EpochRecord(self.lineno, [line], None, None)
+                continue
             yield parse(line)
 
     def _satellites_2(self, record):
