@@ -66,12 +66,20 @@ def test_every_satellite_of_an_sp3_file(capsys):
     table, err = _table(capsys, "satellite", "GGAO12M", "--sp3", SP3, "--step", "1h")
     assert err == ""
     assert table.colnames[:3] == ["time", "prn", "azimuth"]
+    np.testing.assert_array_equal(table["windup"], table["continuous"])
     assert len(table) == 4 * 16  # 00:00 to 03:00, 16 satellites, by epoch then PRN
     assert list(table["prn"][:2]) == ["G01", "G02"] and table["time"][15] == table["time"][0]
     single, _ = _table(capsys, "satellite", "GGAO12M", "--sp3", SP3, "--sat", "E02", "--step",
                        "1h")
     rows = table[table["prn"] == "E02"]
     np.testing.assert_array_equal(rows["total"], single["total"])  # the same computation
+
+
+def test_every_satellite_is_not_plotted(tmp_path, capsys):
+    assert main(["satellite", "GGAO12M", "--sp3", SP3, "--plot", str(tmp_path / "a.png")]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--plot draws one satellite; choose it with --sat" in err
+    assert not (tmp_path / "a.png").exists()
 
 
 def test_default_interpolation_on_the_shipped_sample(capsys):
@@ -91,7 +99,8 @@ def test_units(capsys, command):
     cycles, _ = _table(capsys, *argv, "--units", "cycles")
     radians, _ = _table(capsys, *argv, "--units", "rad")
     prefix = "GGAO12M_" if command == "baseline" else ""
-    for name in ("total", "continuous", "transmitter", "parallactic_angle"):
+    for name in ("total", "continuous", "transmitter", "parallactic_angle") + (
+            ("windup",) if command == "satellite" else ()):
         column = prefix + name
         assert cycles[column].unit == u.cycle and radians[column].unit == u.rad
         # 1 cycle = 2 pi rad = 360 deg (the units' definitions).

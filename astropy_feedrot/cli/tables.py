@@ -65,7 +65,8 @@ _SATELLITE_OPTIONS = ("tle", "sp3", "sat", "orbex", "points", "satellite_polariz
 _NATURAL_OPTIONS = ("source", "ra", "dec", "frame")
 
 #: The columns ``--units`` converts (azimuth and elevation stay in degrees).
-_PHASE_COLUMNS = ("parallactic_angle", "transmitter", "receiver", "total", "continuous", "rate")
+_PHASE_COLUMNS = ("parallactic_angle", "transmitter", "receiver", "total", "continuous",
+                  "windup", "rate")
 
 
 def _given(args, names):
@@ -159,6 +160,9 @@ def _run_single(args):
     target, span = _target(args)
     times = time_span(args, default=span)
     if isinstance(target, list):  # every satellite of an SP3 file
+        if args.plot is not None:
+            raise CommandError("--plot draws one satellite; choose it with --sat (e.g. --sat "
+                               f"{target[0].name})")
         tables = []
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", OrbitWarning)  # holes: NaN rows, as documented
@@ -176,6 +180,9 @@ def _run_single(args):
                                     min_elevation=min_elevation)
         if getattr(args, "sp3", None) is not None:
             table.add_column([target.name] * len(table), name="prn", index=1)
+    if getattr(args, "sp3", None) is not None:  # the GNSS name of the continuous total
+        table.add_column(table["continuous"], name="windup",
+                         index=table.colnames.index("continuous") + 1)
     if getattr(args, "units", None) is not None:
         in_units(table, args.units, _PHASE_COLUMNS)
     write_table(table, paths, "feed_rotation")
