@@ -37,6 +37,7 @@ def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
      "--orbex goes with --attitude orbex"),
     (["-o", "{tmp}/a.rnx", "--position", "1,2"], "--position: expected X,Y,Z"),
     (["-o", "{tmp}/a.rnx", "--table", "{tmp}/t.txt"], "--table: cannot tell a format"),
+    (["-o", "{tmp}/a.rnx", "--orbex", "{tmp}/none.obx"], "--orbex: no such file '"),
 ])
 def test_rinex_errors(tmp_path, capsys, argv, match):
     argv = [a.format(tmp=tmp_path) for a in argv]

@@ -12,7 +12,7 @@ from astropy import units as u
 from ..gnss import correct_rinex
 from ..outputs import TABLE_FORMATS, CommandError, check_outputs, table_format, table_writer
 from ..outputs import write_files
-from .common import add_units_option, in_units, one_line, parse_quantity
+from .common import add_units_option, in_units, one_line, parse_quantity, read_path
 
 __all__ = ["register"]
 
@@ -35,11 +35,6 @@ def _run_rinex(args):
         raise CommandError(f"-o/--output: {args.output!r} names a Compact RINEX (Hatanaka) "
                            "file, which is not written; name it .rnx (or .rnx.gz) and "
                            "compress it with rnx2crx if needed")
-    inputs = [("OBS", args.obs)] + [("--sp3", p) for p in args.sp3] + [
-        ("--orbex", p) for p in args.orbex or []] + [
-        ("--metadata", p) for p in [args.metadata] if p is not None]
-    table = check_outputs([("--table", args.table, tuple(TABLE_FORMATS))], inputs,
-                          args.overwrite)[0]
     attitude = args.attitude
     if attitude == "orbex" and not args.orbex:
         raise CommandError("--attitude orbex needs --orbex FILE...")
@@ -47,6 +42,13 @@ def _run_rinex(args):
         raise CommandError("--orbex goes with --attitude orbex (the default when it is given)")
     if args.metadata is not None and attitude != "model":
         raise CommandError("--metadata goes with --attitude model")
+    inputs = [("OBS", args.obs)] + [("--sp3", p) for p in args.sp3] + [
+        ("--orbex", p) for p in args.orbex or []] + [
+        ("--metadata", p) for p in [args.metadata] if p is not None]
+    for option, path in inputs:
+        read_path(path, option)
+    table = check_outputs([("--table", args.table, tuple(TABLE_FORMATS))], inputs,
+                          args.overwrite)[0]
     max_gap = parse_quantity(args.max_gap, u.s, "--max-gap")
     try:
         report = correct_rinex(args.obs, args.output, args.sp3, orbex=args.orbex,
