@@ -496,3 +496,19 @@ def test_blank_lines_kept(tmp_path, sp3):
     report = correct_rinex(source, tmp_path / "b.rnx", sp3)
     assert report.epochs == 3
     assert (tmp_path / "b.rnx").read_text().endswith("\n\n\n")
+
+
+def test_rtklib_receiver_dipoles_are_a_quarter_cycle_away(tmp_path, sp3):
+    # RTKLIB's receiver dipoles are north and west (PAPER-NOTES): ours (east, north)
+    # turned by a zero direction of 270 deg. In Wu's form that turns the receiver's
+    # effective dipole by exactly 90 deg about the line of sight (D' = -k x D), so the
+    # wind-up differs by a constant quarter cycle; RTKLIB's constant is -0.25 cycle.
+    plain = _rinex(tmp_path / "a.rnx", epochs=40, zero_direction=0.0)
+    turned = _rinex(tmp_path / "b.rnx", epochs=40, zero_direction=270.0)
+    correct_rinex(plain, tmp_path / "a2.rnx", sp3, form="wu")
+    correct_rinex(turned, tmp_path / "b2.rnx", sp3, form="wu")
+    a0, a1 = _phases(plain), _phases(tmp_path / "a2.rnx")
+    b0, b1 = _phases(turned), _phases(tmp_path / "b2.rnx")
+    difference = np.array([(b0[k][0] - b1[k][0]) - (a0[k][0] - a1[k][0]) for k in a0])
+    difference = (difference + 0.5) % 1 - 0.5
+    np.testing.assert_allclose(difference, -0.25, atol=1.1e-3)
