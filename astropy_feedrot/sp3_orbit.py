@@ -10,7 +10,7 @@ from astropy import units as u
 
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time
-from .io import read_sp3
+from .io import SP3Data, read_sp3
 from .orbit_base import Orbit, check_orientation
 
 __all__ = ["SP3Orbit", "lagrange_interpolate"]
@@ -21,8 +21,9 @@ class SP3Orbit(Orbit):
 
     Parameters
     ----------
-    source : str, path-like or file object
-        An SP3-c or SP3-d file.
+    source : str, path-like, file object or `~astropy_feedrot.io.SP3Data`
+        An SP3-c or SP3-d file, or its contents (several days joined by
+        `~astropy_feedrot.io.sp3.join_sp3`, for instance).
     satellite : str
         The satellite's SP3 name, e.g. ``'G05'``.
     points : int, optional
@@ -93,7 +94,7 @@ class SP3Orbit(Orbit):
     """
 
     def __init__(self, source, satellite, points=10):
-        data = read_sp3(source)
+        data = source if isinstance(source, SP3Data) else read_sp3(source)
         if satellite not in data.positions:
             raise ValueError(
                 f"satellite {satellite!r} is not in the SP3 file; it has "
