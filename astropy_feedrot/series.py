@@ -12,6 +12,7 @@ Plain numpy on floats; nothing here knows about time scales or frames.
 """
 
 import concurrent.futures
+import hashlib
 import math
 import os
 import pathlib
@@ -359,7 +360,7 @@ _KEPT_LOCK = threading.Lock()
 _UNWRITABLE = False
 
 
-def kept_path(name, chunk):
+def kept_path(name, chunk, evaluate=None):
     """The file of chunk ``chunk`` of the kept nodes of series ``name``.
 
     Parameters
@@ -368,12 +369,15 @@ def kept_path(name, chunk):
         The series.
     chunk : int
         `KEPT_CHUNK` days from ``KEPT_ORIGIN + chunk * KEPT_CHUNK``.
+    evaluate : callable, optional
+        The function that computes the series: its code is part of the name,
+        so that a changed function never reads the nodes of the old one.
 
     Returns
     -------
     pathlib.Path
-        In astropy's cache directory, named after the series, the chunk and
-        the versions of pyerfa and ERFA that computed it.
+        In astropy's cache directory, named after the series, the chunk, the
+        versions of pyerfa and ERFA and the code that computed it.
 
     Examples
     --------
@@ -381,8 +385,12 @@ def kept_path(name, chunk):
     >>> kept_path("cip", 23).name.startswith("cip-23-")
     True
     """
-    versions = f"{erfa.__version__}-{erfa.version.erfa_version}"
-    return pathlib.Path(get_cache_dir()) / "astropy_feedrot" / f"{name}-{chunk}-{versions}.npy"
+    stamp = [erfa.__version__, erfa.version.erfa_version, KEPT_ORIGIN, KEPT_CHUNK]
+    code = getattr(evaluate, "__code__", None)
+    if code is not None:
+        stamp += [code.co_code, repr(code.co_consts), code.co_names]
+    key = hashlib.blake2b(repr(stamp).encode(), digest_size=8).hexdigest()
+    return pathlib.Path(get_cache_dir()) / "astropy_feedrot" / f"{name}-{chunk}-{key}.npy"
 
 
 def clear_kept_nodes():
@@ -458,7 +466,7 @@ class KeptSeries(Series):
             return True
         with _KEPT_LOCK:
             missing = [c for c in chunks if (self.name, c) not in _KEPT]
-        return all(kept_path(self.name, c).exists() for c in missing)
+        return all(kept_path(self.name, c, self.evaluate).exists() for c in missing)
 
     def nodes(self, needed):
         """Values at whole days ``needed`` (from `KEPT_ORIGIN`), from the kept chunks."""
@@ -489,7 +497,7 @@ class KeptSeries(Series):
             table = _KEPT.get(key)
         if table is not None:
             return table
-        path = kept_path(self.name, chunk)
+        path = kept_path(self.name, chunk, self.evaluate)
         try:
             table = np.load(path)
         except (OSError, ValueError):  # not kept yet, or unreadable: compute it

@@ -253,3 +253,27 @@ def test_kept_tables_are_astropys():
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                              cwd=PACKAGE.parent, check=True)
         assert out.stdout.strip() == "same"
+
+
+def cip_xy(tt1, tt2):
+    """X, Y of the CIP from ERFA (IAU 2006/2000A), the reference of the kept nodes."""
+    return np.stack(erfa.bpn2xy(erfa.pnm06a(tt1, tt2)), axis=-1)
+
+
+def test_kept_nodes_agree_with_erfa_and_survive_a_bad_file(tmp_path, monkeypatch):
+    from astropy_feedrot import series
+
+    monkeypatch.setattr(series, "get_cache_dir", lambda: str(tmp_path))
+    series.clear_kept_nodes()
+    kept = series.KeptSeries("test-cip", cip_xy, 16, 2459945.5, 0.0)  # 2023-01-01 TT
+    tt = np.random.default_rng(3).uniform(0, 300, 50)
+    # ERFA at the instants themselves: 16 nodes a day apart give 1e-13 rad.
+    assert np.abs(kept.at(tt) - cip_xy(2459945.5, tt)).max() < 1e-12
+    files = sorted(tmp_path.rglob("test-cip-*.npy"))
+    assert files  # a year of nodes kept
+    good = kept.at(tt)
+    np.save(files[0], np.zeros((3, 2)))  # a file of the wrong shape is computed again
+    series.clear_kept_nodes()
+    fresh = series.KeptSeries("test-cip", cip_xy, 16, 2459945.5, 0.0)
+    assert np.array_equal(fresh.at(tt), good)
+    series.clear_kept_nodes()
