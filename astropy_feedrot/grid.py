@@ -31,7 +31,7 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 
-from . import engine
+from . import engine, kernel, rates
 from .antenna import Antenna
 from .attitude import Attitude
 from .continuity import delay_of_difference, frequency_hz
@@ -67,6 +67,7 @@ __all__ = [
     "nominal_attitude",
     "feed_rotation_grid",
     "feed_rotation_grid_dask",
+    "feed_rotation_rate_grid",
     "rotation_delay_grid",
 ]
 
@@ -468,6 +469,118 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
             out[:, i, :] = phase[..., 0, 0].T * scale
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
+
+
+@iers_context()  # one check of the Earth-orientation tables per call
+def feed_rotation_rate_grid(antennas, sources, obstime, *, polarization=None,
+                            min_elevation=None):
+    """Rate of the feed rotation of every antenna observing every natural source.
+
+    Parameters
+    ----------
+    antennas : sequence of `~astropy_feedrot.Antenna`
+        The receivers (A of them).
+    sources : `~astropy.coordinates.SkyCoord`
+        S natural sources, one scalar or 1-d coordinate, fixed in a celestial
+        frame.
+    obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
+        The epochs, scalar or 1-d (T of them); masked epochs give NaN.
+    polarization : {'RCP', 'LCP'}, optional
+        Hand of the receivers (RCP by default).
+    min_elevation : `~astropy.units.Quantity`, optional
+        NaN where a source is lower than this above an antenna's horizon.
+
+    Returns
+    -------
+    `~astropy.units.Quantity`
+        In deg/s, shape (T, A, S) (or (A, S) for a scalar ``obstime``):
+        element ``[k, i, j]`` equals
+        ``antennas[i].feed_rotation_rate(sources[j], obstime[k])``.
+
+    Raises
+    ------
+    TypeError
+        If ``sources`` is not a coordinate (satellites: use
+        `Antenna.feed_rotation_rate <astropy_feedrot.Antenna.feed_rotation_rate>`),
+        or an argument is not of the expected kind.
+    ValueError
+        For moving sources (a 2-d coordinate), a multi-dimensional
+        ``obstime`` or a bad ``min_elevation``.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if some grid points are degenerate.
+
+    Notes
+    -----
+    One `~astropy_feedrot.Epochs` serves every antenna: its celestial pole
+    and its Sun (for the rate of the annual aberration), and the directions
+    from its Earth orientation; the rate of each antenna is then
+    `~astropy_feedrot.engine.feed_rotation_rate`, as for
+    `Antenna.feed_rotation_rate <astropy_feedrot.Antenna.feed_rotation_rate>`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.grid import feed_rotation_rate_grid
+    >>> antennas = [get_antenna("WETTZ13S"), get_antenna("YEBES40M")]
+    >>> sources = SkyCoord(["03h19m48.16s +41d30m42.1s", "12h29m06.7s +02d03m09s"])
+    >>> times = Time("2023-01-25T18:00") + np.arange(3) * u.hour
+    >>> rate = feed_rotation_rate_grid(antennas, sources, times)
+    >>> rate.shape, rate.unit
+    ((3, 2, 2), Unit("deg / s"))
+    >>> one = antennas[1].feed_rotation_rate(sources[1], times)
+    >>> bool(np.allclose(rate[:, 1, 1], one, rtol=0, atol=1e-12 * u.deg / u.s))
+    True
+    """
+    antennas = _check_antennas(antennas)
+    kind, sources = _check_targets_objects(sources)
+    if kind != "sources":
+        raise TypeError("feed_rotation_rate_grid takes natural sources (a SkyCoord); for "
+                        "satellites use Antenna.feed_rotation_rate")
+    if sources.ndim > 1:
+        raise ValueError(f"sources must be a scalar or 1-d SkyCoord of fixed sources, got "
+                         f"shape {sources.shape}")
+    time = as_time(obstime)
+    if time.ndim > 1:
+        raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
+                         f"got shape {time.shape}; flatten it with .ravel()")
+    epochs = obstime if isinstance(obstime, Epochs) and time.ndim == 1 else Epochs(
+        time.reshape((time.size,)))
+    sign = polarization_sign("RCP" if polarization is None else polarization)
+    limit = engine.min_sine(as_elevation_limit(min_elevation))
+    n_s, n_t = sources.size, epochs.size
+    column = sources.reshape((n_s, 1))
+    pole = epochs.celestial_pole()[np.newaxis]  # (1, T, 3)
+    sun = epochs.sun_position()[np.newaxis]
+    out = np.empty((n_t, len(antennas), n_s))
+    degenerate = 0
+    for i, antenna in enumerate(antennas):
+        s = source_direction(column, antenna.location, epochs)  # (S, T, 3)
+        site = location_xyz(antenna.location)
+        s_rate = rates.source_direction_rate(s, pole, site, sun)
+        rotation_rate = None
+        if antenna.rotator is not None and antenna.rotator.mode == "series":
+            rotation_rate = np.broadcast_to(antenna.rotator.rate(epochs),
+                                            s.shape[:-1])[..., np.newaxis]
+        rate = engine.feed_rotation_rate(_receivers([antenna]), s[:, :, np.newaxis, np.newaxis],
+                                         s_rate[:, :, np.newaxis, np.newaxis],
+                                         rotation_rate)[..., 0, 0]
+        below = None
+        if limit is not None:
+            below = kernel.dot(s, antenna.local_frame.up) < limit
+        degenerate += int(np.count_nonzero(engine.degenerate(rate, s, below)))
+        if below is not None:
+            rate = np.where(below, np.nan, rate)
+        out[:, i, :] = sign * rate.T
+    engine.warn_degenerate(degenerate, out.size, "feed rotation rate", "grid points")
+    shape = time.shape + (len(antennas), n_s)
+    return u.Quantity(out.reshape(shape), u.rad / u.s).to(u.deg / u.s)
 
 
 def _dask_array():

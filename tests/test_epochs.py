@@ -277,3 +277,38 @@ def test_kept_nodes_agree_with_erfa_and_survive_a_bad_file(tmp_path, monkeypatch
     fresh = series.KeptSeries("test-cip", cip_xy, 16, 2459945.5, 0.0)
     assert np.array_equal(fresh.at(tt), good)
     series.clear_kept_nodes()
+
+
+def test_rate_on_the_grid():
+    from astropy_feedrot import feed_rotation_rate_grid
+
+    antennas = [get_antenna(name) for name in STATIONS]
+    sources = sky(12)
+    t = times("array", masked=True)[:12]
+    rate = feed_rotation_rate_grid(antennas, sources, t, min_elevation=5 * u.deg)
+    assert rate.shape == (12, 3, 12) and rate.unit == u.deg / u.s
+    assert np.all(np.isnan(rate[3]))  # the masked epoch
+    for i, antenna in enumerate(antennas):
+        # Antenna.feed_rotation_rate is checked against a centred difference of
+        # the rigorous angles (test_rate_takes_the_pole_and_sun_of_the_epochs).
+        one = antenna.feed_rotation_rate(sources[:, np.newaxis], t, min_elevation=5 * u.deg)
+        assert np.array_equal(np.isnan(one.T), np.isnan(rate[:, i]))
+        assert np.allclose(one.T, rate[:, i], rtol=0, atol=1e-12 * u.deg / u.s,
+                           equal_nan=True)
+    lcp = feed_rotation_rate_grid(antennas, sources, t, polarization="LCP")
+    rcp = feed_rotation_rate_grid(antennas, sources, t)
+    assert np.allclose(lcp, -rcp, equal_nan=True)  # Appendix D: the hands are opposite
+
+
+def test_rate_on_the_grid_refuses():
+    from astropy_feedrot import feed_rotation_rate_grid
+    from astropy_feedrot.simulations import gps_svn76
+
+    antenna = [get_antenna("WETTZ13S")]
+    t = times("array")
+    with pytest.raises(TypeError, match="takes natural sources"):
+        feed_rotation_rate_grid(antenna, [gps_svn76()], t)
+    with pytest.raises(ValueError, match="scalar or 1-d SkyCoord"):
+        feed_rotation_rate_grid(antenna, SkyCoord([[1, 2]] * u.deg, [[3, 4]] * u.deg), t)
+    with pytest.raises(ValueError, match="scalar or 1-d Time"):
+        feed_rotation_rate_grid(antenna, sky(3), t.reshape(4, 10))
