@@ -25,7 +25,8 @@ from astropy.config import get_cache_dir
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
            "horner", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
-           "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN", "KEPT_CHUNK"]
+           "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN", "KEPT_CHUNK",
+           "RUN_EPOCHS", "MAX_RUNS"]
 
 # With many instants in an interval of a grid, the interpolant is reduced there to
 # a polynomial of this degree (Chebyshev points), below 1e-6 mas.
@@ -339,12 +340,44 @@ def horner(coefficients, slot, x):
     >>> horner(coefficients, np.array([0]), np.array([0.5]))  # 1 + 2 x at x = 0.5
     array([[[2., 2., 2.]]])
     """
+    slot = np.asarray(slot)
+    starts = np.flatnonzero(np.diff(slot)) + 1
+    if slot.size >= RUN_EPOCHS * (starts.size + 1) and starts.size < MAX_RUNS:
+        return _horner_by_runs(coefficients, slot, x, starts)
     x = x[:, np.newaxis]
     out = np.take(coefficients[-1], slot, axis=1)
     for k in range(coefficients.shape[0] - 2, -1, -1):
         out *= x
         out += np.take(coefficients[k], slot, axis=1)
     return out
+
+
+#: Epochs per run of one cell from which `horner` takes a run's coefficients
+#: once (broadcast) instead of gathering them for every epoch, and the most
+#: runs it loops over. The arithmetic, hence every bit, is the same.
+RUN_EPOCHS = 64
+MAX_RUNS = 1024
+
+
+def _horner_by_runs(coefficients, slot, x, starts):
+    """`horner` for epochs in runs of one cell: no gather, the same arithmetic.
+
+    Computed epoch-major, (N, S * 3), where each run is one contiguous block,
+    and returned as an (S, N, 3) view of it.
+    """
+    degree, n_s, cells, n_c = coefficients.shape
+    flat = coefficients.transpose(0, 2, 1, 3).reshape(degree, cells, n_s * n_c)
+    out = np.empty((slot.size, n_s * n_c))
+    bounds = np.concatenate([[0], starts, [slot.size]])
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        cell = slot[a]
+        xs = x[a:b, np.newaxis]
+        segment = out[a:b]
+        segment[...] = flat[-1, cell]
+        for k in range(degree - 2, -1, -1):
+            segment *= xs
+            segment += flat[k, cell]
+    return out.reshape(slot.size, n_s, n_c).transpose(1, 0, 2)
 
 
 #: TT Julian date of node 0 of `KeptSeries` (2000-01-01T00:00 TT).
