@@ -363,7 +363,8 @@ def _horner_by_runs(coefficients, slot, x, starts):
     """`horner` for epochs in runs of one cell: no gather, the same arithmetic.
 
     Computed epoch-major, (N, S * 3), where each run is one contiguous block,
-    and returned as an (S, N, 3) view of it.
+    and returned as (S, N, 3) in C order (what follows runs faster on it than
+    the copy costs).
     """
     degree, n_s, cells, n_c = coefficients.shape
     flat = coefficients.transpose(0, 2, 1, 3).reshape(degree, cells, n_s * n_c)
@@ -377,7 +378,7 @@ def _horner_by_runs(coefficients, slot, x, starts):
         for k in range(degree - 2, -1, -1):
             segment *= xs
             segment += flat[k, cell]
-    return out.reshape(slot.size, n_s, n_c).transpose(1, 0, 2)
+    return np.ascontiguousarray(out.reshape(slot.size, n_s, n_c).transpose(1, 0, 2))
 
 
 #: TT Julian date of node 0 of `KeptSeries` (2000-01-01T00:00 TT).
