@@ -333,7 +333,7 @@ def table_outputs(args):
     return paths
 
 
-def write_table(table, paths, kind):
+def write_table(table, paths, kind, overwrite=False):
     output, figure = paths
     files = []
     if output is not None:
@@ -341,7 +341,7 @@ def write_table(table, paths, kind):
     if figure is not None:
         files.append((figure, drawer(table, kind, figure)))
     then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    write_files(files, then)
+    write_files(files, then, overwrite=overwrite)
 
 
 # Options ----------------------------------------------------------------------------------

@@ -99,7 +99,7 @@ def _run_coverage(args):
                 raise CommandError(f"--plot: cannot draw {str(paths[1])!r}: "
                                    f"{one_line(error)}") from None
         files.append((paths[1], draw))
-    write_files(files)
+    write_files(files, overwrite=args.overwrite)
     print(f"Feed rotation above {min_elevation} from {epochs[0].isot} to {epochs[-1].isot} "
           f"every {args.step}:")
     print("\n".join(table.pformat(max_lines=-1, max_width=-1)))

@@ -3,17 +3,25 @@
 file as read, and a copy of the file with the feed rotation removed."""
 
 import argparse
+import contextlib
+import os
+import shutil
 import sys
+import tempfile
+from pathlib import Path
 
 from ..outputs import (
     TABLE_FORMATS,
     CommandError,
     check_outputs,
+    publish,
+    same_file,
     table_format,
     table_writer,
     write_files,
 )
-from ..visibility_files import antenna_table, correct_file, read_antennas
+from ..uvdata import WRITERS
+from ..visibility_files import antenna_table, correct_file, file_kind, read_antennas
 from .common import CELESTIAL_FRAMES, one_line
 
 __all__ = ["register"]
@@ -29,18 +37,70 @@ def _run_antennas(args):
     files = [] if paths[0] is None else [(paths[0], table_writer(table,
                                                                  table_format(paths[0])))]
     then = None if files else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    write_files(files, then)
+    write_files(files, then, overwrite=args.overwrite)
     return 0
 
 
-def _run_correct(args):
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
+FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
+
+
+def check_correct_output(source, output, overwrite):
+    """The resolved output of ``feedrot correct``, checked against the input before any work.
+
+    The output's extension must name the format written: FITS-IDI for a
+    FITS-IDI input (`FITSIDI_EXTENSIONS`; no conversion is made), a format
+    pyuvdata writes for any other input (`~astropy_feedrot.uvdata.WRITERS`).
+    """
     try:
-        correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
-                     overwrite=args.overwrite, progress=not args.quiet and sys.stderr.isatty())
-    except FileExistsError as error:
-        raise CommandError(f"-o/--output: {one_line(error)}") from None
-    except ImportError as error:
-        raise CommandError(one_line(error)) from None
+        kind = file_kind(source)
+    except (OSError, ValueError) as error:
+        raise CommandError(f"INPUT: {one_line(error)}") from None
+    given = Path(output).expanduser()
+    extension = given.suffix.lower()
+    if kind == "fits-idi" and extension not in FITSIDI_EXTENSIONS:
+        raise CommandError(f"-o/--output: {output!r}: a FITS-IDI input is corrected into a "
+                           "FITS-IDI copy (there is no conversion to other formats); give "
+                           f"the output one of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
+    if kind != "fits-idi" and extension not in WRITERS:
+        raise CommandError(f"-o/--output: cannot tell a format from the extension of "
+                           f"{output!r}; use one of {', '.join(WRITERS)}")
+    target = given.resolve()
+    if same_file(target, Path(source).expanduser().resolve()):
+        raise CommandError(f"-o/--output: {output!r} is the INPUT, which is never modified; "
+                           "choose another name")
+    if not target.parent.is_dir():
+        raise CommandError(f"-o/--output: cannot write {output!r}: directory "
+                           f"{str(target.parent)!r} does not exist")
+    if (target.exists() or target.is_symlink()) and not overwrite:
+        raise CommandError(f"-o/--output: {output!r} exists; add --overwrite to replace it, "
+                           "or choose another name")
+    if not os.access(target.parent, os.W_OK | os.X_OK):
+        raise CommandError(f"-o/--output: cannot write {output!r}: permission denied in "
+                           f"{str(target.parent)!r}")
+    return target
+
+
+def _run_correct(args):
+    target = check_correct_output(args.input, args.output, args.overwrite)
+    # Corrected into a directory of its own beside the target, then published in one
+    # step: exclusively unless --overwrite, so two runs into one name cannot both succeed.
+    work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+    try:
+        temporary = work / target.name
+        try:
+            correct_file(args.input, temporary, frame=args.frame, vertical=args.vertical,
+                         progress=not args.quiet and sys.stderr.isatty())
+        except ImportError as error:
+            raise CommandError(one_line(error)) from None
+        try:
+            publish(temporary, target, overwrite=args.overwrite)
+        except FileExistsError as error:
+            raise CommandError(f"-o/--output: {one_line(error)}; add --overwrite to replace "
+                               "it") from None
+    finally:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(work)
     return 0
 
 

@@ -38,7 +38,7 @@ def _run_demo(args):
     files = [(paths[0], table_writer(table, "ascii.ecsv"))]
     if types is not None:
         files.append((paths[1], drawer(table, "baseline", paths[1])))
-    write_files(files)
+    write_files(files, overwrite=args.overwrite)
     print("Section 4.1 of the paper: GPS SVN 76 over the GNSS antenna DBR205 and the")
     print("alt-az telescope FD-VLBA, 73 m apart, on 2023-01-25 (embedded element set, Table 2).")
     print(summary)

@@ -128,7 +128,7 @@ def _run_single(args):
     times = time_span(args, default=span)
     table = feed_rotation_table(antenna, target, times, polarization=args.polarization,
                                 min_elevation=min_elevation)
-    write_table(table, paths, "feed_rotation")
+    write_table(table, paths, "feed_rotation", overwrite=args.overwrite)
     return 0
 
 
@@ -152,7 +152,7 @@ def _run_baseline(args):
     times = time_span(args, default=span)
     table = baseline_table(first, second, target, times, frequency,
                            polarization=args.polarization, min_elevation=min_elevation)
-    write_table(table, paths, "baseline")
+    write_table(table, paths, "baseline", overwrite=args.overwrite)
     return 0
 
 

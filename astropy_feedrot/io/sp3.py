@@ -42,9 +42,9 @@ satellite's positions is at most about ``r (omega h)**4``, with ``omega``
 the fastest angular rate of an orbit at radius ``r`` seen from the rotating
 Earth (mean motion plus the Earth's rotation); the reader allows ten times
 that, plus a metre: 400 km for GPS at 15-minute epochs, 5 km at 5-minute
-epochs, which a single record 1,000 km (or 10 km) off exceeds. The record that best explains the excess
-(least squares over the windows holding it) is dropped, and the check
-repeats until every window is smooth. Files with fewer than five
+epochs, which a single record 1,000 km (or 10 km) off exceeds. The record
+that best explains the excess (least squares over the windows holding it)
+is dropped, and the check repeats until every window is smooth. Files with fewer than five
 consecutive epochs get the radius check only.
 
 SP3-a files (satellite IDs as I3 numbers) and SP3-b files are read too; their
@@ -442,7 +442,6 @@ class _Reader:
             interval=nominal["interval"],
             gaps=gaps,
         )
-
 
     def drop_implausible(self, satellites, pos, offsets, interval, lines):
         """Set implausible positions to NaN (in place), warning once."""
