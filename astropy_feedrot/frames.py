@@ -429,9 +429,9 @@ def source_direction(target, location, obstime):
     >>> s.shape
     (2, 3)
     """
-    target = as_skycoord(target)
     location = as_location(location)
     obstime, masked = fill_masked(obstime)
+    target = as_skycoord(target, obstime)
     shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
     if masked is not None and masked.all():
         return np.full(shape + (3,), np.nan)
