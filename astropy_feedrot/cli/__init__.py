@@ -89,6 +89,10 @@ def _run(args):
         message = error.args[0] if isinstance(error, KeyError) and error.args else error
         print(f"feedrot: error: {one_line(message)}", file=sys.stderr)
         return 1
+    except ImportError as error:
+        # An optional dependency that is not installed: the message names the extra.
+        print(f"feedrot: error: {one_line(error)}", file=sys.stderr)
+        return 1
     except MemoryError:
         print("feedrot: error: out of memory; use fewer epochs (a larger --step or a shorter "
               "span)", file=sys.stderr)

@@ -1,0 +1,33 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Without an optional dependency, the command line names the extra to install."""
+
+import subprocess
+import sys
+
+import pytest
+
+from astropy_feedrot.simulations import GPS_SVN76_TLE
+
+# sys.modules[name] = None makes "import name" raise ImportError, as when the package
+# is not installed; the run is a separate interpreter, so this one keeps sgp4.
+WITHOUT_SGP4 = ("import sys; sys.modules['sgp4'] = sys.modules['sgp4.api'] = None; "
+                "from astropy_feedrot.cli import main; sys.exit(main(sys.argv[1:]))")
+
+
+@pytest.mark.parametrize("argv", [
+    ["demo", "--output-dir", "{dir}"],
+    ["satellite", "DBR205", "--tle", "{tle}", "--start", "2023-01-25T08:00",
+     "--stop", "2023-01-25T09:00", "--step", "30min"],
+])
+def test_missing_sgp4_names_the_extra(tmp_path, argv):
+    # It said "internal error (ImportError: ...); please report it".
+    tle = tmp_path / "gps.tle"
+    tle.write_text("GPS SVN 76\n" + "\n".join(GPS_SVN76_TLE) + "\n")
+    argv = [a.format(dir=tmp_path, tle=tle) for a in argv]
+    run = subprocess.run([sys.executable, "-c", WITHOUT_SGP4, *argv], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 1
+    assert run.stderr == (
+        "feedrot: error: TLE orbits need the sgp4 package, of the 'all' extra: python -m pip "
+        "install sgp4 (or, in a clone of astropy_feedrot, python -m pip install -e '.[all]')\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["gps.tle"]
