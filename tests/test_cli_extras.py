@@ -6,6 +6,8 @@ import sys
 
 import pytest
 
+from astropy_feedrot.cli import main
+from astropy_feedrot.data import sample_file
 from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 # sys.modules[name] = None makes "import name" raise ImportError, as when the package
@@ -31,3 +33,14 @@ def test_missing_sgp4_names_the_extra(tmp_path, argv):
         "feedrot: error: TLE orbits need the sgp4 package, of the 'all' extra: python -m pip "
         "install sgp4 (or, in a clone of astropy_feedrot, python -m pip install -e '.[all]')\n")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["gps.tle"]
+
+
+def test_each_warning_printed_once(tmp_path, capsys):
+    # pyuvdata warns that the uvw_array does not match on reading and again on
+    # writing the VLA sample; the command line printed it twice.
+    output = tmp_path / "out.uvfits"
+    assert main(["correct", str(sample_file("vla_day2_8chan.uvfits")), "-o", str(output),
+                 "--quiet"]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == len(set(lines)), lines
+    assert all(line.startswith("feedrot: warning: ") for line in lines)

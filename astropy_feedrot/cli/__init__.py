@@ -69,8 +69,19 @@ def _protect_sites(argv):
             else arg for arg in argv]
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"feedrot: warning: {one_line(message)}", file=sys.stderr)
+def _warning_printer():
+    """A ``warnings.showwarning`` that prints each distinct warning once, on one line.
+
+    (pyuvdata gives its uvw warning once on reading and again on writing.)
+    """
+    shown = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = one_line(message)
+        if text not in shown:
+            shown.add(text)
+            print(f"feedrot: warning: {text}", file=sys.stderr)
+    return show
 
 
 def _run(args):
@@ -145,6 +156,9 @@ def main(argv=None):
     # (one line) about stale tables, however many computations it makes.
     with warnings.catch_warnings():
         warnings.simplefilter("default")
-        warnings.showwarning = _show_warning
+        # Deprecations inside the libraries are for their developers, not for users.
+        for category in (DeprecationWarning, PendingDeprecationWarning, FutureWarning):
+            warnings.simplefilter("ignore", category)
+        warnings.showwarning = _warning_printer()
         with iers_context():
             return _run(args)
