@@ -31,11 +31,12 @@ import warnings
 
 from astropy import units as u
 
+from .. import __version__
 from ..eop import iers_context
 from ..io import FileFormatError
 from ..outputs import TABLE_FORMATS, CommandError
 from . import coverage, data, demo, stations, tables
-from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, one_line
+from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, examples, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
            "CELESTIAL_FRAMES"]
@@ -50,11 +51,14 @@ def build_parser():
         "angle, transmitter and receiver terms, total and continuous total (degrees), and "
         "the rate of the feed rotation (deg/s).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog="examples:\n  feedrot demo\n  feedrot stations\n"
-        + "\n".join(text.split("\n", 2)[1] for text in tables.EXAMPLES.values())
-        + "\n  feedrot antennas vla.uvfits\n  feedrot correct vla.uvfits -o corrected.uvfits"
+        epilog=examples(["feedrot demo", "feedrot stations"]
+                        + [lines[0] for lines in tables.EXAMPLES.values()]
+                        + [coverage.EXAMPLES[1], data.EXAMPLES["antennas"][0],
+                           data.EXAMPLES["correct"][0]])
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
     )
+    parser.add_argument("--version", action="version", version=f"feedrot {__version__}",
+                        help="show the version of astropy_feedrot and exit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     for family in (tables, demo, stations, coverage, data):

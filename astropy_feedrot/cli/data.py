@@ -22,9 +22,18 @@ from ..outputs import (
 )
 from ..uvdata import WRITERS
 from ..visibility_files import antenna_table, correct_file, file_kind, read_antennas
-from .common import CELESTIAL_FRAMES, one_line
+from .common import CELESTIAL_FRAMES, examples, one_line
 
-__all__ = ["register"]
+__all__ = ["EXAMPLES", "FITSIDI_EXTENSIONS", "check_correct_output", "register"]
+
+#: Examples of ``feedrot antennas`` and ``feedrot correct``, one command line each.
+EXAMPLES = {
+    "antennas": ["feedrot antennas experiment.idifits",
+                 "feedrot antennas vla.ms -o antennas.ecsv"],
+    "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
+                "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
+                "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric"],
+}
 
 
 def _run_antennas(args):
@@ -111,8 +120,7 @@ def register(commands):
         description="The antennas of a visibility file (FITS-IDI, UVFITS, uvh5, Measurement "
         "Set, Miriad, SMA Mir) as read for the correction: number, name, ITRF position, "
         "mount label (in the file's convention), mount, focus, receptors and their angles.",
-        epilog="examples:\n  feedrot antennas experiment.idifits\n"
-        "  feedrot antennas vla.ms -o antennas.ecsv",
+        epilog=examples(EXAMPLES["antennas"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     antennas.add_argument("file", metavar="FILE", help="a visibility file or directory")
     antennas.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
@@ -130,9 +138,7 @@ def register(commands):
         "every visibility: FITS-IDI to FITS-IDI (memory-mapped), and every format pyuvdata "
         "reads to the format of the output's extension (.uvfits, .uvh5, .ms). The input is "
         "never modified.",
-        epilog="examples:\n  feedrot correct vla.uvfits -o vla_corrected.uvfits\n"
-        "  feedrot correct experiment.idifits -o corrected.idifits --frame icrs\n"
-        "  feedrot correct alma.ms -o alma_corrected.ms --vertical geocentric",
+        epilog=examples(EXAMPLES["correct"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
     correct.add_argument("-o", "--output", required=True, metavar="OUTPUT",

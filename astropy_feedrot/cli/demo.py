@@ -9,7 +9,7 @@ from astropy import units as u
 from ..outputs import CommandError, check_outputs, table_writer, write_files
 from ..simulations import gps_short_baseline
 from ..tables import baseline_summary
-from .common import MAX_EPOCHS, drawer, figure_types, parse_quantity
+from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
 
 __all__ = ["register"]
 
@@ -57,7 +57,7 @@ def register(commands):
         description="GPS SVN 76 over the GNSS antenna DBR205 and the telescope FD-VLBA "
         "(Sec. 4.1 of the paper): prints a summary and writes feedrot_demo.ecsv and "
         "feedrot_demo.png (like Figs 10-11).",
-        epilog="example:\n  feedrot demo --output-dir results --step 30s",
+        epilog=examples(["feedrot demo", "feedrot demo --step 30s --overwrite"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     demo.add_argument("--output-dir", default=".", metavar="DIR",
                       help="where to write the table and figure (default: here)")
