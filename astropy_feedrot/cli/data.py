@@ -144,8 +144,9 @@ def register(commands):
     correct.add_argument("-o", "--output", required=True, metavar="OUTPUT",
                          help="the corrected copy")
     correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
-                         help="north of the corrected polarization angles: the apparent pole "
-                         "of date (default) or a catalogue frame such as icrs")
+                         help="north of the corrected polarization angles: the pole of date "
+                         "(default, as in Python, CASA and AIPS) or a catalogue frame such "
+                         "as icrs")
     correct.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
                          help="the local vertical (geocentric reproduces CASA)")
     correct.add_argument("--overwrite", action="store_true",
