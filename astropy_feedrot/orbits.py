@@ -310,6 +310,8 @@ def teme_to_itrs(position, obstime, orientation=None):
     if orientation is not None:
         flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)
+    if position.size == 0:  # nothing to rotate (astropy 6.0 fails on empty epochs)
+        return position.copy()
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
     with iers_context(obstime), np.errstate(invalid="ignore"):
         itrs = TEME(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))

@@ -190,6 +190,8 @@ class Satellite:
         """Positions at the filled epochs, NaN at the masked ones."""
         if masked is not None and masked.all():
             return np.full(filled.shape + (3,), np.nan)
+        if filled.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+            return np.empty(filled.shape + (3,))
         position = np.asarray(self.orbit.position(filled, orientation), dtype=float)
         check_transmitter_positions(position, self.name or type(self.orbit).__name__)
         if masked is not None:
@@ -236,6 +238,9 @@ class Satellite:
         filled, masked = fill_masked(obstime)
         if masked is not None and masked.all():
             s = np.full(filled.shape + (3,), np.nan)
+            return LineOfSight(s, s, s)
+        if filled.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+            s = np.empty(filled.shape + (3,))
             return LineOfSight(s, s, s)
         orientation = None
         if self.orbit.uses_orientation or self.attitude.needs_sun:

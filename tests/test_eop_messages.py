@@ -5,10 +5,20 @@ import re
 from importlib import metadata
 
 import erfa
+import pytest
 from astropy import units as u
 from astropy.time import Time
+from astropy.utils import iers
 
 from astropy_feedrot.eop import earth_orientation_status
+
+
+@pytest.fixture
+def installed_tables():
+    """The IERS-A tables astropy-iers-data installs, in use (astropy 6.0 offline would
+    take IERS-B alone, without predictions)."""
+    with iers.earth_orientation_table.set(iers.IERS_A.open(iers.IERS_A_FILE)):
+        yield
 
 
 def release_of_installed_tables():
@@ -18,7 +28,7 @@ def release_of_installed_tables():
     return Time(f"{year}-{int(month):02d}-{int(day):02d}", scale="utc")
 
 
-def test_newest_tables_within_their_predictions_are_silent():
+def test_newest_tables_within_their_predictions_are_silent(installed_tables):
     # The installed astropy-iers-data taken as the newest one can get (released 29 days
     # before the clock): today and the coming months lie within its predictions. The
     # warning used to count the 30 days from the last measured value (a week or two
@@ -30,7 +40,7 @@ def test_newest_tables_within_their_predictions_are_silent():
     assert status.beyond_measured > 0 * u.day  # predictions, not measured values
 
 
-def test_old_installed_tables_warn_and_say_how_to_refresh():
+def test_old_installed_tables_warn_and_say_how_to_refresh(installed_tables):
     now = release_of_installed_tables() + 90 * u.day
     status = earth_orientation_status(now, now=now)
     assert re.fullmatch(
@@ -42,7 +52,7 @@ def test_old_installed_tables_warn_and_say_how_to_refresh():
         r"online, astropy_feedrot\.conf\.iers_auto_download = True\)", status.message)
 
 
-def test_past_the_newest_predictions_the_warning_is_short():
+def test_past_the_newest_predictions_the_warning_is_short(installed_tables):
     # No newer tables reach further: no advice that cannot help, and one short line
     # (it was 640 characters), with the error in arcseconds.
     now = release_of_installed_tables()
