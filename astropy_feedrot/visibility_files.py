@@ -27,7 +27,7 @@ from astropy.table import Table
 
 from .io import correct_fitsidi, fitsidi_antennas, uvfits_antennas, writing_program
 from .labels import label_from_mount
-from .outputs import same_file
+from .outputs import publish, same_file
 
 __all__ = ["FILE_KINDS", "file_kind", "read_antennas", "antenna_table", "correct_file"]
 
@@ -244,22 +244,6 @@ def _check_output(source, output, overwrite):
     return resolved
 
 
-def _replace(temporary, target):
-    """Move ``temporary`` (file or directory) onto ``target``, replacing it."""
-    if target.is_dir() and not target.is_symlink():
-        old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.old."))
-        os.replace(target, old / target.name)
-        try:
-            os.replace(temporary, target)
-        except OSError:
-            os.replace(old / target.name, target)
-            raise
-        finally:
-            shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(temporary, target)
-
-
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
                  progress=False):
     """Write a copy of a visibility file with the feed rotation removed.
@@ -325,7 +309,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     try:
         temporary = work / target.name
         write_uvdata(uv, temporary)
-        _replace(temporary, target)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     finally:
         with contextlib.suppress(OSError):
             shutil.rmtree(work)

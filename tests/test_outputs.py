@@ -10,6 +10,7 @@ from fitsidi_writer import write_fitsidi
 
 import astropy_feedrot.cli.common
 import astropy_feedrot.cli.data
+import astropy_feedrot.io.fitsidi as fitsidi
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.outputs import CommandError, publish, write_files
@@ -164,4 +165,24 @@ def test_two_corrections_into_one_output_do_not_both_succeed(idi, tmp_path, caps
     err = capsys.readouterr().err
     assert runs == [0] and status == 1
     assert "exists (made by another program while this one ran?); nothing was replaced" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["experiment.idifits", "out.idifits"]
+
+
+# --- the library's writers ---------------------------------------------------------------
+
+
+def test_correct_fitsidi_never_replaces_a_file_made_meanwhile(idi, tmp_path, monkeypatch):
+    # The output is checked first (it does not exist), then appears while the copy is
+    # corrected: the corrected copy is not published over it.
+    output = tmp_path / "out.idifits"
+    copy = fitsidi._copy
+
+    def copy_and_race(*args, **kwargs):
+        copy(*args, **kwargs)
+        output.write_text("theirs")
+
+    monkeypatch.setattr(fitsidi, "_copy", copy_and_race)
+    with pytest.raises(FileExistsError, match="made by another program while this one ran"):
+        fitsidi.correct_fitsidi(idi, output)
+    assert output.read_text() == "theirs"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["experiment.idifits", "out.idifits"]
