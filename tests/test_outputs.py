@@ -11,9 +11,11 @@ from fitsidi_writer import write_fitsidi
 import astropy_feedrot.cli.common
 import astropy_feedrot.cli.data
 import astropy_feedrot.io.fitsidi as fitsidi
+import astropy_feedrot.uvdata
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.outputs import CommandError, publish, write_files
+from astropy_feedrot.visibility_files import correct_file
 
 VLA = sample_file("vla_day2_8chan.uvfits")
 NATURAL = ["natural", "EFLSBERG", "--source", "13h31m08.29s +30d30m33.0s", "--start", "2023-01-01",
@@ -186,3 +188,19 @@ def test_correct_fitsidi_never_replaces_a_file_made_meanwhile(idi, tmp_path, mon
         fitsidi.correct_fitsidi(idi, output)
     assert output.read_text() == "theirs"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["experiment.idifits", "out.idifits"]
+
+
+@pytest.mark.parametrize("name", ["out.uvfits", "out.txt"])
+def test_correct_file_refuses_a_fitsidi_output_of_another_format(idi, tmp_path, name):
+    # correct_file wrote FITS-IDI into out.uvfits (and out.txt).
+    with pytest.raises(ValueError, match=rf"'.*{name}': a FITS-IDI input is corrected into a "
+                       "FITS-IDI copy"):
+        correct_file(idi, tmp_path / name)
+    assert not (tmp_path / name).exists()
+
+
+def test_correct_file_checks_the_output_before_reading(tmp_path, monkeypatch):
+    monkeypatch.setattr(astropy_feedrot.uvdata, "read_uvdata", None)  # never reached
+    with pytest.raises(ValueError, match=r"cannot tell a format from the extension of "
+                       r"'.*out\.txt'; use one of \.uvfits, \.uvh5"):
+        correct_file(VLA, tmp_path / "out.txt")

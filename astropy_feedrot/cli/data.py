@@ -20,11 +20,16 @@ from ..outputs import (
     table_writer,
     write_files,
 )
-from ..uvdata import WRITERS
-from ..visibility_files import antenna_table, correct_file, file_kind, read_antennas
+from ..visibility_files import (
+    antenna_table,
+    check_output_format,
+    correct_file,
+    file_kind,
+    read_antennas,
+)
 from .common import CELESTIAL_FRAMES, examples, one_line
 
-__all__ = ["EXAMPLES", "FITSIDI_EXTENSIONS", "check_correct_output", "register"]
+__all__ = ["EXAMPLES", "check_correct_output", "register"]
 
 #: Examples of ``feedrot antennas`` and ``feedrot correct``, one command line each.
 EXAMPLES = {
@@ -50,30 +55,21 @@ def _run_antennas(args):
     return 0
 
 
-#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
-FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
-
-
 def check_correct_output(source, output, overwrite):
     """The resolved output of ``feedrot correct``, checked against the input before any work.
 
-    The output's extension must name the format written: FITS-IDI for a
-    FITS-IDI input (`FITSIDI_EXTENSIONS`; no conversion is made), a format
-    pyuvdata writes for any other input (`~astropy_feedrot.uvdata.WRITERS`).
+    The output's extension must name the format written
+    (`~astropy_feedrot.visibility_files.check_output_format`).
     """
     try:
         kind = file_kind(source)
     except (OSError, ValueError) as error:
         raise CommandError(f"INPUT: {one_line(error)}") from None
+    try:
+        check_output_format(kind, output)
+    except ValueError as error:
+        raise CommandError(f"-o/--output: {one_line(error)}") from None
     given = Path(output).expanduser()
-    extension = given.suffix.lower()
-    if kind == "fits-idi" and extension not in FITSIDI_EXTENSIONS:
-        raise CommandError(f"-o/--output: {output!r}: a FITS-IDI input is corrected into a "
-                           "FITS-IDI copy (there is no conversion to other formats); give "
-                           f"the output one of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
-    if kind != "fits-idi" and extension not in WRITERS:
-        raise CommandError(f"-o/--output: cannot tell a format from the extension of "
-                           f"{output!r}; use one of {', '.join(WRITERS)}")
     target = given.resolve()
     if same_file(target, Path(source).expanduser().resolve()):
         raise CommandError(f"-o/--output: {output!r} is the INPUT, which is never modified; "
