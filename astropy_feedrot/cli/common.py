@@ -52,8 +52,8 @@ CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalac
 
 ANTENNA_HELP = (
     "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
-    "not matter) or a site 'LAT,LON,HEIGHT' in degrees, degrees and metres with "
-    "--mount and --focus"
+    "not matter; NAME@NETWORK for a name two stations share, e.g. KP@EHT) or a site "
+    "'LAT,LON,HEIGHT' in degrees, degrees and metres with --mount and --focus"
 )
 
 
@@ -210,7 +210,9 @@ def parse_antenna(text, args, catalogue):
         if args.mount is not None or args.focus is not None:
             raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
                                f"catalogue station {text!r}")
-        return catalogue.get_antenna(text.strip())
+        # NAME@NETWORK chooses among stations that share a name (KP@EHT).
+        name, _, network = text.strip().partition("@")
+        return catalogue.get_antenna(name.strip(), network=network.strip() or None)
     lat, lon, height = site
     location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
     try:
