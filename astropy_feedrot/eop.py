@@ -258,8 +258,12 @@ def _status(obstime, now):
     table = _table()
     start, end, measured = _table_facts()
     now_mjd = (Time.now() if now is None else Time(now)).utc.mjd
-    update_leap_seconds()  # astropy's, from its bundled table, as its first UTC conversion does
     expires = Time(erfa.leap_seconds.expires)
+    if expires.mjd < now_mjd:
+        # ERFA's built-in table until astropy's first UTC conversion replaces it with its
+        # own (astropy-iers-data's): ask astropy for it.
+        update_leap_seconds()
+        expires = Time(erfa.leap_seconds.expires)
     age = now_mjd - _release_mjd(measured)
     span = _mjd_range(obstime)
     if span is None:
