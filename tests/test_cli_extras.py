@@ -3,9 +3,11 @@
 
 import subprocess
 import sys
+import warnings
 
 import pytest
 
+import astropy_feedrot.cli.stations as stations_cli
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.simulations import GPS_SVN76_TLE
@@ -44,3 +46,18 @@ def test_each_warning_printed_once(tmp_path, capsys):
     lines = capsys.readouterr().err.splitlines()
     assert len(lines) == len(set(lines)), lines
     assert all(line.startswith("feedrot: warning: ") for line in lines)
+
+
+def test_library_deprecations_are_not_printed(capsys, monkeypatch):
+    # numpy 1.24 under astropy 6.0 warned "Passing (type, 1) or '1type' as a synonym of
+    # type is deprecated" on every run; such messages are for the libraries' developers.
+    catalogue = stations_cli.station_catalogue
+
+    def deprecated(*args, **kwargs):
+        warnings.warn("Passing (type, 1) or '1type' as a synonym of type is deprecated",
+                      DeprecationWarning)
+        return catalogue(*args, **kwargs)
+
+    monkeypatch.setattr(stations_cli, "station_catalogue", deprecated)
+    assert main(["stations", "--network", "VLBA"]) == 0
+    assert capsys.readouterr().err == ""
