@@ -54,6 +54,7 @@ from .rotators import Rotator
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table
+from .yaw_models import ModelAttitude
 
 try:
     from ._version import version as __version__
@@ -92,6 +93,7 @@ __all__ = [
     "CoordinateOrbit",
     "NominalAttitude",
     "QuaternionAttitude",
+    "ModelAttitude",
     "read_tle",
     "read_sp3",
     "read_orbex",

@@ -18,7 +18,7 @@ from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 DATA = Path(__file__).parent / "data" / "uvdata"
 COMMANDS = ["", "natural", "satellite", "baseline", "demo", "stations", "coverage",
-            "antennas", "correct"]
+            "antennas", "correct", "rinex"]
 
 
 def help_of(command):
@@ -60,6 +60,8 @@ def files(tmp_path, monkeypatch):
     shutil.copy(sample_file("sample.sp3"), tmp_path / "igs.sp3")
     shutil.copy(sample_file("vla_day2_8chan.uvfits"), tmp_path / "vla.uvfits")
     shutil.copy(sample_file("stations.ecsv"), tmp_path / "mine.ecsv")
+    shutil.copy(sample_file("gnss_sample.rnx"), tmp_path / "obs.rnx")
+    shutil.copy(sample_file("gnss_sample.sp3"), tmp_path / "gnss.sp3")
     write_fitsidi(tmp_path / "experiment.idifits", angles={0: (12.0, 102.0)})
     with tarfile.open(DATA / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms.tar.gz") as archive:
         archive.extractall(tmp_path, filter="data")

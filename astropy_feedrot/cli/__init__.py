@@ -10,7 +10,9 @@ coverage`` tabulates the range of feed rotation that candidate polarization
 calibrators offer a network. ``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
 visibility file with the feed rotation removed (see
-`astropy_feedrot.visibility_files`).
+`astropy_feedrot.visibility_files`). ``feedrot rinex`` writes a copy of a
+RINEX observation file with the carrier-phase wind-up removed (see
+`astropy_feedrot.gnss`).
 
 Each family of commands is a module of this package (``tables``, ``demo``,
 ``stations``, ``coverage``, ``data``) with a ``register(commands)`` that adds
@@ -35,7 +37,7 @@ from .. import __version__
 from ..eop import iers_context
 from ..io import FileFormatError
 from ..outputs import TABLE_FORMATS, CommandError
-from . import coverage, data, demo, stations, tables
+from . import coverage, data, demo, rinex, stations, tables
 from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, examples, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
@@ -54,14 +56,14 @@ def build_parser():
         epilog=examples(["feedrot demo", "feedrot stations"]
                         + [lines[0] for lines in tables.EXAMPLES.values()]
                         + [coverage.EXAMPLES[1], data.EXAMPLES["antennas"][0],
-                           data.EXAMPLES["correct"][0]])
+                           data.EXAMPLES["correct"][0], rinex.EXAMPLES[0]])
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
     )
     parser.add_argument("--version", action="version", version=f"feedrot {__version__}",
                         help="show the version of astropy_feedrot and exit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    for family in (tables, demo, stations, coverage, data):
+    for family in (tables, demo, stations, coverage, data, rinex):
         family.register(commands)
     return parser
 

@@ -36,7 +36,7 @@ __all__ = [
     "parse_antenna", "natural_target", "one_source", "read_path", "read_input",
     "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
     "write_table", "add_time_options", "add_natural_options", "add_common_options",
-    "examples",
+    "examples", "PHASE_UNITS", "add_units_option", "in_units",
 ]
 
 #: Most epochs one command may compute (about 1.6 GB and half a minute for
@@ -359,7 +359,29 @@ def write_table(table, paths, kind, overwrite=False):
     write_files(files, then, overwrite=overwrite)
 
 
+#: Units of ``--units``: a phase in cycles, radians or degrees.
+PHASE_UNITS = {"cycles": u.cycle, "rad": u.rad, "deg": u.deg}
+
+
+def in_units(table, units, columns):
+    """Convert the angle (and angle-rate) columns of a table to the unit of ``--units``."""
+    unit = PHASE_UNITS[units]
+    for name in columns:
+        if name in table.colnames:
+            quantity = u.Quantity(table[name])
+            target = unit / u.s if quantity.unit.is_equivalent(u.deg / u.s) else unit
+            table[name] = quantity.to(target)
+    return table
+
+
 # Options ----------------------------------------------------------------------------------
+
+
+def add_units_option(parser, default):
+    """Add ``--units cycles|rad|deg``: the unit of phase columns."""
+    parser.add_argument("--units", choices=tuple(PHASE_UNITS), default=default,
+                        help=f"unit of the feed rotation (wind-up) columns: cycles, rad or deg "
+                        f"(default {default}; azimuth and elevation stay in deg)")
 
 
 def add_time_options(parser, required=True):
