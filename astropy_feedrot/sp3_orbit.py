@@ -48,6 +48,8 @@ class SP3Orbit(Orbit):
     ------
     astropy_feedrot.io.FileFormatError
         If the file is malformed (naming the line and what was expected).
+    TypeError
+        If ``points`` is not an integer (2.5 would be cut to 2 otherwise).
     ValueError
         If ``satellite`` is not in the file (listing those that are), the
         file has fewer epochs than ``points``, or the satellite has nowhere
@@ -100,6 +102,8 @@ class SP3Orbit(Orbit):
                 f"satellite {satellite!r} is not in the SP3 file; it has "
                 f"{', '.join(data.satellites)}"
             )
+        if isinstance(points, bool) or not isinstance(points, (int, np.integer)):
+            raise TypeError(f"points must be a whole number of epochs (int), got {points!r}")
         points = int(points)
         if points < 2:
             raise ValueError(f"points must be at least 2, got {points}")

@@ -23,7 +23,7 @@ from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time
 from .io.tle import check_tle_pair
 from .orbit_base import Orbit, check_orientation
-from .propagation import propagate
+from .propagation import SGP4_MISSING, propagate
 
 __all__ = ["TLEOrbit", "propagate_tles", "teme_to_itrs"]
 
@@ -39,11 +39,8 @@ def _sgp4():
     """The sgp4 package's ``api`` module (an optional dependency, imported when first needed)."""
     try:
         from sgp4 import api
-    except ImportError:  # pragma: no cover - exercised only without sgp4
-        raise ImportError(
-            "TLE orbits need the sgp4 package: python -m pip install sgp4 "
-            "(or astropy_feedrot[all])"
-        ) from None
+    except ImportError:  # exercised by tests/test_cli_extras.py, without sgp4
+        raise ImportError(SGP4_MISSING) from None
     return api
 
 
@@ -87,6 +84,8 @@ def teme_to_itrs(position, obstime, orientation=None):
     if orientation is not None:
         flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)
+    if position.size == 0:  # nothing to rotate (astropy 6.0 fails on empty epochs)
+        return position.copy()
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
     with iers_context(obstime), np.errstate(invalid="ignore"):
         itrs = TEME(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))
