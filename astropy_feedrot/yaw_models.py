@@ -63,7 +63,7 @@ from .io import read_satellite_metadata
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
-           "model_yaw", "default_metadata"]
+           "model_yaw", "symmetric_half_width", "default_metadata"]
 
 #: Earth's rotation rate (rad/s, IERS Conventions 2010), for inertial velocities.
 EARTH_ROTATION = 7.292115e-5
@@ -93,6 +93,12 @@ class YawLaw(NamedTuple):
         go the wrong way).
     beta_y, beta_x : float or None
         The Galileo smoothing limits in deg.
+    shadow : float or None
+        Half-width of the Earth's shadow in deg, as the angle at the Earth's
+        centre between the satellite and the anti-Sun direction (shadow-crossing
+        laws): 13.25 deg for GPS and 14.2 deg for GLONASS, the values Kouba's
+        ``eclips`` routine is given (``ANIGHT - 180``). None: the geometric
+        cylinder, ``asin(EARTH_RADIUS / r)``.
 
     Examples
     --------
@@ -106,11 +112,12 @@ class YawLaw(NamedTuple):
     yaw_bias: float = 0.0
     beta_y: float = None
     beta_x: float = None
+    shadow: float = None
 
 
-_IIR = YawLaw("gps-iir", 0.20)
-_IIF = YawLaw("gps-iif", 0.11, -0.7)
-_GLONASS = YawLaw("glonass-m", 0.25)
+_IIR = YawLaw("gps-iir", 0.20, shadow=13.25)
+_IIF = YawLaw("gps-iif", 0.11, -0.7, shadow=13.25)
+_GLONASS = YawLaw("glonass-m", 0.25, shadow=14.2)
 _BEIDOU = YawLaw("beidou-on")
 _GEO = YawLaw("orbit-normal")
 
@@ -199,21 +206,59 @@ def nominal_yaw(beta, mu):
     return np.arctan2(-np.tan(beta), np.sin(mu))
 
 
-def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw):
+def symmetric_half_width(beta, rate_orbit, max_rate, iterations=30):
+    """Half-width (rad of orbit angle) of a noon turn symmetric about noon.
+
+    The orbit angle ``a`` at which a turn at ``max_rate`` that starts on the
+    nominal yaw at ``-a`` from noon ends on it at ``+a``:
+    ``max_rate * 2 a / rate_orbit = pi - 2 atan(tan|beta| / sin a)``, solved
+    by fixed-point iteration from Kouba's approximation (a contraction: the
+    nominal rate at the solution is below ``max_rate``). The GLONASS-M noon
+    turn (Dilssner et al. 2011, as in Kouba's ``eclips``).
+
+    Examples
+    --------
+    GLONASS-M (0.25 deg/s) at a beta of 1.5 deg: the turn starts 1.76 deg
+    of orbit angle before noon (0.89 deg where the nominal yaw rate reaches
+    the maximum, the start of Kouba's GPS turns):
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.yaw_models import symmetric_half_width
+    >>> a = symmetric_half_width(np.radians(1.5), 2 * np.pi / 40544, np.radians(0.25))
+    >>> round(float(np.degrees(a)), 2)
+    1.76
+    """
+    beta0 = np.arctan(rate_orbit / max_rate)
+    with np.errstate(invalid="ignore"):
+        half = np.sqrt(np.maximum(beta0 * np.abs(beta) - beta**2, 0.0))
+    for _ in range(iterations):
+        half = rate_orbit / (2 * max_rate) * (
+            np.pi - 2 * np.arctan2(np.tan(np.abs(beta)), np.sin(half)))
+    return half
+
+
+def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw,
+          symmetric=False):
     """Yaw of a linear turn at ``sign * max_rate`` starting at ``delta = -half``.
 
     ``delta`` is the orbit angle from the turn centre; returns the yaw and
-    where the turn applies.
+    where the turn applies. ``half`` is Kouba's (2009) approximation, or with
+    ``symmetric`` the half-width of a turn symmetric about its centre.
     """
     beta0 = np.arctan(rate_orbit / max_rate)
     small = np.abs(beta) < beta0
     with np.errstate(invalid="ignore"):
         half = np.sqrt(np.where(small, beta0 * np.abs(beta) - beta**2, 0.0))
+    if symmetric:
+        half = np.where(small, symmetric_half_width(beta, rate_orbit, max_rate), 0.0)
     elapsed = (delta + half) / rate_orbit
     phi = start_yaw(half) + sign * max_rate * elapsed
     travel = np.mod(np.sign(sign) * (psi - start_yaw(half)), 2 * np.pi)
-    active = (active_region & small & (delta >= -half) & (max_rate * elapsed < travel)
-              & (elapsed < 2 * half / rate_orbit + 1800.0))
+    if symmetric:  # the linear yaw leads the nominal one until they meet at +half
+        active = active_region & small & (np.abs(delta) <= half)
+    else:
+        active = (active_region & small & (delta >= -half) & (max_rate * elapsed < travel)
+                  & (elapsed < 2 * half / rate_orbit + 1800.0))
     return phi, active
 
 
@@ -261,14 +306,16 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
             wrong = (beta > np.radians(law.yaw_bias)) & (beta < 0)
             sign = np.where(wrong, np.sign(beta), sign)
         phi, active = _turn(psi, beta, noon, rate_orbit, rate, sign, np.cos(noon) > 0,
-                            lambda half: nominal_yaw(beta, np.pi - half))
+                            lambda half: nominal_yaw(beta, np.pi - half),
+                            symmetric=law.kind == "glonass-m")
         yaw = np.where(active, phi, yaw)
         if law.kind == "gps-iir":
             phi, active = _turn(psi, beta, night, rate_orbit, rate, np.sign(beta),
                                 np.cos(night) > 0, lambda half: nominal_yaw(beta, -half))
             yaw = np.where(active, phi, yaw)
         else:  # through the shadow
-            width = np.arcsin(EARTH_RADIUS / radius)
+            width = (np.arcsin(EARTH_RADIUS / radius) if law.shadow is None
+                     else np.radians(law.shadow))
             with np.errstate(invalid="ignore"):
                 half = np.arccos(np.clip(np.cos(width) / np.cos(beta), -1, 1))
             inside = (np.abs(beta) < width) & (np.abs(night) <= half)
@@ -405,9 +452,14 @@ class ModelAttitude(Attitude):
         rate = metadata.yaw_rate(prn, obstime)
         return cls(orbit, block, max_yaw_rate=None if rate is None else rate[1])
 
-    def _geometry(self, obstime, position, sun):
+    def _geometry(self, obstime, position, sun, velocity=None):
         obstime = as_time(obstime)
         position = np.asarray(position, dtype=float)
+        if velocity is not None:
+            velocity = np.asarray(velocity, dtype=float)
+            shape = np.broadcast_shapes(position.shape, velocity.shape, np.shape(sun))
+            return (np.broadcast_to(position, shape), np.broadcast_to(velocity, shape),
+                    np.broadcast_to(sun, shape), obstime)
         t = np.atleast_1d(obstime).ravel()
         coverage = getattr(self.orbit, "coverage", None)
         step = VELOCITY_STEP * u.s
@@ -431,8 +483,8 @@ class ModelAttitude(Attitude):
         return (position, np.broadcast_to(velocity, shape), np.broadcast_to(sun, shape),
                 obstime)
 
-    def _yaw(self, obstime, position, sun):
-        position, velocity, sun, obstime = self._geometry(obstime, position, sun)
+    def _yaw(self, obstime, position, sun, velocity=None):
+        position, velocity, sun, obstime = self._geometry(obstime, position, sun, velocity)
         beta, mu, rate, along, side, nadir = orbit_angles(position, velocity, sun)
         quadrature = None
         if self.law.kind == "beidou-on":
@@ -454,7 +506,7 @@ class ModelAttitude(Attitude):
                                                     sun_position(when))
         return orbit_angles(position, velocity, sun)[0]
 
-    def yaw(self, obstime, position=None, sun=None):
+    def yaw(self, obstime, position=None, sun=None, *, velocity=None):
         """The modelled and the nominal yaw angles.
 
         Parameters
@@ -465,6 +517,12 @@ class ModelAttitude(Attitude):
         sun : ndarray, optional
             ITRS positions of the Sun (m); `~astropy_feedrot.attitude.sun_position`
             if not given.
+        velocity : ndarray, shape of ``position``, optional
+            Earth-fixed ITRS velocities (m/s), for instance those of an orbit
+            file; a central difference of the orbit if not given. (An inertial
+            velocity expressed on ITRS axes, as Kouba's ``eclips`` takes,
+            becomes Earth-fixed by subtracting ``EARTH_ROTATION`` about z
+            crossed with the position.)
 
         Returns
         -------
@@ -478,7 +536,7 @@ class ModelAttitude(Attitude):
         obstime = as_time(obstime)
         position = self.orbit.position(obstime) if position is None else position
         sun = sun_position(obstime) if sun is None else sun
-        yaw, nominal, *_ = self._yaw(obstime, position, sun)
+        yaw, nominal, *_ = self._yaw(obstime, position, sun, velocity)
         return Angle(np.degrees(yaw), u.deg), Angle(np.degrees(nominal), u.deg)
 
     def dipoles(self, obstime, position, orientation=None):
@@ -486,8 +544,11 @@ class ModelAttitude(Attitude):
         check_orientation(orientation, obstime)
         return self.sun_and_dipoles(obstime, position, sun_position(obstime))
 
-    def sun_and_dipoles(self, obstime, position, sun):
+    def sun_and_dipoles(self, obstime, position, sun, *, velocity=None):
         """`dipoles` given the Sun's ITRS positions (m) at the epochs.
+
+        ``velocity``, optional, as in `yaw`: Earth-fixed ITRS velocities (m/s)
+        instead of the orbit's central difference.
 
         Examples
         --------
@@ -503,7 +564,7 @@ class ModelAttitude(Attitude):
         >>> bool(abs(aligned @ transverse) < 1e-12)
         True
         """
-        yaw, _, along, side, nadir = self._yaw(obstime, position, sun)
+        yaw, _, along, side, nadir = self._yaw(obstime, position, sun, velocity)
         cos, sin = np.cos(yaw)[..., np.newaxis], np.sin(yaw)[..., np.newaxis]
         aligned = cos * along + sin * side
         transverse = np.cross(nadir, aligned)
