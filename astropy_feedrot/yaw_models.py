@@ -63,7 +63,8 @@ from .io import read_satellite_metadata
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
-           "model_yaw", "symmetric_half_width", "default_metadata"]
+           "model_yaw", "symmetric_half_width", "turn_region_age",
+           "default_metadata"]
 
 #: Earth's rotation rate (rad/s, IERS Conventions 2010), for inertial velocities.
 EARTH_ROTATION = 7.292115e-5
@@ -73,6 +74,10 @@ EARTH_RADIUS = 6378137.0
 
 #: Seconds of the finite difference that gives the velocity from the orbit.
 VELOCITY_STEP = 1.0
+
+#: Beta angle (deg) below which the beta angle at a turn's start is looked up (no turn
+#: law acts above it: GPS IIF turns below 4.3 deg, Galileo IOV smooths below 2 deg).
+BETA_START_LIMIT = 6.0
 
 #: Beta angle below which BeiDou-2 MEO and IGSO satellites switch to orbit normal.
 BEIDOU_BETA = np.radians(4.0)
@@ -237,6 +242,33 @@ def symmetric_half_width(beta, rate_orbit, max_rate, iterations=30):
     return half
 
 
+def turn_region_age(law, mu, rate_orbit):
+    """Seconds since the satellite entered the current noon or midnight turn region.
+
+    The region is the orbit angle within the shadow's half-width
+    (``law.shadow``: it holds every turn of the GPS and GLONASS laws) or
+    Galileo's ``beta_x`` of noon and midnight; NaN outside it.
+
+    Examples
+    --------
+    A GPS satellite 3 deg of orbit angle past noon entered the region
+    (13.25 deg before noon) 16.25 deg of orbit angle ago:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.yaw_models import LAWS, turn_region_age
+    >>> rate = 2 * np.pi / 43082
+    >>> age = turn_region_age(LAWS["GPS-IIF"], np.radians(183.0), rate)
+    >>> round(float(np.degrees(age * rate)), 2)
+    16.25
+    """
+    window = np.radians(law.beta_x if law.kind == "galileo" else law.shadow)
+    noon = _wrap(np.asarray(mu, dtype=float) - np.pi)
+    night = _wrap(np.asarray(mu, dtype=float))
+    delta = np.where(np.cos(noon) > 0, noon, night)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.abs(delta) <= window, (delta + window) / rate_orbit, np.nan)
+
+
 def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw,
           symmetric=False):
     """Yaw of a linear turn at ``sign * max_rate`` starting at ``delta = -half``.
@@ -262,7 +294,7 @@ def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw
     return phi, active
 
 
-def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
+def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_start=None):
     """The yaw (radians) of a law, and the nominal yaw, from the orbit angles.
 
     Parameters
@@ -275,6 +307,13 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
     beta_quadrature : ndarray, optional
         Beta angle at the last orbit quadrature (BeiDou's mode switch);
         ``beta`` if not given.
+    beta_start : ndarray, optional
+        Beta angle when the satellite entered the current turn region (see
+        `turn_region_age`). Where its sign differs from ``beta``'s, the
+        direction of a turn, the yaw it starts from and, through a shadow,
+        the yaw it aims at follow it, so that a turn keeps its direction when
+        the beta angle changes sign during it (as Kouba's ``eclips`` keeps
+        ``BETAINI``); ``beta`` if not given.
 
     Returns
     -------
@@ -296,22 +335,26 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
     beta, mu, rate_orbit, radius = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in
                                                          (beta, mu, rate_orbit, radius)))
     psi = nominal_yaw(beta, mu)
+    start = beta
+    if beta_start is not None:  # only where the sign changed since the turn's start
+        beta_start = np.broadcast_to(beta_start, beta.shape)
+        start = np.where(np.sign(beta_start) == np.sign(beta), beta, beta_start)
     yaw = psi.copy()
     noon = _wrap(mu - np.pi)
     night = _wrap(mu)
     if law.kind in ("gps-iir", "gps-iif", "glonass-m"):
         rate = np.radians(law.max_yaw_rate)
-        sign = -np.sign(beta)
+        sign = -np.sign(start)
         if law.kind == "gps-iif":
-            wrong = (beta > np.radians(law.yaw_bias)) & (beta < 0)
-            sign = np.where(wrong, np.sign(beta), sign)
-        phi, active = _turn(psi, beta, noon, rate_orbit, rate, sign, np.cos(noon) > 0,
-                            lambda half: nominal_yaw(beta, np.pi - half),
+            wrong = (start > np.radians(law.yaw_bias)) & (start < 0)
+            sign = np.where(wrong, np.sign(start), sign)
+        phi, active = _turn(psi, start, noon, rate_orbit, rate, sign, np.cos(noon) > 0,
+                            lambda half: nominal_yaw(start, np.pi - half),
                             symmetric=law.kind == "glonass-m")
         yaw = np.where(active, phi, yaw)
         if law.kind == "gps-iir":
-            phi, active = _turn(psi, beta, night, rate_orbit, rate, np.sign(beta),
-                                np.cos(night) > 0, lambda half: nominal_yaw(beta, -half))
+            phi, active = _turn(psi, start, night, rate_orbit, rate, np.sign(start),
+                                np.cos(night) > 0, lambda half: nominal_yaw(start, -half))
             yaw = np.where(active, phi, yaw)
         else:  # through the shadow
             width = (np.arcsin(EARTH_RADIUS / radius) if law.shadow is None
@@ -319,7 +362,7 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
             with np.errstate(invalid="ignore"):
                 half = np.arccos(np.clip(np.cos(width) / np.cos(beta), -1, 1))
             inside = (np.abs(beta) < width) & (np.abs(night) <= half)
-            entry, exit_ = nominal_yaw(beta, -half), nominal_yaw(beta, half)
+            entry, exit_ = nominal_yaw(start, -half), nominal_yaw(start, half)
             elapsed = (night + half) / rate_orbit
             if law.kind == "gps-iif":
                 fraction = (night + half) / np.where(half > 0, 2 * half, 1)
@@ -332,7 +375,7 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
         beta_y, beta_x = np.radians(law.beta_y), np.radians(law.beta_x)
         c = np.sin(mu) * np.cos(beta)
         inside = (np.abs(beta) < beta_y) & (np.abs(c) < np.sin(beta_x))
-        s = np.where(beta >= 0, 1.0, -1.0) * np.sin(beta_y)
+        s = np.where(start >= 0, 1.0, -1.0) * np.sin(beta_y)
         shy = 0.5 * ((-np.sin(beta) - s)
                      + (np.sin(beta) - s) * np.cos(np.pi * np.abs(c) / np.sin(beta_x)))
         yaw = np.where(inside, np.arctan2(shy, c), yaw)
@@ -486,15 +529,25 @@ class ModelAttitude(Attitude):
     def _yaw(self, obstime, position, sun, velocity=None):
         position, velocity, sun, obstime = self._geometry(obstime, position, sun, velocity)
         beta, mu, rate, along, side, nadir = orbit_angles(position, velocity, sun)
-        quadrature = None
+        quadrature = start = None
         if self.law.kind == "beidou-on":
-            quadrature = self._beta_at_quadrature(obstime, mu, rate)
+            quadrature = self._beta_before(obstime, np.mod(mu - np.pi / 2, 2 * np.pi) / rate)
+        elif self.law.kind != "orbit-normal":
+            age = turn_region_age(self.law, mu, rate)
+            inside = np.isfinite(age) & (np.abs(beta) < np.radians(BETA_START_LIMIT))
+            start = beta.copy()
+            if np.any(inside):
+                start[inside] = self._beta_before(obstime.reshape(beta.shape)[inside],
+                                                  age[inside])
         radius = np.linalg.norm(position, axis=-1)
-        yaw, nominal = model_yaw(self.law, beta, mu, rate, radius, quadrature)
+        yaw, nominal = model_yaw(self.law, beta, mu, rate, radius, quadrature, start)
         return yaw, nominal, along, side, nadir
 
-    def _beta_at_quadrature(self, obstime, mu, rate):
-        since = np.mod(mu - np.pi / 2, 2 * np.pi) / rate
+    def _beta_before(self, obstime, since):
+        """Beta angle ``since`` seconds before the epochs (the orbit's first epoch at most)."""
+        obstime = as_time(obstime)
+        shape = np.shape(since)
+        obstime = obstime.reshape(shape) if obstime.shape != shape else obstime
         when = obstime - since * u.s
         coverage = getattr(self.orbit, "coverage", None)
         if coverage is not None:  # before the orbit: its first epoch
@@ -504,7 +557,7 @@ class ModelAttitude(Attitude):
                 when[early] = coverage[0] + VELOCITY_STEP * u.s
         position, velocity, sun, _ = self._geometry(when, self.orbit.position(when),
                                                     sun_position(when))
-        return orbit_angles(position, velocity, sun)[0]
+        return orbit_angles(position, velocity, sun)[0].reshape(shape)
 
     def yaw(self, obstime, position=None, sun=None, *, velocity=None):
         """The modelled and the nominal yaw angles.
