@@ -45,10 +45,10 @@ law               behaviour (source)
 Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
 
 A turn keeps the direction, and the start and aim, set by the beta angle when
-the satellite entered the turn region (`turn_region_age`), when the beta
+the turn started (`turn_age`), when the beta
 angle changes sign during it (Kouba's ``BETAINI``). Against samples of
 Kouba's ``eclips`` routine with the same inputs the yaw agrees to 1e-11 deg
-outside turns and to 0.1-5 deg in them; the differences that remain are
+outside turns and to 0.1-3 deg in them; the differences that remain are
 explained in the GNSS page of the documentation.
 
 Angles follow Kouba (2009): the orbit angle ``mu`` is counted from orbit
@@ -74,7 +74,7 @@ from .io import read_satellite_metadata
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
-           "model_yaw", "symmetric_half_width", "turn_region_age",
+           "model_yaw", "symmetric_half_width", "turn_age",
            "default_metadata"]
 
 #: Earth's rotation rate (rad/s, IERS Conventions 2010), for inertial velocities.
@@ -253,31 +253,56 @@ def symmetric_half_width(beta, rate_orbit, max_rate, iterations=30):
     return half
 
 
-def turn_region_age(law, mu, rate_orbit):
-    """Seconds since the satellite entered the current noon or midnight turn region.
+def turn_age(law, beta, mu, rate_orbit):
+    """Seconds since the current noon turn, midnight turn or shadow crossing started.
 
-    The region is the orbit angle within the shadow's half-width
-    (``law.shadow``: it holds every turn of the GPS and GLONASS laws) or
-    Galileo's ``beta_x`` of noon and midnight; NaN outside it.
+    The start is that of the law's turn for the current beta angle: ``-half``
+    from noon (and, for GPS IIR, midnight) for a turn law whose maximum yaw
+    rate the nominal yaw would exceed, the shadow entry for GPS IIF and
+    GLONASS-M, ``beta_x`` before noon or midnight for Galileo. NaN where no
+    turn is under way (after the turn's nominal end, taken as the shadow's
+    half-width past noon or midnight, or ``beta_x`` for Galileo).
 
     Examples
     --------
-    A GPS satellite 3 deg of orbit angle past noon entered the region
-    (13.25 deg before noon) 16.25 deg of orbit angle ago:
+    A GPS IIF satellite in the shadow (13.25 deg) at a beta angle of 0,
+    3 deg of orbit angle past midnight, entered it 16.25 deg of orbit angle
+    ago:
 
     >>> import numpy as np
-    >>> from astropy_feedrot.yaw_models import LAWS, turn_region_age
+    >>> from astropy_feedrot.yaw_models import LAWS, turn_age
     >>> rate = 2 * np.pi / 43082
-    >>> age = turn_region_age(LAWS["GPS-IIF"], np.radians(183.0), rate)
+    >>> age = turn_age(LAWS["GPS-IIF"], 0.0, np.radians(3.0), rate)
     >>> round(float(np.degrees(age * rate)), 2)
     16.25
     """
-    window = np.radians(law.beta_x if law.kind == "galileo" else law.shadow)
-    noon = _wrap(np.asarray(mu, dtype=float) - np.pi)
-    night = _wrap(np.asarray(mu, dtype=float))
-    delta = np.where(np.cos(noon) > 0, noon, night)
+    beta, mu, rate_orbit = np.broadcast_arrays(*(np.asarray(a, dtype=float)
+                                                 for a in (beta, mu, rate_orbit)))
+    noon = _wrap(mu - np.pi)
+    night = _wrap(mu)
+    age = np.full(beta.shape, np.nan)
     with np.errstate(invalid="ignore"):
-        return np.where(np.abs(delta) <= window, (delta + window) / rate_orbit, np.nan)
+        if law.kind == "galileo":
+            window = np.radians(law.beta_x)
+            delta = np.where(np.cos(noon) > 0, noon, night)
+            return np.where(np.abs(delta) <= window, (delta + window) / rate_orbit, np.nan)
+        if law.kind not in ("gps-iir", "gps-iif", "glonass-m"):
+            return age
+        end = np.radians(law.shadow)
+        rate = np.radians(law.max_yaw_rate)
+        beta0 = np.arctan(rate_orbit / rate)
+        if law.kind == "glonass-m":
+            half = symmetric_half_width(beta, rate_orbit, rate)
+        else:
+            half = np.sqrt(np.maximum(beta0 * np.abs(beta) - beta**2, 0.0))
+        turning = (np.abs(beta) < beta0) & (noon >= -half) & (noon <= end)
+        age = np.where(turning, (noon + half) / rate_orbit, age)
+        if law.kind == "gps-iir":
+            turning = (np.abs(beta) < beta0) & (night >= -half) & (night <= end)
+            return np.where(turning, (night + half) / rate_orbit, age)
+        shadow = np.arccos(np.clip(np.cos(end) / np.cos(beta), -1, 1))
+        inside = (np.abs(beta) < end) & (np.abs(night) <= shadow)
+        return np.where(inside, (night + shadow) / rate_orbit, age)
 
 
 def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw,
@@ -319,8 +344,7 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_star
         Beta angle at the last orbit quadrature (BeiDou's mode switch);
         ``beta`` if not given.
     beta_start : ndarray, optional
-        Beta angle when the satellite entered the current turn region (see
-        `turn_region_age`). Where its sign differs from ``beta``'s, the
+        Beta angle when the current turn started (see `turn_age`). Where its sign differs from ``beta``'s, the
         direction of a turn, the yaw it starts from and, through a shadow,
         the yaw it aims at follow it, so that a turn keeps its direction when
         the beta angle changes sign during it (as Kouba's ``eclips`` keeps
@@ -544,22 +568,25 @@ class ModelAttitude(Attitude):
         if self.law.kind == "beidou-on":
             quadrature = self._beta_before(obstime, np.mod(mu - np.pi / 2, 2 * np.pi) / rate)
         elif self.law.kind != "orbit-normal":
-            age = turn_region_age(self.law, mu, rate)
-            inside = np.isfinite(age) & (np.abs(beta) < np.radians(BETA_START_LIMIT))
-            start = beta.copy()
+            age = np.broadcast_to(turn_age(self.law, beta, mu, rate), beta.shape).ravel()
+            inside = np.isfinite(age) & (np.abs(beta.ravel()) < np.radians(BETA_START_LIMIT))
+            start = np.array(beta, dtype=float).ravel()
             if np.any(inside):
-                start[inside] = self._beta_before(obstime.reshape(beta.shape)[inside],
+                # The epochs broadcast to the geometry's shape, as indices.
+                index = np.broadcast_to(np.arange(obstime.size).reshape(obstime.shape),
+                                        beta.shape).ravel()
+                start[inside] = self._beta_before(obstime.reshape(-1)[index[inside]],
                                                   age[inside])
+            start = start.reshape(np.shape(beta))
         radius = np.linalg.norm(position, axis=-1)
         yaw, nominal = model_yaw(self.law, beta, mu, rate, radius, quadrature, start)
         return yaw, nominal, along, side, nadir
 
     def _beta_before(self, obstime, since):
         """Beta angle ``since`` seconds before the epochs (the orbit's first epoch at most)."""
-        obstime = as_time(obstime)
-        shape = np.shape(since)
-        obstime = obstime.reshape(shape) if obstime.shape != shape else obstime
-        when = obstime - since * u.s
+        when = as_time(obstime) - np.asarray(since, dtype=float) * u.s
+        shape = when.shape
+        when = when.reshape(-1)
         coverage = getattr(self.orbit, "coverage", None)
         if coverage is not None:  # before the orbit: its first epoch
             early = (when - coverage[0]).sec < VELOCITY_STEP
