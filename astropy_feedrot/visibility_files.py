@@ -27,9 +27,14 @@ from astropy.table import Table
 
 from .io import correct_fitsidi, fitsidi_antennas, uvfits_antennas, writing_program
 from .labels import label_from_mount
-from .outputs import same_file
+from .outputs import publish, same_file
+from .uvdata import WRITERS
 
-__all__ = ["FILE_KINDS", "file_kind", "read_antennas", "antenna_table", "correct_file"]
+__all__ = ["FILE_KINDS", "file_kind", "read_antennas", "antenna_table", "correct_file",
+           "FITSIDI_EXTENSIONS", "check_output_format"]
+
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
+FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
 
 #: The kinds of visibility file recognised, and who reads each.
 FILE_KINDS = {
@@ -244,20 +249,42 @@ def _check_output(source, output, overwrite):
     return resolved
 
 
-def _replace(temporary, target):
-    """Move ``temporary`` (file or directory) onto ``target``, replacing it."""
-    if target.is_dir() and not target.is_symlink():
-        old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.old."))
-        os.replace(target, old / target.name)
-        try:
-            os.replace(temporary, target)
-        except OSError:
-            os.replace(old / target.name, target)
-            raise
-        finally:
-            shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(temporary, target)
+def check_output_format(kind, output):
+    """Refuse an output whose extension does not name what `correct_file` writes.
+
+    Parameters
+    ----------
+    kind : str
+        The input's kind, one of `FILE_KINDS`.
+    output : str or path-like
+        The output's name.
+
+    Raises
+    ------
+    ValueError
+        A FITS-IDI input is corrected into FITS-IDI (`FITSIDI_EXTENSIONS`;
+        there is no conversion); any other input into a format pyuvdata
+        writes, named by the extension (`astropy_feedrot.uvdata.WRITERS`).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibility_files import check_output_format
+    >>> check_output_format("uvfits", "out.uvh5")
+    >>> check_output_format("fits-idi", "out.uvfits")
+    Traceback (most recent call last):
+    ...
+    ValueError: 'out.uvfits': a FITS-IDI input is corrected into a FITS-IDI copy ...
+    """
+    text = os.fspath(output)
+    extension = Path(text.rstrip("/" + os.sep)).suffix.lower()
+    if kind == "fits-idi":
+        if extension not in FITSIDI_EXTENSIONS:
+            raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
+                             "(there is no conversion to other formats); give the output one "
+                             f"of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
+    elif extension not in WRITERS:
+        raise ValueError(f"cannot tell a format from the extension of {text!r}; use one of "
+                         f"{', '.join(WRITERS)}")
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
@@ -313,6 +340,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     """
     source = _path(path)
     kind = file_kind(source)
+    check_output_format(kind, output)  # before any work
     target = _check_output(source, output, overwrite)
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress)
@@ -325,7 +353,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     try:
         temporary = work / target.name
         write_uvdata(uv, temporary)
-        _replace(temporary, target)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     finally:
         with contextlib.suppress(OSError):
             shutil.rmtree(work)

@@ -26,7 +26,7 @@ from astropy.time import Time
 from .. import __version__
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..outputs import same_file
+from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, basis_of
 from ..rows import feed_rotation_rows
@@ -589,7 +589,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                     records.flush()
                 finally:
                     del records
-        os.replace(temporary, target)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     except BaseException:
         if os.path.exists(temporary):
             os.remove(temporary)
