@@ -26,6 +26,7 @@ from .correction import (
     rr_minus_ll,
 )
 from .eop import earth_orientation_status
+from .epochs import Epochs
 from .exceptions import DegenerateGeometryWarning, OrbitWarning, StaleEarthOrientationWarning
 from .focus import (
     BeamWaveguideFocus,
@@ -36,7 +37,12 @@ from .focus import (
     NasmythFocus,
     PrimeFocus,
 )
-from .grid import feed_rotation_grid, feed_rotation_grid_dask, rotation_delay_grid
+from .grid import (
+    feed_rotation_grid,
+    feed_rotation_grid_dask,
+    feed_rotation_rate_grid,
+    rotation_delay_grid,
+)
 from .io import FileFormatError, read_orbex, read_sp3, read_tle
 from .labels import label_from_mount, mount_from_label
 from .mounts import (
@@ -100,6 +106,7 @@ __all__ = [
     # Many antennas and targets
     "feed_rotation_grid",
     "feed_rotation_grid_dask",
+    "feed_rotation_rate_grid",
     "rotation_delay_grid",
     # Planning polarization calibration
     "feed_rotation_coverage",
@@ -121,6 +128,7 @@ __all__ = [
     "plot_baseline",
     # Earth orientation, warnings and errors
     "earth_orientation_status",
+    "Epochs",
     "conf",
     "DegenerateGeometryWarning",
     "StaleEarthOrientationWarning",

@@ -13,15 +13,14 @@ from astropy import units as u
 from astropy.coordinates import Angle
 
 from . import engine, kernel, rates
-from .earth import orientation_of
 from .eop import iers_context
+from .epochs import as_epochs
 from .focus import CassegrainFocus, as_focus
 from .frames import (
     VERTICALS,
     as_elevation_limit,
     as_location,
     check_station_xyz,
-    fill_masked,
     horizontal,
     local_frame,
     location_xyz,
@@ -114,8 +113,8 @@ class _Sight(NamedTuple):
 
 def _to_angle(radians):
     """Radians to an `~astropy.coordinates.Angle` in degrees; 0-d becomes scalar."""
-    radians = np.asarray(radians)
-    return Angle(radians[()] if radians.ndim == 0 else radians, u.rad).to(u.deg)
+    degrees = np.degrees(radians)
+    return Angle(degrees[()] if degrees.ndim == 0 else degrees, u.deg, copy=False)
 
 
 class Antenna:
@@ -193,7 +192,7 @@ class Antenna:
                 f"an Antenna has one location, got an array of shape {self.location.shape}; "
                 "make one Antenna per site"
             )
-        xyz = location_xyz(self.location)
+        self._xyz = xyz = location_xyz(self.location)
         check_station_xyz(xyz, "location")
         self.mount = as_mount(mount)
         self.focus = CassegrainFocus() if focus is None else as_focus(focus)
@@ -300,7 +299,7 @@ class Antenna:
             proper motion or radial velocity is applied from the coordinate's
             ``obstime`` (its catalogue epoch) to each epoch of observation
             (see `~astropy_feedrot.frames.at_epochs`).
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation (UTC scale or any other). Masked epochs
             give NaN, without a warning.
         polarization : {'RCP', 'LCP'}, optional
@@ -381,6 +380,7 @@ class Antenna:
         >>> antenna.feed_rotation(source, times)  # doctest: +FLOAT_CMP
         <Angle [174.60305791, 136.86281049, 103.27155036] deg>
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
         form = engine.check_form(form)
@@ -396,7 +396,7 @@ class Antenna:
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
             Natural source(s) or a satellite, as for `feed_rotation`.
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation; masked epochs give NaN.
         polarization : {'RCP', 'LCP'}, optional
             As for `feed_rotation`; LCP flips the signs of both terms.
@@ -439,6 +439,7 @@ class Antenna:
         >>> (sum_of_terms - terms.total).wrap_at(180 * u.deg)  # doctest: +FLOAT_CMP
         <Angle 0. deg>
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
         return self._terms(self._line_of_sight(target, obstime), sign, limit)
@@ -462,7 +463,7 @@ class Antenna:
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
             Natural source(s) or a satellite, as for `feed_rotation`.
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation; masked epochs give NaN.
 
         Returns
@@ -483,6 +484,7 @@ class Antenna:
         >>> antenna.parallactic_angle(source, Time("2023-01-25T22:00"))  # doctest: +FLOAT_CMP
         <Angle 77.88951063 deg>
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         return self._parallactic_angle(self._line_of_sight(target, obstime).s)
 
     def _parallactic_angle(self, s):
@@ -500,7 +502,7 @@ class Antenna:
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
             Natural source(s) or a satellite, as for `feed_rotation`.
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation; masked epochs give NaN.
 
         Returns
@@ -520,6 +522,7 @@ class Antenna:
         >>> round(float(el.deg), 3)
         58.973
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         return self._altaz(self._line_of_sight(target, obstime).s)
 
     def _altaz(self, s):
@@ -538,7 +541,7 @@ class Antenna:
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
             Natural source(s) or a satellite, as for `feed_rotation`.
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation; masked epochs give NaN.
         polarization, form, min_elevation : optional
             As for `feed_rotation`; ``min_elevation`` masks the terms and the
@@ -577,6 +580,7 @@ class Antenna:
         >>> bool(np.abs(difference.wrap_at(180 * u.deg).deg).max() < 1e-9)  # Eq 38
         True
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
         form = engine.check_form(form)
@@ -602,7 +606,7 @@ class Antenna:
         ----------
         target : `~astropy.coordinates.SkyCoord` or `~astropy_feedrot.Satellite`
             Natural source(s) or a satellite, as for `feed_rotation`.
-        obstime : `~astropy.time.Time`
+        obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
             Epoch(s) of observation; masked epochs give NaN.
         polarization, form, min_elevation : optional
             As for `feed_rotation` (NaN below ``min_elevation``).
@@ -659,6 +663,7 @@ class Antenna:
         >>> rate.unit
         Unit("deg / s")
         """
+        obstime = as_epochs(obstime)  # converted once, handed down
         sign = engine.receiver_sign(target, polarization)
         limit = as_elevation_limit(min_elevation)
         form = engine.check_form(form)
@@ -677,12 +682,9 @@ class Antenna:
                 rate = np.where(below, np.nan, rate)
             return self._rate(rate)
         s = source_direction(target, self.location, obstime)
-        filled, _ = fill_masked(obstime)
-        pole = rates.celestial_pole(obstime)
-        sun = np.empty(filled.shape + (3,))  # the Sun: for the rate of the annual aberration
-        if filled.size:
-            sun[...] = orientation_of(filled).sun_position().reshape(sun.shape)
-        s_rate = rates.source_direction_rate(s, pole, location_xyz(self.location), sun)
+        # The pole and the Sun (for the rate of the annual aberration) of the epochs.
+        s_rate = rates.source_direction_rate(s, obstime.celestial_pole(), self._xyz,
+                                             obstime.sun_position())
         rotation_rate = None
         if series:
             rotation_rate = np.broadcast_to(self.rotator.rate(obstime),

@@ -16,11 +16,12 @@ rotation to ITRS), but takes each input where it is cheap:
   a leap second over its day): astropy gives them once at the start of each
   day with epochs and of the next, and the Earth rotation angle, GMST 1982,
   TT and polar motion follow exactly at any instant;
-* X, Y and s come from ERFA every day of TT, the ephemeris every 1.5 days,
-  through Lagrange polynomials of 16 and 10 nodes (1e-13 rad and 5e-5 m/s);
-  for sparse epochs over long spans (fewer than 100 per node) every 1.5 and
-  2.5 days through 24 and 20 nodes (0.002 mas and 0.0012 m/s); or from ERFA
-  at the instants themselves when they are fewer than the nodes;
+* X, Y and s, the Earth's velocity and its positions come from ERFA at
+  whole days of TT through Lagrange polynomials of 16, 10 and 14 nodes
+  (below 1e-13 rad and 5e-5 m/s); the nodes are computed a year at a time
+  and kept, in memory and in astropy's cache directory
+  (`~astropy_feedrot.series.KeptSeries`), so that sparse epochs cost an
+  interpolation each and later computations and processes reuse them;
 * the site's position and velocity (diurnal aberration), the Earth's
   rotation and polar motion are computed at each instant.
 
@@ -34,9 +35,7 @@ epochs more than astropy's own transformation (see `fast_path_applies`).
 """
 
 import collections
-import concurrent.futures
 import hashlib
-import math
 import threading
 
 import erfa
@@ -53,19 +52,28 @@ from astropy.coordinates import (
     Supergalactic,
     UnitSphericalRepresentation,
 )
-from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time
-from astropy.utils import iers
 
 from .config import conf
-from .eop import iers_context
+from .eop import iers_context, table_in_use
 from .inputs import as_location, as_skycoord, as_time
+from .instants import UtcDays, distinct, terrestrial
+from .series import (
+    KeptSeries,
+    Series,
+    chebyshev,
+    combine,
+    horner,
+    lagrange_weights,
+    monomials,
+)
 
 __all__ = [
     "EarthOrientation",
     "orientation_of",
     "clear_orientation_cache",
     "fast_path_applies",
+    "site_position",
     "FIXED_FRAMES",
     "FAST_PATH_MIN_DISTANCE",
     "DEFAULT_STEP",
@@ -85,10 +93,6 @@ FIXED_FRAMES = (ICRS, FK5, FK4, FK4NoETerms, Galactic, Supergalactic,
 FAST_PATH_MIN_DISTANCE = 1 * u.au
 
 _DAY = 86400.0
-# d(ERA)/d(UT1) in radians per day (ERFA era00).
-_ERA_RATE = 2 * np.pi * 1.00273781191135448
-# The Earth's angular velocity in rad/s, as ERFA's pvtob.
-_OMEGA = _ERA_RATE / _DAY
 # Metres per second in au per day, and au per day in units of c (ERFA apcs).
 _AU_PER_DAY = erfa.DAU / _DAY
 _C_AU_PER_DAY = erfa.DAU / erfa.CMPS / _DAY
@@ -96,22 +100,13 @@ _AU = erfa.DAU  # metres
 
 # Slow series: (node spacing in days of TT, number of nodes per Lagrange polynomial).
 # X, Y, s: 16 nodes a day apart interpolate the nutation's 5- to 14-day terms to
-# 0.00002 mas (1e-13 rad). The ephemeris: 10 nodes 1.5 days apart give the Earth's
+# 0.00002 mas (1e-13 rad). The ephemeris: 10 nodes a day apart give the Earth's
 # velocity to 5e-5 m/s (0.00003 mas of aberration), enough for sources without a
 # distance; 14 nodes a day apart give the positions to 1 cm, for the Sun (1e-13 rad)
 # and the parallax of sources with a distance.
 _CIP_GRID = (1.0, 16)
-_VELOCITY_GRID = (1.5, 10)
+_VELOCITY_GRID = (1.0, 10)
 _POSITION_GRID = (1.0, 14)
-# With fewer than _SPARSE epochs per node of _CIP_GRID the nodes cost more than the
-# epochs, and sparser grids take over for the directions of sources (the Sun keeps
-# the others): 0.002 mas for X and Y, 0.0012 m/s (0.0008 mas).
-_SPARSE = 100
-_SPARSE_CIP_GRID = (1.5, 24)
-_SPARSE_VELOCITY_GRID = (2.5, 20)
-# With many instants in an interval of a grid, the interpolant is reduced there to
-# a polynomial of this degree (Chebyshev points), below 1e-6 mas.
-_PIECE_DEGREE = 5
 
 # Cells of UTC: (cells per day, polynomial degree). The direction turns with the
 # Earth by 2 pi / (cells per day) within a cell; these degrees keep the error of
@@ -201,277 +196,52 @@ def _distance_less(data):
             or data.to_cartesian().x.unit == u.one)
 
 
-def _distinct(values, limit):
-    """Distinct values of a float array of integers, and a function of each element's index.
+#: How many sites `site_position` keeps.
+SITE_CACHE_SIZE = 256
 
-    If the values span at most ``limit``, every integer of their range is
-    taken (the index is then a subtraction); otherwise only those present.
+_SITES = collections.OrderedDict()
+_SITES_LOCK = threading.Lock()
+
+
+def site_position(location):
+    """The ITRS position (m) of a site as astropy's transformations use it.
+
+    Astropy hands ERFA's ``apco`` the site's WGS84 geodetic coordinates, and
+    ERFA's ``pvtob`` turns them back into a position (``gd2gc``). The round
+    trip costs 0.1 ms (astropy's geodetic representation), so each site's is
+    computed once and kept (the last `SITE_CACHE_SIZE` sites, keyed on their
+    coordinates).
+
+    Parameters
+    ----------
+    location : `~astropy.coordinates.EarthLocation`
+        A single site.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from astropy_feedrot.earth import site_position
+    >>> site = EarthLocation.from_geocentric(4075659.180, 931824.551, 4801516.102, u.m)
+    >>> site_position(site)  # doctest: +FLOAT_CMP
+    array([4075659.18 ,  931824.551, 4801516.102])
     """
-    low, high = values.min(), values.max()
-    if high - low < limit:
-        return np.arange(low, high + 1), lambda: (values - low).astype(np.intp)
-    distinct, index = np.unique(values, return_inverse=True)
-    return distinct, lambda: index.reshape(values.shape)
-
-
-class _Days:
-    """The UTC days of some epochs and the quantities linear within each day.
-
-    Every epoch is a day number ``day`` (UTC midnights counted from ``ref``)
-    and a fraction ``frac`` of that day. At the start of each day with epochs
-    and of the next, astropy gives TT, UT1 and polar motion; between them they
-    are linear (astropy interpolates the daily IERS values linearly in UTC,
-    and ERFA spreads a leap second over its day), so the tables hold the value
-    at the start of the day and the change over the day.
-    """
-
-    def __init__(self, obstime):
-        jd1 = np.asarray(obstime.jd1, dtype=float).ravel()
-        jd2 = np.asarray(obstime.jd2, dtype=float).ravel()
-        total = jd1 + jd2
-        first, last = int(np.argmin(total)), int(np.argmax(total))
-        with iers_context(obstime[[first, last]]):
-            if obstime.scale != "utc":
-                utc = obstime.utc
-                jd1, jd2 = np.asarray(utc.jd1, dtype=float), np.asarray(utc.jd2, dtype=float)
-            self.ref = Time(np.floor((jd1[first] - erfa.DJM0) + jd2[first]),
-                            format="mjd", scale="utc")
-            a = jd1 - self.ref.jd1
-            b = jd2 - self.ref.jd2
-            self.u = a + b
-            day = np.floor(self.u)
-            # At a midnight the rounding of a + b may leave the fraction a hair outside.
-            self.day, self.frac = day, np.clip((a - day) + b, 0.0, 1.0 - 2.0**-53)
-            self.days, self._slot = _distinct(day, max(day.size, 2))
-            self._tables()
-
-    @property
-    def slot(self):
-        """Each epoch's index into the day tables."""
-        if callable(self._slot):
-            self._slot = self._slot()
-        return self._slot
-
-    def slot_of(self, day):
-        """Indices into the day tables of days (which must be in them)."""
-        return np.searchsorted(self.days, day)
-
-    def _tables(self):
-        # Values at the start of each day and of the next one: within a UTC day
-        # they are linear, and continuous across midnights (a leap second is
-        # spread over its day).
-        days = self.days
-        starts = np.union1d(days, days + 1)
-        this, following = np.searchsorted(starts, days), np.searchsorted(starts, days + 1)
-        t = Time(self.ref.jd1 + starts, np.full(starts.shape, self.ref.jd2),
-                 format="jd", scale="utc")
-        tt, ut1 = t.tt, t.ut1
-        # TT is counted in days from the start of the first day of the tables.
-        self.tt1, self.tt2 = float(tt.jd1[0]), float(tt.jd2[0])
-        self.tt0 = ((tt.jd1 - self.tt1) + (tt.jd2 - self.tt2))[this]
-        self.tt_rate = _length(tt, this, following)
-        era = erfa.era00(ut1.jd1, ut1.jd2)
-        self.era0 = era[this]
-        self.era_rate = _ERA_RATE * _length(ut1, this, following)
-        gmst = erfa.gmst82(ut1.jd1, ut1.jd2)
-        self.gmst0 = gmst[this]
-        # GMST turns by a little more than 2 pi in a day.
-        self.gmst_rate = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
-        xp, yp = get_polar_motion(t)
-        self.xp0, self.xp_rate = xp[this], xp[following] - xp[this]
-        self.yp0, self.yp_rate = yp[this], yp[following] - yp[this]
-        self.sp = erfa.sp00(tt.jd1[this], tt.jd2[this])
-
-    def at(self, slot, frac):
-        """The quantities at instants given by day slots and fractions of day."""
-        return _Instants(self, slot, frac)
-
-
-def _length(t, this, following):
-    """Days from ``t[this]`` to ``t[following]``, to the precision of the two-part JD."""
-    return (t.jd1[following] - t.jd1[this]) + (t.jd2[following] - t.jd2[this])
-
-
-class _Instants:
-    """Instants within the days of a `_Days`, with their exact Earth orientation."""
-
-    def __init__(self, days, slot, frac):
-        self.size = frac.size
-        self.tt = days.tt0[slot] + days.tt_rate[slot] * frac  # days from days.tt1 + tt2
-        self.tt1, self.tt2 = days.tt1, days.tt2 + self.tt
-        self.era = days.era0[slot] + days.era_rate[slot] * frac
-        self.xp = days.xp0[slot] + days.xp_rate[slot] * frac
-        self.yp = days.yp0[slot] + days.yp_rate[slot] * frac
-        self.sp = days.sp[slot]
-        self._days, self._slot, self._frac = days, slot, frac
-
-    @property
-    def gmst82(self):
-        days = self._days
-        return days.gmst0[self._slot] + days.gmst_rate[self._slot] * self._frac
-
-    def to_itrs(self, vectors):
-        """CIRS vectors (..., P, 3) to ITRS, as astropy's ``cirs_to_itrs_mat``."""
-        return _terrestrial(vectors, self.era + self.sp, self.xp, self.yp)
-
-    def site(self, xyz):
-        """Position and velocity (m, m/s) in CIRS of a site at ITRS ``xyz`` (ERFA ``pvtob``)."""
-        x, y, z = xyz
-        # ERFA's pom00 transposed: R_z(-s') R_y(x_p) R_x(y_p), then R_z(-ERA).
-        cy, sy = np.cos(self.yp), np.sin(self.yp)
-        y, z = cy * y + sy * z, cy * z - sy * y
-        cx, sx = np.cos(self.xp), np.sin(self.xp)
-        x, z = cx * x - sx * z, cx * z + sx * x
-        angle = self.era + self.sp
-        c, s = np.cos(angle), np.sin(angle)
-        position = np.stack([c * x - s * y, s * x + c * y, z], axis=-1)
-        velocity = _OMEGA * np.stack([-s * x - c * y, c * x - s * y, np.zeros_like(x)], axis=-1)
-        return position, velocity
-
-
-def _terrestrial(vectors, angle, xp, yp):
-    """W(x_p, y_p) R_z(angle) applied to vectors (..., N, 3); W = R_x(-y_p) R_y(-x_p).
-
-    Polar motion is below 1e-5 rad, so that cos = 1 - a**2 / 2 and sin = a
-    are exact to 1e-17.
-    """
-    vectors = np.asarray(vectors, dtype=float)
-    c, s = np.cos(angle), np.sin(angle)
-    x = c * vectors[..., 0] + s * vectors[..., 1]
-    y = c * vectors[..., 1] - s * vectors[..., 0]
-    z = vectors[..., 2]
-    cx = 1 - 0.5 * xp * xp
-    x, z = cx * x + xp * z, cx * z - xp * x
-    cy = 1 - 0.5 * yp * yp
-    y, z = cy * y - yp * z, cy * z + yp * y
-    return np.stack([x, y, z], axis=-1)
-
-
-def _node_count(days, *grids):
-    """About how many nodes of these grids a series of ``days`` days needs."""
-    return sum(days / spacing + order for spacing, order in grids)
-
-
-def _lagrange_weights(xi, offsets):
-    """Weights (P, n) of the Lagrange polynomials through nodes at integer ``offsets``.
-
-    The barycentric form for consecutive integers: w_k = b_k / (xi - o_k),
-    normalized, with b_k = (-1)**k binomial(n - 1, k).
-    """
-    n = offsets.size
-    b = np.array([(-1) ** k * math.comb(n - 1, k) for k in range(n)], dtype=float)
-    distance = xi[:, np.newaxis] - offsets
-    with np.errstate(divide="ignore", invalid="ignore"):
-        weights = b / distance
-        weights /= weights.sum(axis=1, keepdims=True)
-    on_node = distance == 0
-    rows = np.any(on_node, axis=1)
-    if np.any(rows):
-        weights[rows] = on_node[rows]
-    return weights
-
-
-def _combine(values, start, weights):
-    """Sum of ``weights[:, k]`` times ``values[start + k]`` (values (M, ...) -> (P, ...))."""
-    out = weights[:, 0, np.newaxis] * values[start]
-    for k in range(1, weights.shape[1]):
-        out += weights[:, k, np.newaxis] * values[start + k]
-    return out
-
-
-#: Nodes from which `_in_parallel` splits an ERFA evaluation between threads.
-_PARALLEL_NODES = 64
-
-
-def _in_parallel(evaluate, tt1, tt2):
-    """``evaluate(tt1, tt2)`` on halves of the nodes in two threads, where there are many.
-
-    pyerfa's functions release the GIL, so the nutation series and the
-    ephemeris of long sparse series (a year of hourly epochs needs a few
-    hundred nodes) take half the time on two cores.
-    """
-    if tt2.size < _PARALLEL_NODES:
-        return evaluate(tt1, tt2)
-    half = tt2.size // 2
-    first = _helper_thread().submit(evaluate, tt1, tt2[:half])
-    second = evaluate(tt1, tt2[half:])
-    return np.concatenate([first.result(), second])
-
-
-_HELPER = []
-_HELPER_LOCK = threading.Lock()
-
-
-def _helper_thread():
-    """One worker thread, started on first use and kept (starting one costs ~2 ms)."""
-    with _HELPER_LOCK:
-        if not _HELPER:
-            _HELPER.append(concurrent.futures.ThreadPoolExecutor(
-                max_workers=1, thread_name_prefix="astropy_feedrot-erfa"))
-        return _HELPER[0]
-
-
-class _Series:
-    """A slow quantity from ERFA on a grid of TT, interpolated to instants.
-
-    ``evaluate(tt1, tt2)`` returns an (M, C) array at M instants of TT.
-    Values at the grid nodes are kept, so that instants asked for later reuse
-    the nodes already computed.
-    """
-
-    def __init__(self, evaluate, spacing, order, tt1, tt2):
-        self.evaluate, self.spacing, self.order = evaluate, spacing, order
-        self.tt1, self.tt2 = tt1, tt2
-        self.offsets = np.arange(order) - (order // 2 - 1)
-        self._nodes = {}
-
-    def plan(self, tt):
-        """Grid nodes (integers, sorted) needed by instants at ``tt``, or None.
-
-        None when there are no more instants than the nodes they would need:
-        ERFA is then evaluated at the instants themselves.
-        """
-        needed = np.unique(np.unique(np.floor(tt / self.spacing))[:, np.newaxis]
-                           + self.offsets)
-        return None if tt.size <= needed.size else needed
-
-    def at(self, tt):
-        """The quantity at instants ``tt`` (days from the reference), shape (P, C).
-
-        From ERFA at the instants, the Lagrange polynomial through the grid
-        nodes around each instant, or, with many instants per interval of the
-        grid, that polynomial reduced to a Chebyshev interpolant of degree
-        `_PIECE_DEGREE` in each interval (below 1e-6 mas).
-        """
-        x = tt / self.spacing
-        j = np.floor(x)
-        intervals, slot = np.unique(j, return_inverse=True)
-        needed = np.unique(intervals[:, np.newaxis] + self.offsets)
-        if tt.size <= needed.size:
-            return self.evaluate(self.tt1, self.tt2 + tt)
-        values = self.nodes(needed)
-        # The nodes of a stencil are consecutive integers, hence consecutive in needed.
-        first = np.searchsorted(needed, intervals + self.offsets[0])
-        offsets = self.offsets.astype(float)
-        if tt.size <= 2 * (_PIECE_DEGREE + 1) * intervals.size:
-            return _combine(values, first[slot], _lagrange_weights(x - j, offsets))
-        points, inverse = _chebyshev(_PIECE_DEGREE)
-        weights = _lagrange_weights((points + 1) / 2, offsets)  # (K, order), every interval
-        # The interpolant at the K Chebyshev points of each interval: (K, intervals, C).
-        at_points = weights[:, 0, np.newaxis, np.newaxis] * values[first]
-        for k in range(1, self.order):
-            at_points += weights[:, k, np.newaxis, np.newaxis] * values[first + k]
-        coefficients = _monomials(inverse, at_points)[:, np.newaxis]
-        return _horner(coefficients, slot.reshape(-1), 2 * (x - j) - 1)[0]
-
-    def nodes(self, needed):
-        """Values at grid nodes ``needed`` (integers), computing those not yet known."""
-        missing = [j for j in needed.tolist() if j not in self._nodes]
-        if missing:
-            tt = np.array(missing) * self.spacing
-            for j, row in zip(missing, _in_parallel(self.evaluate, self.tt1, self.tt2 + tt)):
-                self._nodes[j] = row
-        return np.array([self._nodes[j] for j in needed.tolist()])
+    key = (np.asarray(location.value).tobytes(), str(location.unit))
+    with _SITES_LOCK:
+        site = _SITES.get(key)
+    if site is None:
+        lon, lat, height = location.to_geodetic("WGS84")
+        site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+        site.flags.writeable = False
+        with _SITES_LOCK:
+            _SITES[key] = site
+            while len(_SITES) > SITE_CACHE_SIZE:
+                _SITES.popitem(last=False)
+    return site
 
 
 def _cip(tt1, tt2):
@@ -500,13 +270,6 @@ def _velocity(tt1, tt2):
     """
     heliocentric, barycentric = erfa.epv00(tt1, tt2)
     return np.concatenate([heliocentric["p"], barycentric["v"]], axis=-1)
-
-
-def _chebyshev(degree):
-    """Chebyshev points of the first kind in (-1, 1) and the monomial fit through them."""
-    n = degree + 1
-    points = np.cos(np.pi * (np.arange(n) + 0.5) / n)
-    return points, np.linalg.inv(np.vander(points, n, increasing=True))
 
 
 class EarthOrientation:
@@ -557,19 +320,16 @@ class EarthOrientation:
         self.obstime = obstime
         self.shape = obstime.shape
         self.size = obstime.size
-        flat = obstime.ravel()
-        if flat.masked:
-            flat = flat.unmasked
-        self._days = days = _Days(flat)
-        self._sun_cip = _Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
-        self._cip = self._sun_cip
-        self._velocity = _Series(_velocity, *_VELOCITY_GRID, days.tt1, days.tt2)
-        if (self.size < _SPARSE * _node_count(days.days.size, _CIP_GRID)
-                and _node_count(days.days.size, _SPARSE_CIP_GRID, _SPARSE_VELOCITY_GRID)
-                < _node_count(days.days.size, _CIP_GRID, _VELOCITY_GRID)):
-            self._cip = _Series(_cip, *_SPARSE_CIP_GRID, days.tt1, days.tt2)
-            self._velocity = _Series(_velocity, *_SPARSE_VELOCITY_GRID, days.tt1, days.tt2)
-        self._position = _Series(_ephemeris, *_POSITION_GRID, days.tt1, days.tt2)
+        self._days = days = UtcDays(obstime.unmasked if obstime.masked else obstime)
+        # The nodes of `nodes` and `interpolate`, a day apart around the epochs.
+        self._sun_cip = Series(_cip, *_CIP_GRID, days.tt1, days.tt2)
+        # The slow series themselves: whole days of TT, kept between computations
+        # (and processes), or over the span of the epochs when it is short.
+        self._cip = KeptSeries("cip", _cip, _CIP_GRID[1], days.tt1, days.tt2)
+        self._velocity = KeptSeries("velocity", _velocity, _VELOCITY_GRID[1], days.tt1,
+                                    days.tt2)
+        self._position = KeptSeries("ephemeris", _ephemeris, _POSITION_GRID[1], days.tt1,
+                                    days.tt2)
         self._epochs = None
 
     # --- the epochs themselves ---------------------------------------------
@@ -641,9 +401,9 @@ class EarthOrientation:
         x = tt / series.spacing
         j = np.floor(x)
         start = np.searchsorted(needed, j + series.offsets[0])
-        weights = _lagrange_weights(x - j, series.offsets.astype(float))
-        return np.moveaxis(_combine(np.moveaxis(node_values, -2, 0), start,
-                                    weights[(...,) + (np.newaxis,) * (node_values.ndim - 2)]),
+        weights = lagrange_weights(x - j, series.offsets.astype(float))
+        return np.moveaxis(combine(np.moveaxis(node_values, -2, 0), start,
+                                   weights[(...,) + (np.newaxis,) * (node_values.ndim - 2)]),
                            0, -2)
 
     # --- rotations at each epoch -------------------------------------------
@@ -698,7 +458,7 @@ class EarthOrientation:
         7000.0
         """
         epochs = self._at_epochs()
-        return _terrestrial(vectors, epochs.gmst82, epochs.xp, epochs.yp)
+        return terrestrial(vectors, epochs.gmst82, epochs.xp, epochs.yp)
 
     # --- directions and the Sun at each epoch ------------------------------
 
@@ -753,9 +513,7 @@ class EarthOrientation:
         distance = None
         if not _distance_less(data):
             distance = icrs.spherical.distance.to_value(u.au).reshape(-1)
-        # As ERFA's pvtob inside apco, from astropy's WGS84 geodetic coordinates.
-        lon, lat, height = location.to_geodetic("WGS84")
-        site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
+        site = site_position(location)
 
         def evaluate(instants):
             return self._directions_at(instants, pco, distance, site)
@@ -787,7 +545,7 @@ class EarthOrientation:
         return self._per_epoch(self._sun_at, 1)[0]
 
     def _sun_at(self, instants):
-        x, y, s = self._sun_cip.at(instants.tt).T
+        x, y, s = self._cip.at(instants.tt).T
         sun = -self._position.at(instants.tt)[:, 0:3] * _AU
         return instants.to_itrs(erfa.rxp(erfa.c2ixys(x, y, s), sun))[np.newaxis]
 
@@ -835,7 +593,7 @@ class EarthOrientation:
         x = scaled - within
         x *= 2
         x -= 1
-        cells, slot = _distinct(days.day * per_day + within, 2 * self.size)
+        cells, slot = distinct(days.day * per_day + within, 2 * self.size)
         slot = slot()
         counts = np.bincount(slot, minlength=cells.size)
         # A cell pays when its epochs outnumber its points (with the Horner margin).
@@ -844,7 +602,7 @@ class EarthOrientation:
         if np.any(full):
             coefficients[:, :, full] = self._cell_polynomials(evaluate, count, cells[full],
                                                               per_day, degree)
-        out = _horner(coefficients, slot, x)
+        out = horner(coefficients, slot, x)
         if not np.all(full[counts > 0]):
             rest = np.flatnonzero(~full[slot])
             out[:, rest] = evaluate(days.at(days.slot[rest], days.frac[rest]))
@@ -868,41 +626,18 @@ class EarthOrientation:
     def _cell_polynomials(self, evaluate, count, cells, per_day, degree):
         """Monomial coefficients (degree + 1, count, cells, 3) of each cell's polynomial."""
         days = self._days
-        points, inverse = _chebyshev(degree)
+        points, inverse = chebyshev(degree)
         day = np.floor(cells / per_day)
         within = cells - day * per_day
         frac = (within[:, np.newaxis] + (points + 1) / 2) / per_day
         instants = days.at(np.repeat(days.slot_of(day), points.size), frac.ravel())
         values = evaluate(instants).reshape(count, cells.size, points.size, 3)
-        return _monomials(inverse, np.moveaxis(values, 2, 0))
-
-
-def _monomials(inverse, values):
-    """Monomial coefficients (K, ...) from values (K, ...) at the Chebyshev points.
-
-    ``inverse`` is the inverse Vandermonde matrix of `_chebyshev`; the sums run
-    element by element (not through BLAS), so that each coefficient is the same
-    whatever else is computed with it.
-    """
-    out = inverse[:, 0].reshape((-1,) + (1,) * (values.ndim - 1)) * values[0]
-    for j in range(1, values.shape[0]):
-        out += inverse[:, j].reshape((-1,) + (1,) * (values.ndim - 1)) * values[j]
-    return out
+        return monomials(inverse, np.moveaxis(values, 2, 0))
 
 
 def _horner_cost(degree):
     """Cost of a polynomial of ``degree`` at an epoch, in exact evaluations at an instant."""
     return _HORNER_BASE + _HORNER_PER_DEGREE * degree
-
-
-def _horner(coefficients, slot, x):
-    """Evaluate each epoch's cell polynomial: coefficients (m + 1, S, cells, 3) -> (S, N, 3)."""
-    x = x[:, np.newaxis]
-    out = np.take(coefficients[-1], slot, axis=1)
-    for k in range(coefficients.shape[0] - 2, -1, -1):
-        out *= x
-        out += np.take(coefficients[k], slot, axis=1)
-    return out
 
 
 #: How many `EarthOrientation` objects `orientation_of` keeps.
@@ -944,7 +679,7 @@ def orientation_of(obstime):
     obstime = as_time(obstime)
     if obstime.masked:
         return EarthOrientation(obstime)
-    table = iers.earth_orientation_table.get()
+    table = table_in_use()  # None: the bundled tables, not yet loaded by astropy
     digest = hashlib.blake2b(np.ascontiguousarray(obstime.jd1, dtype=float).tobytes())
     digest.update(np.ascontiguousarray(obstime.jd2, dtype=float).tobytes())
     key = (obstime.scale, obstime.shape, digest.digest(), id(table))
@@ -966,8 +701,11 @@ def orientation_of(obstime):
 def clear_orientation_cache():
     """Forget the Earth orientations `orientation_of` keeps.
 
-    For timing a computation from nothing (the benchmarks), or to free their
-    memory.
+    For timing a computation from nothing but the tables every process has
+    after its first call (the benchmarks), or to free their memory. The
+    nodes of the slow series (`~astropy_feedrot.series.clear_kept_nodes`),
+    the IERS arrays and the sites' positions stay: they depend on nothing
+    but the day, the tables and the site.
 
     Examples
     --------

@@ -25,15 +25,24 @@ large the UT1 error may be and what that does to hour and parallactic angles
 
 import contextlib
 import contextvars
+import hashlib
+import math
+import os
+import pathlib
 import re
+import tempfile
+import threading
 import time
 import warnings
 from importlib import metadata
 from typing import NamedTuple
 
+import astropy
 import erfa
 import numpy as np
 from astropy import units as u
+from astropy.config import get_cache_dir
+from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time, update_leap_seconds
 from astropy.utils import iers
 from astropy.utils.exceptions import AstropyWarning
@@ -45,6 +54,10 @@ __all__ = [
     "EarthOrientationStatus",
     "earth_orientation_status",
     "iers_context",
+    "utc_earth_orientation",
+    "table_arrays",
+    "table_in_use",
+    "TableArrays",
     "EARTH_ROTATION_RATE",
     "MAX_TABLE_AGE",
 ]
@@ -119,21 +132,225 @@ def _table():
     return iers.earth_orientation_table.get()
 
 
-_FACTS = {}
+# Polar motion astropy uses outside the tables (the 1962-2014 mean of IERS B,
+# astropy.coordinates.builtin_frames.utils), in radians.
+_DEFAULT_PM = (0.035 * u.arcsec).to_value(u.rad), (0.29 * u.arcsec).to_value(u.rad)
+
+_ARRAYS = {}
+_ARRAYS_LOCK = threading.Lock()
+
+
+class TableArrays(NamedTuple):
+    """The columns of an Earth-orientation table that the package interpolates.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.eop import table_arrays
+    >>> arrays = table_arrays()
+    >>> bool(arrays.mjd[0] <= 41684.0 < arrays.mjd[-1])  # IERS values since 1973
+    True
+    """
+
+    #: The days of the table (MJD, UTC).
+    mjd: np.ndarray
+    #: UT1 - UTC (s).
+    ut1_utc: np.ndarray
+    #: Polar motion x_p, y_p (rad).
+    xp: np.ndarray
+    yp: np.ndarray
+    #: The first day of predictions (MJD), or the day after the table.
+    predictive_mjd: float
+
+
+def _downloads():
+    """Whether downloads are allowed (read once per outermost `iers_context`)."""
+    scope = _SCOPE.get()
+    return conf.iers_auto_download if scope is None else scope.downloads
+
+
+def table_in_use():
+    """The Earth-orientation table astropy uses, if it has one loaded; else None.
+
+    None stands for the tables bundled with astropy before astropy has read
+    them (`table_arrays` then reads a kept copy of their arrays). With
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy's table (loaded
+    now if need be).
+
+    Returns
+    -------
+    `~astropy.utils.iers.IERS` or None
+
+    Examples
+    --------
+    >>> from astropy.utils import iers
+    >>> from astropy_feedrot.eop import table_in_use
+    >>> b = iers.IERS_B.open(iers.IERS_B_FILE)
+    >>> with iers.earth_orientation_table.set(b):
+    ...     table_in_use() is b
+    True
+    """
+    if _downloads():
+        return _table()
+    value = getattr(iers.earth_orientation_table, "_value", None)
+    if value is not None:
+        return value
+    return iers.IERS_Auto.iers_table  # what earth_orientation_table.get() would return
+
+
+def _arrays_of(table):
+    mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
+    return TableArrays(mjd,
+                       np.asarray(u.Quantity(table["UT1_UTC"]).to_value(u.s), dtype=float),
+                       np.asarray(u.Quantity(table["PM_x"]).to_value(u.rad), dtype=float),
+                       np.asarray(u.Quantity(table["PM_y"]).to_value(u.rad), dtype=float),
+                       float(table.meta.get("predictive_mjd", mjd[-1] + 1)))
+
+
+def _kept_path():
+    """Where the arrays of the bundled tables are kept, named after their files."""
+    files = [iers.IERS_A_FILE, iers.IERS_B_FILE]
+    stamp = [astropy.__version__] + [(str(f), os.stat(f).st_size, os.stat(f).st_mtime_ns)
+                                     for f in files]
+    key = hashlib.blake2b(repr(stamp).encode(), digest_size=10).hexdigest()
+    return pathlib.Path(get_cache_dir()) / "astropy_feedrot" / f"iers-{key}.npz"
+
+
+def _read_kept():
+    try:
+        with np.load(_kept_path()) as kept:
+            return TableArrays(kept["mjd"], kept["ut1_utc"], kept["xp"], kept["yp"],
+                               float(kept["predictive_mjd"]))
+    except (OSError, KeyError, ValueError):  # not kept yet, or unreadable: read the tables
+        return None
+
+
+def _keep(arrays):
+    try:
+        path = _kept_path()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".npz", delete=False) as f:
+            np.savez(f, **arrays._asdict())
+        os.replace(f.name, path)  # whole or not at all, for processes reading at once
+    except OSError:  # a read-only cache: the tables are read again next time
+        pass
+
+
+def table_arrays():
+    """The Earth-orientation table in use, as plain arrays.
+
+    Astropy reads its bundled IERS tables (``astropy-iers-data``) on first
+    use, which takes about a second. Until astropy has a table loaded (or
+    when the user has set none), these arrays are read instead from a copy
+    kept in astropy's cache directory, named after the bundled files (their
+    paths, sizes and times, and astropy's version), and written the first
+    time they are read: a fresh process then gets UT1 and polar motion in a
+    millisecond. A table set with ``iers.earth_orientation_table.set`` or
+    already loaded by astropy is read directly (and with
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy's own table,
+    which it may refresh).
+
+    Returns
+    -------
+    TableArrays
+
+    Examples
+    --------
+    >>> from astropy_feedrot.eop import table_arrays
+    >>> arrays = table_arrays()
+    >>> arrays.mjd.shape == arrays.ut1_utc.shape
+    True
+    """
+    table = table_in_use()
+    key = "bundled" if table is None else id(table)
+    with _ARRAYS_LOCK:
+        kept = _ARRAYS.get(key)
+    if kept is not None and kept[0] is table:  # the entry keeps its table alive
+        return kept[1]
+    arrays = None if table is not None else _read_kept()
+    if arrays is None:
+        arrays = _arrays_of(_table() if table is None else table)
+        if table is None:
+            _keep(arrays)
+    with _ARRAYS_LOCK:
+        _ARRAYS.clear()
+        _ARRAYS[key] = (table, arrays)
+    return arrays
 
 
 def _table_facts():
     """(start, end of the predictions, last measured) MJD of the tables in use."""
-    table = _table()
-    facts = _FACTS.get(id(table))
-    if facts is None or facts[0] is not table:  # the entry keeps its table alive
-        mjd = np.asarray(table["MJD"].to_value(u.day), dtype=float)
-        start, end = float(mjd[0]), float(mjd[-1])
-        measured = min(float(table.meta.get("predictive_mjd", end + 1)) - 1, end)
-        facts = (table, start, end, measured)
-        _FACTS.clear()
-        _FACTS[id(table)] = facts
-    return facts[1:]
+    arrays = table_arrays()
+    start, end = float(arrays.mjd[0]), float(arrays.mjd[-1])
+    return start, end, min(arrays.predictive_mjd - 1, end)
+
+
+def utc_earth_orientation(jd1, jd2):
+    """TT, UT1 and polar motion at UTC instants, as astropy's `~astropy.time.Time` gives them.
+
+    The same numbers as ``Time(jd1, jd2, format="jd", scale="utc")``'s
+    ``.tt`` and ``.ut1`` and astropy's ``get_polar_motion`` (linear
+    interpolation of the daily IERS values in UTC, a leap second taken out of
+    the UT1 - UTC step, the first or last values outside the tables and the
+    50-year mean polar motion there; ERFA ``utctai``, ``taitt``, ``utcut1``),
+    from plain arrays, without building a `~astropy.time.Time`: a few
+    microseconds instead of a few hundred. With
+    ``astropy_feedrot.conf.iers_auto_download`` on, astropy is asked (it may
+    then refresh its tables). Call it inside `iers_context`.
+
+    Parameters
+    ----------
+    jd1, jd2 : array-like
+        Two-part Julian dates in UTC (same shape).
+
+    Returns
+    -------
+    tt1, tt2, ut11, ut12, xp, yp : ndarray
+        Two-part Julian dates of TT and UT1, and the polar motion in radians.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.eop import iers_context, utc_earth_orientation
+    >>> t = Time(["2023-01-25T00:00", "2023-01-26T00:00"])
+    >>> with iers_context(t):
+    ...     tt1, tt2, ut11, ut12, xp, yp = utc_earth_orientation(t.jd1, t.jd2)
+    ...     ut1 = t.ut1
+    >>> bool(np.allclose((ut11 - ut1.jd1) + (ut12 - ut1.jd2), 0, atol=1e-15))  # astropy's
+    True
+    """
+    jd1 = np.asarray(jd1, dtype=float)
+    jd2 = np.asarray(jd2, dtype=float)
+    # ERFA's ufuncs directly: the status of utctai and utcut1 says only "dubious
+    # year", which iers_context silences, or "unacceptable date" (before -4799),
+    # which a Time cannot hold.
+    tai1, tai2, _ = erfa.ufunc.utctai(jd1, jd2)
+    tt1, tt2, _ = erfa.ufunc.taitt(tai1, tai2)
+    if _downloads():  # astropy's own route, which may refresh its tables
+        t = Time(jd1, jd2, format="jd", scale="utc")
+        ut1 = t.ut1
+        xp, yp = get_polar_motion(t)
+        return tt1, tt2, ut1.jd1, ut1.jd2, xp, yp
+    mjd_table, dut_table, xp_table, yp_table, _ = table_arrays()
+    # As astropy's IERS._interpolate.
+    mjd = np.floor(jd1 - erfa.DJM0 + jd2)
+    utc = jd1 - (erfa.DJM0 + mjd) + jd2
+    i = np.searchsorted(mjd_table, mjd, side="right")
+    i1 = np.clip(i, 1, mjd_table.size - 1)
+    i0 = i1 - 1
+    fraction = (mjd - mjd_table[i0] + utc) / (mjd_table[i1] - mjd_table[i0])
+    step = dut_table[i1] - dut_table[i0]
+    step -= step.round()  # a leap second is not a change of UT1 - UTC
+    dut = dut_table[i0] + fraction * step
+    xp = xp_table[i0] + fraction * (xp_table[i1] - xp_table[i0])
+    yp = yp_table[i0] + fraction * (yp_table[i1] - yp_table[i0])
+    before, after = i == 0, i == mjd_table.size
+    dut = np.where(before, dut_table[0], np.where(after, dut_table[-1], dut))
+    outside = before | after
+    xp = np.where(outside, _DEFAULT_PM[0], xp)
+    yp = np.where(outside, _DEFAULT_PM[1], yp)
+    ut11, ut12, _ = erfa.ufunc.utcut1(jd1, jd2, dut)
+    return tt1, tt2, ut11, ut12, xp, yp
 
 
 def _covered(low, high):
@@ -148,10 +365,14 @@ def _mjd_range(obstime):
     """First and last finite, unmasked MJD of a Time (any scale), or None."""
     if obstime is None or obstime.size == 0:
         return None
-    plain = obstime.unmasked if obstime.masked else obstime
-    mjd = np.asarray(plain.jd1, dtype=float) + np.asarray(plain.jd2, dtype=float) - 2400000.5
+    masked = obstime.masked
+    plain = obstime.unmasked if masked else obstime
+    mjd = (np.asarray(plain.jd1, dtype=float) - 2400000.5) + np.asarray(plain.jd2, dtype=float)
+    if mjd.size == 1 and not masked:  # one epoch: the common case, kept cheap
+        value = float(mjd.flat[0])
+        return (value, value) if math.isfinite(value) else None
     keep = np.isfinite(mjd)
-    if obstime.masked:
+    if masked:
         keep &= ~np.broadcast_to(obstime.mask, mjd.shape)
     if not np.any(keep):
         return None
@@ -340,6 +561,8 @@ class _Scope:
     def __init__(self):
         self.low = np.inf
         self.high = -np.inf
+        # Read once per call: the configuration costs microseconds a read.
+        self.downloads = conf.iers_auto_download
 
     def add(self, obstime):
         span = _mjd_range(obstime)
@@ -385,21 +608,27 @@ def iers_context(obstime=None):
     False
     """
     scope = _SCOPE.get()
-    outermost = scope is None
+    if scope is not None:  # nested: the outermost context has set everything up
+        if obstime is not None:
+            scope.add(obstime)
+        yield
+        return
+    outermost = True
     if outermost:
         scope = _Scope()
         token = _SCOPE.set(scope)
     if obstime is not None:
         scope.add(obstime)
     try:
-        if conf.iers_auto_download:
+        if scope.downloads:
             with iers.conf.set_temp("auto_download", True):
                 yield
         else:
-            with iers.conf.set_temp("auto_download", False), \
-                    iers.conf.set_temp("auto_max_age", None), \
-                    iers.conf.set_temp("iers_degraded_accuracy", "ignore"), \
-                    _quiet():
+            with contextlib.ExitStack() as stack:
+                for name, value in _OFFLINE:  # set_temp only where needed: it costs 9 us
+                    if getattr(iers.conf, name) != value:
+                        stack.enter_context(iers.conf.set_temp(name, value))
+                stack.enter_context(_quiet())
                 yield
     finally:
         if outermost:
@@ -408,6 +637,11 @@ def iers_context(obstime=None):
         message = earth_orientation_status(scope.epochs()).message
         if message is not None:
             warn_caller(message, StaleEarthOrientationWarning)
+
+
+# Astropy's IERS settings inside iers_context when downloads are off.
+_OFFLINE = (("auto_download", False), ("auto_max_age", None),
+            ("iers_degraded_accuracy", "ignore"))
 
 
 @contextlib.contextmanager

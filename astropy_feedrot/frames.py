@@ -21,8 +21,8 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import ITRS, SkyCoord
 
-from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
+from .epochs import as_epochs, fill_masked
 from .inputs import as_location, as_skycoord, as_time, broadcast_shape
 from .kernel import dot, unit
 
@@ -78,65 +78,6 @@ class LocalFrame(NamedTuple):
     east: np.ndarray
     north: np.ndarray
     up: np.ndarray
-
-
-def fill_masked(obstime):
-    """Split a possibly masked `~astropy.time.Time` into epochs to compute with and a mask.
-
-    Masked epochs stand for missing data. The package computes nothing for
-    them and returns NaN there (never a number, never a masked array): the
-    geometry functions take the epochs returned here, where each masked epoch
-    is replaced by the nearest earlier valid one (the first valid one for
-    leading masked epochs), so that no orbit is asked for an epoch outside its
-    span, and set their results to NaN where ``mask`` is True.
-
-    Parameters
-    ----------
-    obstime : `~astropy.time.Time`
-        Epoch(s), masked or not (astropy >= 6 keeps the mask of a `Time`
-        in ``Time.mask``; the values under the mask are meaningless).
-
-    Returns
-    -------
-    filled : `~astropy.time.Time`
-        Unmasked epochs of the same shape. Where every epoch is masked they
-        are the values under the mask, which callers must not use.
-    mask : ndarray of bool or None
-        True at masked epochs, shape ``obstime.shape``; None if no epoch is
-        masked.
-
-    Raises
-    ------
-    TypeError
-        If ``obstime`` is not a time (see `as_time`).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import astropy.units as u
-    >>> from astropy.time import Time
-    >>> from astropy_feedrot.frames import fill_masked
-    >>> times = Time("2023-01-25T08:00") + [0, 1, 2] * u.hour
-    >>> times[1] = np.ma.masked
-    >>> filled, mask = fill_masked(times)
-    >>> filled.isot.tolist(), mask.tolist()
-    (['2023-01-25T08:00:00.000', '2023-01-25T08:00:00.000', '2023-01-25T10:00:00.000'], \
-[False, True, False])
-    """
-    obstime = as_time(obstime)
-    if not obstime.masked:
-        return obstime, None
-    mask = np.array(obstime.mask, dtype=bool)
-    plain = obstime.unmasked
-    if not mask.any():
-        return plain, None
-    flat = mask.ravel()
-    valid = np.flatnonzero(~flat)
-    if not valid.size:
-        return plain, mask
-    index = np.maximum.accumulate(np.where(flat, -1, np.arange(flat.size)))
-    index[index < 0] = valid[0]
-    return plain.ravel()[index].reshape(mask.shape), mask
 
 
 def time_axis(obstime_shape, shape):
@@ -430,14 +371,15 @@ def source_direction(target, location, obstime):
     (2, 3)
     """
     location = as_location(location)
-    obstime, masked = fill_masked(obstime)
-    target = as_skycoord(target, obstime)
-    shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
+    epochs = as_epochs(obstime)
+    masked = epochs.mask
+    target = as_skycoord(target, epochs.filled)
+    shape = broadcast_shape(target=target.shape, obstime=epochs.shape)
     if 0 in shape:  # nothing to compute (astropy 6.0 fails on empty epochs)
         return np.empty(shape + (3,))
     if masked is not None and masked.all():
         return np.full(shape + (3,), np.nan)
-    s = _apparent_direction(at_epochs(target, obstime), location, obstime)
+    s = _apparent_direction(at_epochs(target, epochs.filled), location, epochs)
     if masked is None:
         return s
     return np.where(np.broadcast_to(masked, shape)[..., np.newaxis], np.nan, s)
@@ -509,13 +451,14 @@ def at_epochs(target, obstime):
     return SkyCoord(moved.frame.realize_frame(moved.data.without_differentials()))
 
 
-def _apparent_direction(target, location, obstime):
-    """`source_direction` for unmasked epochs and a target without space motion."""
+def _apparent_direction(target, location, epochs):
+    """`source_direction` for a target without space motion at `~astropy_feedrot.epochs.Epochs`."""
+    obstime = epochs.filled
     shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
     if isinstance(target.frame, ITRS):
         xyz = _earth_fixed_offset(target, location)
-    elif _fast_path_applies(target, obstime, shape):
-        return _interpolated_direction(target, location, obstime, shape)
+    elif _fast_path_applies(target, epochs, shape):
+        return _interpolated_direction(target, location, epochs, shape)
     else:
         # NaN coordinates propagate as NaN; ERFA's ufuncs need not warn about them.
         with iers_context(obstime), np.errstate(invalid="ignore"):
@@ -524,18 +467,19 @@ def _apparent_direction(target, location, obstime):
     return np.broadcast_to(unit(xyz), shape + (3,))
 
 
-def _fast_path_applies(target, obstime, shape):
-    """Whether `source_direction` takes `~astropy_feedrot.earth.EarthOrientation`.
+def _fast_path_applies(target, epochs, shape):
+    """Whether `source_direction` takes the epochs' `~astropy_feedrot.earth.EarthOrientation`.
 
-    The rule is `~astropy_feedrot.earth.fast_path_applies`; ``shape`` is the
+    The rule is `~astropy_feedrot.epochs.Epochs.uses_nodes`; ``shape`` is the
     shape of the result, which must pair every target with every epoch.
     """
-    pairs = target.size == 1 or int(np.prod(shape)) == target.size * obstime.size
-    return pairs and fast_path_applies(target, obstime)
+    pairs = target.size == 1 or int(np.prod(shape)) == target.size * epochs.size
+    return pairs and epochs.uses_nodes(target)
 
 
-def _interpolated_direction(target, location, obstime, shape):
-    s = orientation_of(obstime).source_directions(target.icrs, location)
+def _interpolated_direction(target, location, epochs, shape):
+    obstime = epochs.filled
+    s = epochs.orientation.source_directions(target.icrs, location)
     if target.size == 1:
         return np.broadcast_to(s.reshape(obstime.shape + (3,)), shape + (3,))
     full = s.reshape(target.size, obstime.size, 3)

@@ -31,21 +31,27 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 
-from . import engine
+from . import engine, kernel, rates
 from .antenna import Antenna
-from .attitude import Attitude, nominal_dipoles
+from .attitude import Attitude
 from .continuity import delay_of_difference, frequency_hz
-from .earth import fast_path_applies, orientation_of
 from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
+from .epochs import Epochs
 from .frames import (
     as_elevation_limit,
     as_skycoord,
     as_time,
-    check_station_xyz,
-    fill_masked,
     location_xyz,
     source_direction,
+)
+from .grid_arrays import (  # noqa: F401 (BLOCK_POINTS: kept importable from here)
+    BLOCK_POINTS,
+    FOCUS_TERMS,
+    UNIT_TOLERANCE,
+    grid_block,
+    nominal_attitude,
+    wind_up,
 )
 from .orbits import Orbit
 from .polarization import polarization_sign
@@ -61,17 +67,14 @@ __all__ = [
     "nominal_attitude",
     "feed_rotation_grid",
     "feed_rotation_grid_dask",
+    "feed_rotation_rate_grid",
     "rotation_delay_grid",
 ]
 
-#: Grid points (epochs x antennas x targets) evaluated at once: the working
-#: memory of a block is about 200 bytes per point, so about 50 MB.
-BLOCK_POINTS = 2**18
 
 #: Default number of grid points per chunk of `feed_rotation_grid_dask`.
 DASK_CHUNK_POINTS = 2**21
 
-_RAD_TO_DEG = u.rad.to(u.deg)
 
 # Doctests that need the optional dask (pytest-doctestplus).
 __doctest_requires__ = {("feed_rotation_grid_dask",): ["dask"]}
@@ -152,318 +155,6 @@ def receiver_arrays(antennas):
     return arrays
 
 
-def _shape_error(name, shape, expected, why):
-    return ValueError(f"{name} has shape {shape}, but {why} needs {expected}")
-
-
-#: Tolerance on the length of the unit vectors given to `wind_up` (directions,
-#: axes, dipoles): within it they are normalized (rounding), beyond it refused.
-UNIT_TOLERANCE = 1e-6
-
-#: The focus terms `wind_up` accepts: conventional, Nasmyth right and left,
-#: beam waveguide right and left.
-FOCUS_TERMS = ((0, 0), (1, 0), (-1, 0), (1, -1), (-1, 1))
-
-# Transmitters closer to the geocentre than this (metres) are inside the Earth:
-# positions in kilometres read as metres.
-_MIN_TRANSMITTER_RADIUS = 6.3e6
-
-
-def _floats(value, name):
-    """A float ndarray; TypeError for what is not numbers."""
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be an array of numbers, got "
-                        f"{type(value).__name__}") from None
-    return array
-
-
-def _unit_vectors(vectors, name, allow_nan):
-    """Vectors (..., 3) normalized; ValueError if a length is off by more than UNIT_TOLERANCE.
-
-    With ``allow_nan``, a vector with a NaN component is missing data and
-    becomes all NaN; infinities are always refused.
-    """
-    if np.any(np.isinf(vectors)):
-        raise ValueError(f"{name} has infinite components")
-    missing = np.any(np.isnan(vectors), axis=-1)
-    if np.any(missing) and not allow_nan:
-        raise ValueError(f"{name} has NaN components")
-    norm = np.sqrt(np.einsum("...i,...i->...", vectors, vectors))
-    bad = ~missing & ~(np.abs(norm - 1) <= UNIT_TOLERANCE)
-    if np.any(bad):
-        where = tuple(int(i) for i in np.argwhere(bad)[0])
-        raise ValueError(
-            f"{name} must be unit vectors (length within {UNIT_TOLERANCE:g} of 1), but "
-            f"{name}[{', '.join(map(str, where))}] has length {norm[where]:.6g}; normalize "
-            "them (v / np.linalg.norm(v, axis=-1, keepdims=True)); a zero vector has no "
-            "direction"
-        )
-    with np.errstate(invalid="ignore"):
-        return np.where(missing[..., np.newaxis], np.nan, vectors / norm[..., np.newaxis])
-
-
-def _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms):
-    xyz = _floats(station_xyz, "station_xyz")
-    if xyz.ndim != 2 or xyz.shape[1] != 3:
-        raise ValueError(f"station_xyz must have shape (A, 3), got {xyz.shape}")
-    check_station_xyz(xyz, "station_xyz")
-    n = len(xyz)
-    axes = _floats(station_axes, "station_axes")
-    if axes.shape != (n, 3, 3):
-        raise _shape_error("station_axes", axes.shape, (n, 3, 3),
-                           f"station_xyz of shape {xyz.shape}")
-    axes = _unit_vectors(axes, "station_axes", allow_nan=False)
-    gram = np.einsum("aij,akj->aik", axes, axes) - np.eye(3)
-    handed = np.einsum("ai,ai->a", np.cross(axes[:, 0], axes[:, 1]), axes[:, 2])
-    bad = np.flatnonzero((np.max(np.abs(gram), axis=(1, 2)) > UNIT_TOLERANCE) | (handed < 0))
-    if bad.size:
-        raise ValueError(f"station_axes[{bad[0]}] must hold east, north and up as an "
-                         "orthonormal right-handed set of rows (east x north = up), e.g. "
-                         "np.stack(local_frame(location))")
-    raw = np.asarray(stationary)
-    if raw.dtype.kind not in "biu" or (raw.dtype.kind != "b" and np.any((raw != 0) & (raw != 1))):
-        raise TypeError(f"stationary must be booleans (True for a ground-fixed crossed "
-                        f"dipole), got {raw.dtype} values")
-    station = raw.astype(bool)
-    if station.shape != (n,):
-        raise _shape_error("stationary", station.shape, (n,),
-                           f"station_xyz of shape {xyz.shape}")
-    if fixed_axis is None:
-        axis = axes[:, 2]
-    else:
-        axis = _floats(fixed_axis, "fixed_axis")
-        if axis.shape != (n, 3):
-            raise _shape_error("fixed_axis", axis.shape, (n, 3),
-                               f"station_xyz of shape {xyz.shape}")
-        axis = _unit_vectors(axis, "fixed_axis", allow_nan=False)
-    if focus_terms is None:
-        terms = np.zeros((n, 2))
-    else:
-        terms = _floats(focus_terms, "focus_terms")
-        if terms.shape != (n, 2):
-            raise _shape_error("focus_terms", terms.shape, (n, 2),
-                               f"station_xyz of shape {xyz.shape}")
-        known = np.array(FOCUS_TERMS, dtype=float)
-        valid = np.any(np.all(terms[:, np.newaxis] == known, axis=-1), axis=-1)
-        if not np.all(valid):
-            i = int(np.flatnonzero(~valid)[0])
-            raise ValueError(f"focus_terms[{i}] is {terms[i].tolist()}; it must be one of "
-                             f"{list(FOCUS_TERMS)} (conventional, Nasmyth right and left, "
-                             "beam waveguide right and left)")
-    return ReceiverArrays(xyz, axes, station, axis, terms)
-
-
-def _check_targets(target, aligned, transverse, directions, n_antennas, xyz_shape):
-    if not isinstance(directions, (bool, np.bool_)):
-        raise TypeError(f"directions must be True or False, got {directions!r}")
-    target = _floats(target, "target")
-    if directions:
-        if target.ndim == 4:
-            if target.shape[1] != n_antennas or target.shape[-1] != 3:
-                raise _shape_error("target", target.shape,
-                                   f"(T, {n_antennas}, S, 3) or (T, S, 3)",
-                                   f"station_xyz of shape {xyz_shape}")
-        elif target.ndim != 3 or target.shape[-1] != 3:
-            raise ValueError(f"target directions must have shape (T, S, 3) or (T, A, S, 3), "
-                             f"got {target.shape}")
-    elif target.ndim != 3 or target.shape[-1] != 3:
-        raise ValueError(f"target positions must have shape (T, S, 3), got {target.shape}; "
-                         "for directions pass directions=True")
-    if (aligned is None) != (transverse is None):
-        raise ValueError("give both aligned and transverse (a transmitter) or neither "
-                         "(natural sources)")
-    if directions:
-        target = _unit_vectors(target, "target directions", allow_nan=True)
-    else:
-        if np.any(np.isinf(target)):
-            raise ValueError("target positions have infinite components")
-        with np.errstate(invalid="ignore"):
-            radius = np.sqrt(np.einsum("...i,...i->...", target, target))
-        inside = radius < _MIN_TRANSMITTER_RADIUS  # False for NaN: missing data
-        if np.any(inside):
-            where = tuple(int(i) for i in np.argwhere(inside)[0])
-            raise ValueError(
-                f"target[{', '.join(map(str, where))}] is {radius[where]:.0f} m from the "
-                "geocentre, inside the Earth; target positions are geocentric ITRS in "
-                "metres (kilometres?), or pass unit directions with directions=True"
-            )
-    expected = target.shape[:1] + target.shape[-2:]
-    if aligned is not None:
-        aligned = _floats(aligned, "aligned")
-        transverse = _floats(transverse, "transverse")
-        for name, value in (("aligned", aligned), ("transverse", transverse)):
-            if value.shape != expected:
-                raise _shape_error(name, value.shape, expected,
-                                   f"target of shape {target.shape}")
-        aligned = _unit_vectors(aligned, "aligned", allow_nan=True)
-        transverse = _unit_vectors(transverse, "transverse", allow_nan=True)
-        with np.errstate(invalid="ignore"):
-            skew = np.abs(np.einsum("...i,...i->...", aligned, transverse)) > UNIT_TOLERANCE
-        if np.any(skew):
-            where = ", ".join(str(int(i)) for i in np.argwhere(skew)[0])
-            raise ValueError(f"aligned[{where}] and transverse[{where}] must be orthogonal "
-                             "(a crossed dipole)")
-    return target, aligned, transverse
-
-
-def _blocks(n_epochs, points_per_epoch):
-    """Slices of epochs holding about `BLOCK_POINTS` grid points each."""
-    step = max(1, BLOCK_POINTS // max(1, points_per_epoch))
-    for start in range(0, n_epochs, step):
-        yield slice(start, min(start + step, n_epochs))
-
-
-def wind_up(station_xyz, station_axes, stationary, target, aligned=None, transverse=None, *,
-            fixed_axis=None, focus_terms=None, directions=False, form="beyerle"):
-    """Feed rotation (carrier-phase wind-up) on a grid, from plain arrays.
-
-    Every antenna sees every target at every epoch: the result has shape
-    (T, A, S) for T epochs, A antennas and S targets.
-
-    Parameters
-    ----------
-    station_xyz : array-like, shape (A, 3)
-        Geocentric ITRS positions of the antennas, in metres: finite, and
-        Earth stations (see `~astropy_feedrot.frames.check_station_xyz`).
-    station_axes : array-like, shape (A, 3, 3)
-        East, north and up unit vectors of each site in ITRS (the rows of
-        ``np.stack(local_frame(location))``), orthonormal and right-handed.
-    stationary : array-like of bool, shape (A,)
-        True for a crossed dipole fixed to the ground (aligned dipole east,
-        transverse north, boresight up, Eq 28), False for a tracking antenna
-        turning about ``fixed_axis``.
-    target : array-like, shape (T, S, 3) or (T, A, S, 3)
-        Geocentric ITRS positions of transmitters in metres, shape (T, S, 3),
-        outside the Earth; or, with ``directions=True``, unit vectors from the
-        antennas to the targets, shape (T, S, 3) (the same for every antenna)
-        or (T, A, S, 3). A vector with a NaN component is missing data.
-    aligned, transverse : array-like, shape (T, S, 3), optional
-        The transmitters' aligned and transverse dipoles in ITRS (from
-        `nominal_attitude`, or measured): orthogonal unit vectors, or NaN
-        where unknown. Leave both out for natural sources, whose transmitter
-        dipole is the projected celestial pole (Eq 11).
-    fixed_axis : array-like, shape (A, 3), optional
-        Fixed axis of each tracking mount in ITRS (Eq 10), a unit vector: the
-        up vector for alt-az (the default), ``[0, 0, 1]`` for equatorial,
-        north or east for X-Y. Ignored for stationary antennas.
-    focus_terms : array-like, shape (A, 2), optional
-        Multiples of the elevation and the azimuth that the focus adds, each
-        row one of `FOCUS_TERMS` (see `ReceiverArrays`); zero (a
-        conventional focus) by default.
-    directions : bool, optional
-        Whether ``target`` holds directions instead of positions.
-    form : {'beyerle', 'wu'}, optional
-        For stationary antennas and transmitters with dipoles: the crossed-dipole
-        form (Eq 30, default) or the effective-dipole form (Eq 31).
-
-    Returns
-    -------
-    ndarray, shape (T, A, S)
-        The feed rotation of a right-hand (RCP) receiver in radians, in
-        [-pi, pi]; negate it for LCP. NaN where the geometry is degenerate
-        (see `~astropy_feedrot.kernel`; a transmitter at an antenna's
-        position too) or a vector is missing (NaN), without a warning.
-
-    Raises
-    ------
-    TypeError
-        If an array is not numbers, ``stationary`` not booleans or
-        ``directions`` not a bool.
-    ValueError
-        If the shapes do not fit (naming both), for an unknown ``form``, a
-        station that is not on the Earth (NaN, infinite, in km), a unit
-        vector (direction, axis, dipole) whose length is off by more than
-        `UNIT_TOLERANCE` (those within it are normalized), axes that are not
-        an orthonormal right-handed set, dipoles that are not orthogonal,
-        transmitter positions inside the Earth or infinite, or focus terms
-        not in `FOCUS_TERMS`.
-
-    Notes
-    -----
-    Tracking antennas: Eq 7 with the fixed-axis vector as receiver dipole
-    (Eq 13; Eqs 35, 38-41 with the focus terms). Stationary crossed dipoles:
-    Eq 30 (Beyerle's form, Eq 5) for transmitters with dipoles, evaluated from
-    scalar products without forming a (T, A, S, 3) array; Eq 7 with the
-    effective dipole of Eq 8 otherwise (Eq 33 for natural sources). The grid
-    is evaluated in blocks of epochs to bound the working memory.
-    `receiver_arrays` builds the antenna arguments from
-    `~astropy_feedrot.Antenna` objects.
-
-    Examples
-    --------
-    A GNSS antenna on the equator and a transmitter straight above it, facing
-    it, with dipoles turned by 30 degrees from east towards north:
-
-    >>> import numpy as np
-    >>> from astropy_feedrot.grid import wind_up
-    >>> enu = np.array([[[0.0, 1, 0], [0, 0, 1], [1, 0, 0]]])  # east, north, up at lon 0
-    >>> c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
-    >>> phi = wind_up([[6.378e6, 0, 0]], enu, [True], [[[2.6e7, 0, 0]]],
-    ...               aligned=[[[0, c, s]]], transverse=[[[0, s, -c]]])
-    >>> phi.shape
-    (1, 1, 1)
-    >>> float(np.degrees(phi[0, 0, 0]))  # doctest: +FLOAT_CMP
-    30.0
-    """
-    rx = _check_receivers(station_xyz, station_axes, stationary, fixed_axis, focus_terms)
-    form = check_form(form)
-    target, aligned, transverse = _check_targets(target, aligned, transverse, directions,
-                                                 len(rx.station_xyz), rx.station_xyz.shape)
-    if directions and target.ndim == 3:  # the same directions for every antenna
-        target = target[:, np.newaxis]
-    return _grid_block(target, aligned, transverse, receivers=Receivers.from_arrays(rx),
-                       positions=not directions, form=form, sign=1.0, min_sine=None,
-                       degrees=False)
-
-
-def nominal_attitude(position, sun):
-    """Dipoles of nominally pointed satellites on a grid of epochs (Eqs 26, 27).
-
-    Parameters
-    ----------
-    position : array-like, shape (T, S, 3)
-        Geocentric ITRS positions of S satellites at T epochs.
-    sun : array-like, shape (T, 3)
-        Geocentric ITRS position of the Sun at the same epochs, in the same
-        unit (`~astropy_feedrot.attitude.sun_position`, or
-        `~astropy_feedrot.attitude.interpolated_sun_position` for many
-        epochs): one per epoch for all satellites.
-
-    Returns
-    -------
-    aligned, transverse : ndarray, shape (T, S, 3)
-        The transmitter dipoles of `~astropy_feedrot.NominalAttitude` (the
-        same arithmetic, `~astropy_feedrot.attitude.nominal_dipoles`); NaN
-        without a warning where the Sun, a satellite and the geocentre are
-        aligned.
-
-    Raises
-    ------
-    ValueError
-        If the shapes do not fit (naming both).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from astropy_feedrot.grid import nominal_attitude
-    >>> position = np.array([[[2.6e7, 0, 0], [0, 2.6e7, 0]]])  # one epoch, two satellites
-    >>> aligned, transverse = nominal_attitude(position, [[0, 0, 1.5e11]])
-    >>> transverse  # doctest: +FLOAT_CMP
-    array([[[ 0.,  1.,  0.],
-            [-1.,  0.,  0.]]])
-    """
-    position = np.asarray(position, dtype=float)
-    sun = np.asarray(sun, dtype=float)
-    if position.ndim != 3 or position.shape[-1] != 3:
-        raise ValueError(f"position must have shape (T, S, 3), got {position.shape}")
-    if sun.shape != (position.shape[0], 3):
-        raise _shape_error("sun", sun.shape, (position.shape[0], 3),
-                           f"position of shape {position.shape}")
-    return nominal_dipoles(position, sun[:, np.newaxis])
-
-
 # -- From astropy objects to arrays --------------------------------------------------------
 
 
@@ -480,6 +171,9 @@ class _Grid(NamedTuple):
     min_sine: float
     shape: tuple
     rotation: np.ndarray = None  # (T, A) angles of 'series' rotators, or None
+    # For fixed natural sources: antenna index -> its directions (S, T, 3), made
+    # when needed (target is then None), so that no (T, A, S, 3) array is held.
+    per_antenna: object = None
 
 
 def _check_targets_objects(targets):
@@ -515,14 +209,12 @@ def _check_targets_objects(targets):
     return "satellites", targets
 
 
-def _earth_orientation(obstime):
-    """The one Earth orientation of the grid, or None where orbits use astropy's frames."""
-    if fast_path_applies(None, obstime):
-        return orientation_of(obstime)
-    return None
+def _earth_orientation(epochs):
+    """The Earth orientation of `~astropy_feedrot.epochs.Epochs` where it serves, else None."""
+    return epochs.orientation if epochs.uses_nodes() else None
 
 
-def _satellite_arrays(satellites, obstime, polarization, masked=None):
+def _satellite_arrays(satellites, epochs, polarization):
     """Positions and dipoles (T, S, 3) of satellites, and their signs (S,).
 
     Every orbit class propagates its members in one batch and every attitude
@@ -530,6 +222,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     `Attitude.dipoles_many`); one Earth orientation serves them all. NaN at
     ``masked`` epochs (True), where ``obstime`` holds stand-ins.
     """
+    obstime, masked = epochs.filled, epochs.mask
     n_t, n_s = obstime.size, len(satellites)
     sign = np.array([engine.receiver_sign(sat, polarization) for sat in satellites], dtype=float)
     if masked is not None and masked.all():
@@ -539,7 +232,7 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     attitudes = [sat.attitude for sat in satellites]
     orientation = None
     if any(o.uses_orientation for o in orbits) or any(a.needs_sun for a in attitudes):
-        orientation = _earth_orientation(obstime)
+        orientation = _earth_orientation(epochs)
     try:
         xyz = Orbit.positions(orbits, obstime, orientation)  # (S, T, 3)
     except ValueError:
@@ -561,11 +254,12 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
     return position, aligned, transverse, sign
 
 
-def _source_directions(sources, antennas, obstime):
+def _source_directions(sources, antennas, epochs):
     """Apparent topocentric directions (T, A, S, 3) of natural sources at each antenna.
 
     A 2-d ``sources`` (T, S) moves: element [k, j] is source j at epoch k.
     """
+    obstime = epochs.filled
     n_t, n_s = obstime.size, sources.shape[-1] if sources.ndim else 1
     out = np.empty((n_t, len(antennas), n_s, 3))
     if sources.ndim == 2:
@@ -574,8 +268,8 @@ def _source_directions(sources, antennas, obstime):
         return out
     column = sources.reshape((n_s, 1))
     orientation = None
-    if fast_path_applies(column, obstime):  # every source at every epoch
-        orientation = orientation_of(obstime)
+    if epochs.uses_nodes(column):  # every source at every epoch
+        orientation = epochs.orientation
         icrs = sources.icrs
     for i, antenna in enumerate(antennas):
         if orientation is not None:
@@ -586,33 +280,66 @@ def _source_directions(sources, antennas, obstime):
     return out
 
 
-def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
+def _antenna_directions(sources, antennas, epochs, masked):
+    """A function: antenna index -> directions (S, T, 3) of fixed natural sources, or None.
+
+    None unless every source is fixed and the epochs' Earth orientation
+    serves them (`~astropy_feedrot.epochs.Epochs.uses_nodes`).
+    """
+    if sources.ndim == 2:  # moving sources
+        return None
+    n_s = sources.shape[-1] if sources.ndim else 1
+    column = sources.reshape((n_s, 1))
+    if not epochs.uses_nodes(column):
+        return None
+    orientation, icrs, n_t = epochs.orientation, sources.icrs, epochs.size
+
+    def directions(i):
+        s = orientation.source_directions(icrs, antennas[i].location).reshape(n_s, n_t, 3)
+        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+            s[:, masked] = np.nan
+        return s
+
+    return directions
+
+
+def _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy=False):
     antennas = _check_antennas(antennas)
     kind, targets = _check_targets_objects(targets)
-    obstime = as_time(obstime)
-    if obstime.ndim > 1:
+    time = as_time(obstime)
+    if time.ndim > 1:
         raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
-                         f"got shape {obstime.shape}; flatten it with .ravel()")
-    shape = obstime.shape
-    obstime, masked = fill_masked(obstime.reshape((obstime.size,)))
+                         f"got shape {time.shape}; flatten it with .ravel()")
+    shape = time.shape
+    # One Epochs for the whole grid (the caller's, if 1-d), handed to every step.
+    epochs = obstime if isinstance(obstime, Epochs) and time.ndim == 1 else Epochs(
+        time.reshape((time.size,)))
+    obstime, masked = epochs.filled, epochs.mask
     form = check_form(form)
     min_sine = engine.min_sine(as_elevation_limit(min_elevation))
     receivers = _receivers(antennas)
     if kind == "sources" and targets.ndim == 2 and targets.shape[0] != obstime.size:
         raise ValueError(f"moving sources (a 2-d SkyCoord) need one row per epoch: shape "
                          f"{targets.shape} for {obstime.size} epochs")
+    per_antenna = None
     if kind == "satellites":
-        target, aligned, transverse, sign = _satellite_arrays(targets, obstime, polarization,
-                                                              masked)
+        target, aligned, transverse, sign = _satellite_arrays(targets, epochs, polarization)
         positions = True
     else:
         sign = np.full(targets.shape[-1] if targets.ndim else 1, polarization_sign(
             "RCP" if polarization is None else polarization), dtype=float)
-        if masked is not None and masked.all():
+        per_antenna = None
+        plain = all(antenna.rotator is None or antenna.rotator.mode != "series"
+                    for antenna in antennas)
+        if lazy and plain and not (masked is not None and masked.all()):
+            per_antenna = _antenna_directions(targets, antennas, epochs, masked)
+        if per_antenna is not None:
+            target = None
+        elif masked is not None and masked.all():
             target = np.full((obstime.size, len(antennas), len(sign), 3), np.nan)
         else:
-            target = _source_directions(targets, antennas, obstime)
-        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+            target = _source_directions(targets, antennas, epochs)
+        if masked is not None and target is not None:  # NaN: NaN feed rotation
             target[masked] = np.nan
         aligned = transverse = None
         positions = False
@@ -620,29 +347,7 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation):
     if rotation is not None and masked is not None:
         rotation[masked] = np.nan
     return _Grid(receivers, target, aligned, transverse, positions, form, sign, min_sine,
-                 shape + (len(antennas), len(sign)), rotation)
-
-
-def _grid_block(target, aligned=None, transverse=None, rotation=None, *, receivers, positions,
-                form, sign, min_sine, degrees=True, count=False):
-    """Feed rotation (t, A, S) of a block of epochs, by the engine in blocks of
-    `BLOCK_POINTS`; with ``count`` also the number of degenerate grid points (NaN
-    where the target is finite and not masked)."""
-    n_t, n_s = target.shape[0], target.shape[-2]
-    out = np.empty((n_t, len(receivers), n_s))
-    degenerate = 0
-    scale = sign * _RAD_TO_DEG if degrees else sign
-    for block in _blocks(n_t, len(receivers) * n_s):
-        tb = target[block]
-        phase, below = engine.feed_rotation(
-            receivers, tb, None if aligned is None else aligned[block],
-            None if transverse is None else transverse[block], positions=positions,
-            form=form, min_sine=min_sine,
-            rotation=None if rotation is None else rotation[block])
-        if count:
-            degenerate += int(np.count_nonzero(engine.degenerate(phase, tb, below, positions)))
-        np.multiply(phase, scale, out=out[block])
-    return (out, degenerate) if count else out
+                 shape + (len(antennas), len(sign)), rotation, per_antenna)
 
 
 def _dask_block(*arrays, all_rotation=None, block_info=None, **kwargs):
@@ -651,7 +356,7 @@ def _dask_block(*arrays, all_rotation=None, block_info=None, **kwargs):
         start, stop = block_info[None]["array-location"][0]
         rotation = all_rotation[start:stop]
     arrays = arrays + (None,) * (3 - len(arrays))
-    return _grid_block(*arrays, rotation, **kwargs)
+    return grid_block(*arrays, rotation, **kwargs)
 
 
 def _block_arguments(grid):
@@ -749,11 +454,135 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     >>> bool(np.all(np.abs((phi[:, 1, 0] - reference).wrap_at(180 * u.deg)) < 1e-9 * u.deg))
     True
     """
-    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation)
-    out, degenerate = _grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
-                                  count=True, **_block_arguments(grid))
+    grid = _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy=True)
+    if grid.per_antenna is None:
+        out, degenerate = grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
+                                     count=True, **_block_arguments(grid))
+    else:  # fixed natural sources: one antenna at a time, from the one Earth orientation
+        out = np.empty((int(np.prod(grid.shape[:-2])),) + grid.shape[-2:])
+        degenerate = 0
+        scale = grid.sign[0] * np.degrees(1.0)  # one hand for every natural source
+        for i, antenna in enumerate(_check_antennas(antennas)):
+            # The engine on (S, T) lines of sight of one antenna, contiguous as made.
+            s = grid.per_antenna(i)[:, :, np.newaxis, np.newaxis, :]
+            phase, below = engine.feed_rotation(_receivers([antenna]), s, form=grid.form,
+                                                min_sine=grid.min_sine)
+            degenerate += int(np.count_nonzero(engine.degenerate(phase, s, below)))
+            out[:, i, :] = phase[..., 0, 0].T * scale
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
+
+
+@iers_context()  # one check of the Earth-orientation tables per call
+def feed_rotation_rate_grid(antennas, sources, obstime, *, polarization=None,
+                            min_elevation=None):
+    """Rate of the feed rotation of every antenna observing every natural source.
+
+    Parameters
+    ----------
+    antennas : sequence of `~astropy_feedrot.Antenna`
+        The receivers (A of them).
+    sources : `~astropy.coordinates.SkyCoord`
+        S natural sources, one scalar or 1-d coordinate, fixed in a celestial
+        frame.
+    obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
+        The epochs, scalar or 1-d (T of them); masked epochs give NaN.
+    polarization : {'RCP', 'LCP'}, optional
+        Hand of the receivers (RCP by default).
+    min_elevation : `~astropy.units.Quantity`, optional
+        NaN where a source is lower than this above an antenna's horizon.
+
+    Returns
+    -------
+    `~astropy.units.Quantity`
+        In deg/s, shape (T, A, S) (or (A, S) for a scalar ``obstime``):
+        element ``[k, i, j]`` equals
+        ``antennas[i].feed_rotation_rate(sources[j], obstime[k])``.
+
+    Raises
+    ------
+    TypeError
+        If ``sources`` is not a coordinate (satellites: use
+        `Antenna.feed_rotation_rate <astropy_feedrot.Antenna.feed_rotation_rate>`),
+        or an argument is not of the expected kind.
+    ValueError
+        For moving sources (a 2-d coordinate), a multi-dimensional
+        ``obstime`` or a bad ``min_elevation``.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if some grid points are degenerate.
+
+    Notes
+    -----
+    One `~astropy_feedrot.Epochs` serves every antenna: its celestial pole
+    and its Sun (for the rate of the annual aberration), and the directions
+    from its Earth orientation; the rate of each antenna is then
+    `~astropy_feedrot.engine.feed_rotation_rate`, as for
+    `Antenna.feed_rotation_rate <astropy_feedrot.Antenna.feed_rotation_rate>`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.grid import feed_rotation_rate_grid
+    >>> antennas = [get_antenna("WETTZ13S"), get_antenna("YEBES40M")]
+    >>> sources = SkyCoord(["03h19m48.16s +41d30m42.1s", "12h29m06.7s +02d03m09s"])
+    >>> times = Time("2023-01-25T18:00") + np.arange(3) * u.hour
+    >>> rate = feed_rotation_rate_grid(antennas, sources, times)
+    >>> rate.shape, rate.unit
+    ((3, 2, 2), Unit("deg / s"))
+    >>> one = antennas[1].feed_rotation_rate(sources[1], times)
+    >>> bool(np.allclose(rate[:, 1, 1], one, rtol=0, atol=1e-12 * u.deg / u.s))
+    True
+    """
+    antennas = _check_antennas(antennas)
+    kind, sources = _check_targets_objects(sources)
+    if kind != "sources":
+        raise TypeError("feed_rotation_rate_grid takes natural sources (a SkyCoord); for "
+                        "satellites use Antenna.feed_rotation_rate")
+    if sources.ndim > 1:
+        raise ValueError(f"sources must be a scalar or 1-d SkyCoord of fixed sources, got "
+                         f"shape {sources.shape}")
+    time = as_time(obstime)
+    if time.ndim > 1:
+        raise ValueError(f"obstime must be a scalar or 1-d Time (the time axis of the grid), "
+                         f"got shape {time.shape}; flatten it with .ravel()")
+    epochs = obstime if isinstance(obstime, Epochs) and time.ndim == 1 else Epochs(
+        time.reshape((time.size,)))
+    sign = polarization_sign("RCP" if polarization is None else polarization)
+    limit = engine.min_sine(as_elevation_limit(min_elevation))
+    n_s, n_t = sources.size, epochs.size
+    column = sources.reshape((n_s, 1))
+    pole = epochs.celestial_pole()[np.newaxis]  # (1, T, 3)
+    sun = epochs.sun_position()[np.newaxis]
+    out = np.empty((n_t, len(antennas), n_s))
+    degenerate = 0
+    for i, antenna in enumerate(antennas):
+        s = source_direction(column, antenna.location, epochs)  # (S, T, 3)
+        site = location_xyz(antenna.location)
+        s_rate = rates.source_direction_rate(s, pole, site, sun)
+        rotation_rate = None
+        if antenna.rotator is not None and antenna.rotator.mode == "series":
+            rotation_rate = np.broadcast_to(antenna.rotator.rate(epochs),
+                                            s.shape[:-1])[..., np.newaxis]
+        rate = engine.feed_rotation_rate(_receivers([antenna]), s[:, :, np.newaxis, np.newaxis],
+                                         s_rate[:, :, np.newaxis, np.newaxis],
+                                         rotation_rate)[..., 0, 0]
+        below = None
+        if limit is not None:
+            below = kernel.dot(s, antenna.local_frame.up) < limit
+        degenerate += int(np.count_nonzero(engine.degenerate(rate, s, below)))
+        if below is not None:
+            rate = np.where(below, np.nan, rate)
+        out[:, i, :] = sign * rate.T
+    engine.warn_degenerate(degenerate, out.size, "feed rotation rate", "grid points")
+    shape = time.shape + (len(antennas), n_s)
+    return u.Quantity(out.reshape(shape), u.rad / u.s).to(u.deg / u.s)
 
 
 def _dask_array():

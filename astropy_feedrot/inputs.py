@@ -84,7 +84,8 @@ def as_time(obstime):
     ----------
     obstime : `~astropy.time.Time` or str or sequence of str
         Epoch(s) of observation; anything else `~astropy.time.Time` parses
-        without a ``format`` argument (ISO strings, `datetime.datetime`).
+        without a ``format`` argument (ISO strings, `datetime.datetime`), or
+        an `~astropy_feedrot.epochs.Epochs` (its time is returned).
 
     Returns
     -------
@@ -110,6 +111,8 @@ def as_time(obstime):
     """
     if isinstance(obstime, Time):
         return obstime
+    if getattr(type(obstime), "holds_epochs", False):  # an astropy_feedrot.Epochs
+        return obstime.epochs_time
     if isinstance(obstime, TimeDelta):
         raise TypeError(
             "obstime must be an astropy Time (an epoch), got a TimeDelta (a duration); "

@@ -27,13 +27,12 @@ warn once per call.
 
 import warnings
 
-import erfa
 import numpy as np
 from astropy import constants
 from astropy import units as u
-from astropy.coordinates.builtin_frames.utils import get_polar_motion
 
 from .eop import iers_context
+from .epochs import as_epochs
 from .exceptions import warn_caller
 from .frames import as_time, fill_masked
 from .kernel import DEGENERATE_NORM, NORTH_POLE, dot, wrap_phase
@@ -140,13 +139,14 @@ def celestial_pole(obstime):
 
     Parameters
     ----------
-    obstime : `~astropy.time.Time`
+    obstime : `~astropy.time.Time` or `~astropy_feedrot.Epochs`
         Epoch(s); masked epochs give NaN.
 
     Returns
     -------
     ndarray, shape obstime.shape + (3,)
-        The unit vector of the CIP in ITRS, from the polar motion of the IERS
+        The unit vector of the CIP in ITRS
+        (`~astropy_feedrot.Epochs.celestial_pole`), from the polar motion of the IERS
         tables bundled with astropy (ERFA ``pom00``, the same values astropy's
         transformation to ITRS uses, inside
         `~astropy_feedrot.eop.iers_context`). It lies within about 0.5 arcsec
@@ -167,19 +167,7 @@ def celestial_pole(obstime):
     >>> round(float(offset), 2)
     0.23
     """
-    obstime, masked = fill_masked(as_time(obstime))
-    if masked is not None and masked.all():
-        return np.full(obstime.shape + (3,), np.nan)
-    if obstime.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
-        return np.empty(obstime.shape + (3,))
-    with iers_context(obstime):
-        xp, yp = get_polar_motion(obstime)
-        tt = obstime.tt
-        sp = erfa.sp00(tt.jd1, tt.jd2)
-    pole = erfa.pom00(xp, yp, sp)[..., :, 2]  # [ITRS] = RPOM [CIP frame]: its z column
-    if masked is not None:
-        pole = np.where(masked[..., np.newaxis], np.nan, pole)
-    return pole
+    return as_epochs(obstime).celestial_pole()
 
 
 def source_direction_rate(s, pole=NORTH_POLE, site=None, sun=None):

@@ -7,8 +7,8 @@ import numpy as np
 
 from . import kernel
 from .attitude import Attitude, NominalAttitude
-from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
+from .epochs import as_epochs
 from .exceptions import warn_caller
 from .frames import as_location, fill_masked, location_xyz
 from .inputs import MIN_GEOCENTRIC_DISTANCE
@@ -235,7 +235,8 @@ class Satellite:
         array([1., 0., 0.])
         """
         location = as_location(location)
-        filled, masked = fill_masked(obstime)
+        epochs = as_epochs(obstime)
+        filled, masked = epochs.filled, epochs.mask
         if masked is not None and masked.all():
             s = np.full(filled.shape + (3,), np.nan)
             return LineOfSight(s, s, s)
@@ -244,7 +245,7 @@ class Satellite:
             return LineOfSight(s, s, s)
         orientation = None
         if self.orbit.uses_orientation or self.attitude.needs_sun:
-            orientation = _earth_orientation(filled)
+            orientation = _earth_orientation(epochs)
         position, aligned, transverse = self._transmitter_at(filled, masked, orientation)
         s = kernel.unit(position - location_xyz(location))
         if masked is not None:
@@ -320,8 +321,6 @@ def check_transmitter_positions(xyz, label):
             "positions are geocentric, in metres (kilometres given as metres?)")
 
 
-def _earth_orientation(obstime):
-    """The Earth orientation shared by orbit and attitude, or None off the fast path."""
-    if fast_path_applies(None, obstime):
-        return orientation_of(obstime)
-    return None
+def _earth_orientation(epochs):
+    """The Earth orientation of `~astropy_feedrot.epochs.Epochs` where it serves, else None."""
+    return epochs.orientation if epochs.uses_nodes() else None

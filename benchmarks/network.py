@@ -25,6 +25,21 @@ are compared chunk by chunk. Run with::
     python benchmarks/network.py            # all three modes
     python benchmarks/network.py --mode distributed
 
+With ``--natural`` it measures instead what a network gains from being a
+network: 30 antennas of the station catalogue x 100 natural sources (a
+golden-spiral sky) x 2880 epochs (one day at 30 s), computed by
+`~astropy_feedrot.grid.feed_rotation_grid` (one `~astropy_feedrot.Epochs`
+and one Earth orientation for all), by
+`~astropy_feedrot.grid.feed_rotation_grid_dask` (threads) and by a loop over
+`Antenna.feed_rotation <astropy_feedrot.Antenna.feed_rotation>`, each in a
+fresh process (best of ``--repeats`` calls; peak memory above the process's
+memory before the call), and prints the two ratios of the targets: the loop's
+time over the grid's (target: at least 3) and the grid's peak memory over the
+loop's (target: at most 1); ``--strict`` exits with status 1 if one is
+missed::
+
+    python benchmarks/network.py --natural --strict
+
 Needs ``sgp4``, ``dask[array]``, ``distributed`` and ``psutil``
 (``pip install astropy_feedrot[bench]``).
 """
@@ -202,8 +217,92 @@ def compare(output):
     return lines
 
 
+NATURAL_WAYS = ("grid", "loop", "dask")
+
+
+def natural_run(way, n_antennas, n_sources, n_epochs, repeats):
+    """One way of computing the natural-source grid, in this (fresh) process."""
+    import resource
+    import warnings
+
+    from astropy.coordinates import SkyCoord, golden_spiral_grid
+
+    from astropy_feedrot.earth import clear_orientation_cache
+    from astropy_feedrot.stations import default_catalogue
+
+    catalogue = default_catalogue()
+    antennas = []
+    for name in catalogue.names:
+        antenna = catalogue.get_antenna(name)
+        if antenna.mount.tracks:
+            antennas.append(antenna)
+        if len(antennas) == n_antennas:
+            break
+    sky = golden_spiral_grid(n_sources)
+    sources = SkyCoord(sky.lon, sky.lat, frame="icrs")
+    times = DATE + np.arange(n_epochs) * 30 * u.s
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    best = np.inf
+    for _ in range(repeats):
+        clear_orientation_cache()
+        start = time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # degenerate points: counted, not timed
+            if way == "grid":
+                out = feed_rotation_grid(antennas, sources, times)
+            elif way == "dask":
+                out = feed_rotation_grid_dask(antennas, sources, times).compute(
+                    scheduler="threads")
+            else:
+                column = sources[:, np.newaxis]
+                out = [antenna.feed_rotation(column, times) for antenna in antennas]
+        best = min(best, time.perf_counter() - start)
+        del out
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    return {"way": way, "seconds": best, "peak_mb": peak - before,
+            "grid": [n_epochs, len(antennas), n_sources]}
+
+
+def natural(args):
+    """Grid, dask and a loop over antennas in fresh processes; the ratios; True if met."""
+    results = {}
+    for way in NATURAL_WAYS:
+        completed = subprocess.run(
+            [sys.executable, os.path.abspath(__file__), f"--natural-run={way}",
+             f"--antennas={args.antennas}", f"--sources={args.sources}",
+             f"--epochs={args.epochs}", f"--repeats={args.repeats}"],
+            check=True, capture_output=True, text=True)
+        results[way] = json.loads(completed.stdout.strip().splitlines()[-1])
+    n_t, n_a, n_s = results["grid"]["grid"]
+    print(f"natural sources: {n_t} epochs x {n_a} antennas x {n_s} sources "
+          f"(load average {' '.join(f'{x:.1f}' for x in os.getloadavg())})")
+    for way in NATURAL_WAYS:
+        r = results[way]
+        print(f"{way:>6}: {r['seconds']:6.2f} s (best of {args.repeats}), peak memory "
+              f"{r['peak_mb']:6.0f} MB above the start")
+    speed = results["loop"]["seconds"] / results["grid"]["seconds"]
+    memory = results["grid"]["peak_mb"] / max(results["loop"]["peak_mb"], 1.0)
+    dask = results["dask"]["seconds"] / results["grid"]["seconds"]
+    checks = [(speed >= 3.0, f"loop / grid time {speed:.2f} >= 3"),
+              (memory <= 1.0, f"grid / loop peak memory {memory:.2f} <= 1")]
+    print(f"  dask (threads) / grid time {dask:.2f}: the dask path pays where the grid "
+          "does not fit in memory, not here")
+    for ok, text in checks:
+        print(f"  {'PASS' if ok else 'FAIL'}  {text}")
+    return all(ok for ok, _ in checks)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--natural", action="store_true",
+                        help="natural sources: the grid against a loop over antennas")
+    parser.add_argument("--natural-run", choices=NATURAL_WAYS, help=argparse.SUPPRESS)
+    parser.add_argument("--antennas", type=int, default=30)
+    parser.add_argument("--sources", type=int, default=100)
+    parser.add_argument("--epochs", type=int, default=2880)
+    parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--strict", action="store_true",
+                        help="with --natural: exit with status 1 if a target is missed")
     parser.add_argument("--mode", choices=MODES + ("all",), default="all")
     parser.add_argument("--stations", type=int, default=500)
     parser.add_argument("--planes", type=int, default=10)
@@ -220,6 +319,14 @@ def main(argv=None):
                         help="keep dask's glibc settings in the workers (see WORKER_MALLOC)")
     parser.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
+
+    if args.natural_run:
+        print(json.dumps(natural_run(args.natural_run, args.antennas, args.sources,
+                                     args.epochs, args.repeats)))
+        return 0
+    if args.natural:
+        ok = natural(args)
+        return 1 if args.strict and not ok else 0
 
     if args.mode != "all":
         if args.output is None:
@@ -263,4 +370,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -162,7 +162,7 @@ def test_shapes_of_targets_and_epochs():
 
 # --- the layers: inputs at the bottom, no cycle, no hidden imports ---------------
 
-@pytest.mark.parametrize("module", ["inputs", "earth", "frames"])
+@pytest.mark.parametrize("module", ["inputs", "series", "instants", "earth", "epochs", "frames"])
 def test_modules_import_first(module):
     # In a fresh interpreter, each module imports without a cycle.
     subprocess.run([sys.executable, "-c", f"import astropy_feedrot.{module}"],
@@ -184,7 +184,8 @@ def test_inputs_is_the_bottom_layer():
     assert imports(PACKAGE / "inputs.py") == []
 
 
-@pytest.mark.parametrize("module", ["inputs.py", "earth.py", "frames.py"])
+@pytest.mark.parametrize("module", ["inputs.py", "series.py", "instants.py", "earth.py",
+                                    "epochs.py", "frames.py"])
 def test_no_function_level_imports(module):
     assert all(top for _, top in imports(PACKAGE / module))
 
