@@ -30,7 +30,10 @@ from astropy_feedrot.rows import feed_rotation_rows
 PACKAGE = pathlib.Path(astropy_feedrot.__file__).parent
 MAS = u.mas
 TOLERANCE = 0.1 * MAS  # the package's target against the rigorous path
-SHARED = 0.02 * MAS  # the grid's shared directions against each antenna's own
+# The grid's shared directions (and the visibility rows, which use the grid)
+# against each antenna's own: 1e-4 mas in direction (grid_natural), which the
+# angle multiplies by up to 1 / sin(distance) near the pole, zenith and nadir.
+SHARED = 0.05 * MAS
 STATIONS = ["WETTZ13S", "YEBES40M", "GGAO12M"]  # alt-az Cassegrain, Nasmyth, Cassegrain
 
 
@@ -189,7 +192,8 @@ def test_antenna_grid_and_rows_agree(hours, ra, dec):
     for i, antenna in enumerate(antennas.values()):
         one = antenna.feed_rotation(source, Epochs(t))
         assert wrapped_mas(one, grid[:, i, 0]) < SHARED  # the shared directions
-        assert wrapped_mas(one, rows[:, i]) < 1e-5 * MAS
+        assert wrapped_mas(one, rows[:, i]) < SHARED
+        assert wrapped_mas(grid[:, i, 0], rows[:, i]) < 1e-5 * MAS  # rounding only
 
 
 # --- the layers ----------------------------------------------------------------------------
