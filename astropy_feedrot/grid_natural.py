@@ -372,7 +372,9 @@ def natural_grid(geocentric, velocity, receivers, sign=1.0, min_sine=None):
     out = np.empty((n_t, len(receivers), n_s))
     degenerate = 0
     scale = sign * np.degrees(1.0)
-    for block in epoch_blocks(n_t, n_s):
+    # Blocks of a quarter of the engine's: the memory of the traced mirrors'
+    # temporaries stays below that of a loop over antennas.
+    for block in epoch_blocks(n_t, n_s * 4):
         g, v = geocentric[:, block], velocity[block]  # (S, t, 3), (t, 3)
         shared = shared_block(g, v)
         valid = np.isfinite(shared.components[2])  # False at masked epochs
