@@ -102,7 +102,9 @@ def topocentric(geocentric, xyz, velocity):
     -------
     ndarray, shape (..., 3)
         :math:`\\hat{s}(1 - k) + (1 - k_V/2)\\vec{\\beta} + (k/2)\\vec{V}`
-        (see the module's description), of unit length to 1e-12.
+        (see the module's description), normalized (its length is 1 to
+        1e-12, which moves the elevation by microradians within an arcsecond
+        of the zenith).
 
     Examples
     --------
@@ -118,8 +120,10 @@ def topocentric(geocentric, xyz, velocity):
     beta = diurnal_beta(xyz)
     k = geocentric[..., 0] * beta[0] + geocentric[..., 1] * beta[1]  # beta has no z
     g = 1.0 - 0.5 * np.einsum("...i,...i->...", geocentric, velocity)
-    return (geocentric * (1.0 - k)[..., np.newaxis] + g[..., np.newaxis] * beta
-            + (0.5 * k)[..., np.newaxis] * velocity)
+    s = (geocentric * (1.0 - k)[..., np.newaxis] + g[..., np.newaxis] * beta
+         + (0.5 * k)[..., np.newaxis] * velocity)
+    s /= np.sqrt(np.einsum("...i,...i->...", s, s))[..., np.newaxis]  # 1e-12 from unit
+    return s
 
 
 class SharedBlock(NamedTuple):
@@ -211,6 +215,10 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
     >>> bool(np.allclose(phase, engine_phase[..., 0, 0], rtol=0, atol=1e-15))
     True
     """
+    if not fast_receiver(receivers):
+        raise ValueError(f"feed_rotation_block takes one tracking antenna with a closed-form "
+                         f"focus and no 'series' rotator, got {receivers!r}; use "
+                         "engine_block")
     axis = receivers.fixed_axis[0]
     east, north, up = receivers.station_axes[0]
     m_e, m_a = receivers.focus_terms[0]
@@ -236,15 +244,27 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
         num = product(columns[0])
         along = product(columns[1])
         tz = product(kernel.NORTH_POLE)
-        den = axis[2] - tz * along  # a.z - (s.z)(s.a), Eq 13 for a unit s
-        # Undefined (the kernel's receiver_term): the line of sight within about
-        # 0.2 mas of the pole or of the fixed axis.
+        # |s|^2 - 1 of the site's line of sight (of order beta^2): the kernel's
+        # receiver_term does not assume unit lines, and near the pole or the
+        # fixed axis the angle turns with it.
+        long = block.g * block.g
+        long *= beta @ beta
+        long -= k * k
+        long += block.g * k * (2.0 * (beta[0] * half[0] + beta[1] * half[1]))
+        # a.z |P z|^2 - (s.z)(s.a - (s.z)(a.z)), Eq 13 as the kernel writes it
+        den = axis[2] * long
+        den += axis[2]
+        den -= tz * along
         pole = (1.0 - tz) * (1.0 + tz)
+        pole += long
         near = np.flatnonzero(pole < _NEAR_POLE)
         if near.size:  # the exact |P z|^2 from the x and y components
             x = product([1.0, 0.0, 0.0])[near]
             y = product([0.0, 1.0, 0.0])[near]
             pole[near] = x * x + y * y
+            den[near] = axis[2] * pole[near] - tz[near] * (axis[0] * x + axis[1] * y)
+        # Undefined (the kernel's receiver_term): the line of sight within about
+        # 0.2 mas of the pole or of the fixed axis.
         tiny = kernel.DEGENERATE_NORM**2
         defined = (pole >= tiny) & (num * num + den * den >= tiny * pole)
         phase = np.arctan2(num, den)
@@ -252,6 +272,7 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
         sine = None
         if m_e or min_sine is not None:
             sine = product(up)
+            sine *= 1.0 - 0.5 * long  # of the unit line of sight
         if m_e or m_a:
             if m_e:
                 phase += m_e * np.arcsin(np.clip(sine, -1.0, 1.0))
