@@ -68,6 +68,14 @@ def file_kind(path):
     str
         One of `FILE_KINDS`.
 
+    Notes
+    -----
+    A FITS file with a ``UV_DATA`` table is FITS-IDI, whatever its primary
+    header says: FITS-IDI files (AIPS Memo 114, DiFX's difx2fits) write
+    ``GROUPS = T`` with ``NAXIS = 0``, ``GCOUNT = 0`` and ``PCOUNT = 0``.
+    UVFITS is a primary array of random groups (``GROUPS = T``, ``NAXIS1 =
+    0`` and further axes).
+
     Raises
     ------
     FileNotFoundError
@@ -103,7 +111,13 @@ def file_kind(path):
             warnings.simplefilter("always")
             try:
                 with fits.open(path, memmap=True) as hdus:
-                    groups = hdus[0].header.get("GROUPS", False)
+                    header = hdus[0].header
+                    # Random groups hold data: NAXIS1 = 0 and further axes.
+                    # FITS-IDI (AIPS Memo 114, difx2fits) writes GROUPS = T
+                    # too, but with NAXIS = 0 and GCOUNT = PCOUNT = 0.
+                    groups = (bool(header.get("GROUPS", False))
+                              and int(header.get("NAXIS", 0)) >= 2
+                              and int(header.get("NAXIS1", -1)) == 0)
                     names = {hdu.name for hdu in hdus[1:]}
             except OSError as error:
                 raise ValueError(f"{str(path)!r} cannot be read as FITS ({error}); the file "
@@ -113,10 +127,14 @@ def file_kind(path):
                 raise ValueError(f"{str(path)!r} is cut short: {record.message}")
             warnings.warn_explicit(record.message, record.category, record.filename,
                                    record.lineno)
-        if groups:
-            return "uvfits"
         if "UV_DATA" in names:
             return "fits-idi"
+        if groups:
+            return "uvfits"
+        if "ARRAY_GEOMETRY" in names:
+            raise ValueError(f"{str(path)!r} is a FITS-IDI file without a UV_DATA table; its "
+                             f"extensions: {sorted(names)} (a FITS-IDI file cut short loses "
+                             "its last tables)")
         raise ValueError(f"{str(path)!r} is a FITS file with neither random groups (UVFITS) "
                          f"nor a UV_DATA table (FITS-IDI); its extensions: {sorted(names)} "
                          "(a FITS-IDI file cut short loses its last tables)")

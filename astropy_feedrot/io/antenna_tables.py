@@ -181,18 +181,34 @@ def _text(header, key):
     return str(header.get(key, "")).strip()
 
 
-def _table(hdul, name, extname):
-    """The one extension ``extname``; FITSFormatError if missing or repeated."""
+def _tables(hdul, name, extname):
+    """The extensions ``extname`` (one per array); FITSFormatError if there is none."""
     found = [hdu for hdu in hdul if hdu.name == extname]
     if not found:
         raise FITSFormatError(name, extname, f"the {extname} table", None)
+    for hdu in found:
+        if not isinstance(hdu, fits.BinTableHDU):
+            raise FITSFormatError(name, extname, "a binary table", type(hdu).__name__)
+    return found
+
+
+def _table(hdul, name, extname):
+    """The one extension ``extname``; FITSFormatError if missing or repeated."""
+    found = _tables(hdul, name, extname)
     if len(found) > 1:
         raise FITSFormatError(name, extname, f"one {extname} table (several arrays or "
                               "subarrays are not supported; split the file)",
                               f"{len(found)} tables")
-    if not isinstance(found[0], fits.BinTableHDU):
-        raise FITSFormatError(name, extname, "a binary table", type(found[0]).__name__)
     return found[0]
+
+
+def _codes(tables):
+    """The MNTSTA codes of all antenna tables."""
+    codes = set()
+    for hdu in tables:
+        if "MNTSTA" in hdu.columns.names:
+            codes |= {int(c) for c in np.ravel(hdu.data["MNTSTA"])}
+    return codes
 
 
 def _column(hdu, name, column, table=None):
@@ -205,14 +221,14 @@ def _column(hdu, name, column, table=None):
 def _detect(hdul, name, kind):
     """WritingProgram of an open file."""
     primary = hdul[0].header
-    antennas = _table(hdul, name, FORMATS[kind])
+    # FITS-IDI holds one ARRAY_GEOMETRY table per array (EXTVER, AIPS Memo 114).
+    tables = (_tables(hdul, name, FORMATS[kind]) if kind == "fits-idi"
+              else [_table(hdul, name, FORMATS[kind])])
     history = _history(primary)
     origin = _text(primary, "ORIGIN")
     correlator = _text(primary, "CORRELAT").upper()
     if origin.lower().startswith("casacore"):
-        codes = set()
-        if "MNTSTA" in antennas.columns.names:
-            codes = {int(c) for c in np.ravel(antennas.data["MNTSTA"])}
+        codes = _codes(tables)
         base = f"ORIGIN = {origin!r} (casacore's MSFitsOutput, e.g. CASA exportuvfits)"
         if max(codes, default=0) >= 8:
             return WritingProgram("casacore", "fits-idi:casacore", None,
@@ -231,8 +247,8 @@ def _detect(hdul, name, kind):
     if correlator == "DIFX" or "CORRELATOR = 'DIFX'" in history.upper():
         return WritingProgram("difx", "fits-idi:difx", None,
                               "CORRELAT = 'DIFX' (difx2fits)")
-    if "pyuvdata" in history.lower() or "HASMNT" in antennas.header:
-        if antennas.header.get("HASMNT", False):
+    if "pyuvdata" in history.lower() or any("HASMNT" in t.header for t in tables):
+        if all(t.header.get("HASMNT", False) for t in tables):
             return WritingProgram("pyuvdata", "fits-idi:pyuvdata", None,
                                   "HISTORY names pyuvdata and HASMNT = T")
         return WritingProgram(
@@ -305,6 +321,13 @@ def writing_program(path):
     name = os.fspath(path)
     with open_fits(name) as hdul:
         return _detect(hdul, name, _kind(hdul, name))
+
+
+def _where(hdu, count):
+    """The name of an antenna table in messages (with its EXTVER among several)."""
+    if count > 1:
+        return f"{hdu.name} (EXTVER {hdu.header.get('EXTVER', '?')})"
+    return hdu.name
 
 
 def _positions(hdu, name, program):
@@ -476,21 +499,29 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
     software = _check_software(software)
     name = os.fspath(path)
     with open_fits(name) as hdul:
-        geometry = _table(hdul, name, FORMATS[kind])
+        geometries = (_tables(hdul, name, FORMATS[kind]) if kind == "fits-idi"
+                      else [_table(hdul, name, FORMATS[kind])])
         program = _detect(hdul, name, kind)
-        numbers = np.asarray(_column(geometry, name, "NOSTA")).astype(int)
-        # Names end at the first NUL (casacore pads with NUL and garbage).
-        names = [(n.decode("ascii", "replace") if isinstance(n, bytes) else str(n))
-                 .split("\x00")[0].strip() for n in _column(geometry, name, "ANNAME")]
-        codes = np.asarray(_column(geometry, name, "MNTSTA"))
-        if len(set(numbers.tolist())) != numbers.size:
-            raise FITSFormatError(name, geometry.name, "one row per antenna number",
-                                  "repeated numbers", column="NOSTA")
-        xyz = _positions(geometry, name, program.program)
+        numbers, names, codes, xyz, where = [], [], [], [], []
+        for geometry in geometries:
+            numbers += np.asarray(_column(geometry, name, "NOSTA")).astype(int).tolist()
+            # Names end at the first NUL (casacore pads with NUL and garbage).
+            names += [(n.decode("ascii", "replace") if isinstance(n, bytes) else str(n))
+                      .split("\x00")[0].strip() for n in _column(geometry, name, "ANNAME")]
+            codes += np.asarray(_column(geometry, name, "MNTSTA")).tolist()
+            xyz += list(_positions(geometry, name, program.program))
+            where += [_where(geometry, len(geometries))] * (len(numbers) - len(where))
+        xyz = np.array(xyz, dtype=float).reshape(-1, 3)
+        table = where[0] if where else FORMATS[kind]
+        if len(set(numbers)) != len(numbers):
+            repeated = sorted({n for n in numbers if numbers.count(n) > 1})
+            raise FITSFormatError(name, table, "one row per antenna number (antenna numbers "
+                                  "are shared by all arrays of a file)",
+                                  f"numbers {repeated} repeated", column="NOSTA")
         bad = ~np.all(np.isfinite(xyz), axis=1)
         if bad.any():
             k = int(np.flatnonzero(bad)[0])
-            raise FITSFormatError(name, geometry.name, f"finite positions (antenna "
+            raise FITSFormatError(name, where[k], f"finite positions (antenna "
                                   f"{numbers[k]}, {names[k]})", str(xyz[k].tolist()),
                                   column="STABXYZ")
         if kind == "fits-idi":
@@ -499,8 +530,8 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
             receptors = _receptor_rows(geometry, name, "NOSTA")
     convention = software or program.software
     antennas = {}
-    for number, label, code, position in zip(numbers.tolist(), names, codes.tolist(), xyz):
-        where = f"{name}, table {geometry.name}, antenna {number} ({label})"
+    for number, label, code, position, table in zip(numbers, names, codes, xyz, where):
+        where = f"{name}, table {table}, antenna {number} ({label})"
         if convention is None and int(code) not in program.codes:
             raise ValueError(f"{where}: MNTSTA {int(code)} cannot be read: {program.reason}")
         try:
