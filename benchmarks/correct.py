@@ -55,7 +55,7 @@ from astropy.io import fits  # noqa: E402
 from astropy.time import Time  # noqa: E402
 
 import astropy_feedrot  # noqa: E402
-from astropy_feedrot.io import correct_fitsidi  # noqa: E402
+from astropy_feedrot.visibilities import correct_fitsidi  # noqa: E402
 
 GIB = 2 ** 30
 HERE = Path(__file__).resolve().parent
@@ -145,7 +145,7 @@ def _uvdata(gib):
 
 
 def bench_uvdata(gib, results):
-    from astropy_feedrot.uvdata import correct_uvdata
+    from astropy_feedrot.visibilities import correct_uvdata
 
     print(f"\ncorrect_uvdata: building a UVData of at least {gib} GiB ...", flush=True)
     uv = _uvdata(gib)

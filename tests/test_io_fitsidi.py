@@ -23,14 +23,14 @@ from fitsidi_writer import START, STATIONS, station_xyz, write_fitsidi
 
 from astropy_feedrot import AltAzMount, NasmythFocus, XYMount
 from astropy_feedrot.exceptions import DegenerateGeometryWarning
-from astropy_feedrot.io import (
-    FileFormatError,
+from astropy_feedrot.io import FileFormatError
+from astropy_feedrot.visibilities import (
+    HISTORY_MARK,
     FITSFormatError,
     correct_fitsidi,
     fitsidi_antennas,
     writing_program,
 )
-from astropy_feedrot.io.fitsidi import HISTORY_MARK
 from astropy_feedrot.receptors import Receptors
 
 CIRCULAR_ANGLES = {0: (5.0, -7.0), 2: (12.0, 3.0)}

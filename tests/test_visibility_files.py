@@ -20,7 +20,7 @@ from fitsidi_writer import write_fitsidi
 
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.visibility_files import (
+from astropy_feedrot.visibilities import (
     FILE_KINDS,
     antenna_table,
     correct_file,
@@ -174,7 +174,7 @@ def test_commands_on_a_difx_file(capsys, tmp_path):
 def test_uvfits_corrected_into_every_format(tmp_path, name):
     # The sample: real VLA data with RR, LL, RL, LR. The corrected copy, read
     # back, equals correct_uvdata on the input read directly.
-    from astropy_feedrot.uvdata import correct_uvdata, read_uvdata
+    from astropy_feedrot.visibilities import correct_uvdata, read_uvdata
 
     before = digest(VLA)
     out = correct_file(VLA, tmp_path / name)
@@ -237,7 +237,7 @@ def test_files_cut_short(idi, tmp_path):
 
 
 def test_correct_fitsidi_refuses_rows_cut_short(idi, tmp_path):
-    from astropy_feedrot.io import FITSFormatError, correct_fitsidi
+    from astropy_feedrot.visibilities import FITSFormatError, correct_fitsidi
 
     path, _ = idi
     cut = tmp_path / "cut.idifits"
