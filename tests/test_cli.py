@@ -276,10 +276,10 @@ def test_console_entry_point_without_traceback():
 def test_every_option_is_documented():
     from pathlib import Path
 
-    from astropy_feedrot.cli import _parser
+    from astropy_feedrot.cli import build_parser
 
     text = (Path(__file__).parent.parent / "docs" / "cli.rst").read_text()
-    parser = _parser()
+    parser = build_parser()
     commands = parser._subparsers._group_actions[0].choices
     for name, command in commands.items():
         assert f"feedrot {name}" in text

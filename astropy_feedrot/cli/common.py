@@ -1,0 +1,395 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""What the commands of ``feedrot`` share: reading values, sites, stations,
+sources and times from the command line, the options of the table commands,
+and the checked output files of a table and its figure."""
+
+import argparse
+import math
+import os
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import EarthLocation, SkyCoord, frame_transform_graph
+from astropy.time import Time
+
+from .. import plotting
+from ..antenna import Antenna
+from ..data import sample_file
+from ..io import FileFormatError
+from ..labels import mount_from_label
+from ..outputs import (
+    TABLE_FORMATS,
+    CommandError,
+    check_outputs,
+    table_format,
+    table_writer,
+    write_files,
+)
+from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
+
+__all__ = [
+    "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",
+    "one_line", "parse_quantity", "elevation_limit", "parse_time", "time_span", "parse_site",
+    "parse_antenna", "natural_target", "one_source", "read_path", "read_input",
+    "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
+    "write_table", "add_time_options", "add_natural_options", "add_common_options",
+]
+
+#: Most epochs one command may compute (about 1.6 GB and half a minute for
+#: a natural source; a satellite with the nominal attitude is ten times slower).
+MAX_EPOCHS = 1_000_000
+
+
+#: Frames accepted by ``--frame``: celestial frames, whose coordinates need
+#: no observing time or place (unlike altaz or hadec).
+CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalactic",
+                    "barycentricmeanecliptic", "barycentrictrueecliptic")
+
+
+ANTENNA_HELP = (
+    "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
+    "not matter) or a site 'LAT,LON,HEIGHT' in degrees, degrees and metres with "
+    "--mount and --focus"
+)
+
+
+SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
+
+
+class UsageError(Exception):
+    """A command line that argparse cannot read."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line (no usage block).
+
+    Options are never abbreviated: ``demo --output x`` is an unknown option,
+    not ``--output-dir x``.
+    """
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
+
+    def error(self, message):
+        if "expected one argument" in message:
+            message += " (write --option=VALUE for a value that starts with '-')"
+        raise UsageError(f"{message}; see '{self.prog} --help'")
+
+
+def one_line(text):
+    """``text`` on one line: its lines joined with '; '."""
+    return "; ".join(" ".join(line.split()) for line in str(text).splitlines() if line.strip())
+
+
+# Values ------------------------------------------------------------------------------------
+
+
+def parse_quantity(text, unit, what):
+    """A positive, finite quantity from text like '30s', '10 min' or '1575.42MHz'."""
+    try:
+        value = u.Quantity(text)
+    except (TypeError, ValueError):
+        raise CommandError(f"{what}: cannot read {text!r} as a number with a unit "
+                           f"(e.g. {'30s, 10min' if unit == u.s else '1575.42MHz, 8.4GHz'})"
+                           ) from None
+    if value.unit == u.dimensionless_unscaled:
+        value = value.value * unit
+    try:
+        value = value.to(unit)
+    except u.UnitConversionError:
+        raise CommandError(f"{what}: {text!r} is not in a unit of {unit.physical_type}") from None
+    if not value.isscalar:
+        raise CommandError(f"{what}: give one value, got {text!r}")
+    if not np.isfinite(value) or value <= 0:
+        raise CommandError(f"{what} must be positive and finite, got {text!r}")
+    return value
+
+
+def elevation_limit(args):
+    if args.min_elevation is None:
+        return None
+    try:
+        value = u.Quantity(args.min_elevation)
+    except (TypeError, ValueError):
+        raise CommandError(f"--min-elevation: cannot read {args.min_elevation!r} as an angle "
+                           "(e.g. 10, 10deg)") from None
+    value = value.value * u.deg if value.unit == u.dimensionless_unscaled else value
+    try:
+        value = value.to(u.deg)
+    except u.UnitConversionError:
+        raise CommandError(f"--min-elevation: {args.min_elevation!r} is not an angle") from None
+    if not value.isscalar or not -90 <= value.value <= 90:
+        raise CommandError(f"--min-elevation must be one angle within [-90, 90] deg, got "
+                           f"{args.min_elevation!r}")
+    return value
+
+
+def parse_time(text, what, now):
+    if text.strip().lower() == "now":
+        return now
+    try:
+        time = Time(text.strip(), scale="utc")
+    except (ValueError, TypeError):
+        raise CommandError(f"{what}: cannot read {text!r} as a time; use ISO format, e.g. "
+                           "2023-01-25T18:00 (UTC), or 'now'") from None
+    if not time.isscalar:
+        raise CommandError(f"{what}: give one time, got {text!r}")
+    time.format = "isot"
+    return time
+
+
+def time_span(args, default=None):
+    """The epochs from --start to --stop at --step, at most `MAX_EPOCHS`."""
+    now = Time.now()  # one 'now' for both ends: --start now --stop now is one epoch
+    now.format = "isot"
+    start = parse_time(args.start, "--start", now) if args.start else None
+    stop = parse_time(args.stop, "--stop", now) if args.stop else None
+    if default is not None:
+        start = default[0] if start is None else start
+        stop = default[1] if stop is None else stop
+    if start is None or stop is None:
+        raise CommandError("give the span of time with --start and --stop")
+    step = parse_quantity(args.step, u.s, "--step")
+    if stop < start:
+        raise CommandError(f"--stop ({stop.utc.isot}) is before --start ({start.utc.isot})")
+    steps = (stop - start).to_value(u.s) / step.to_value(u.s)
+    if not steps < MAX_EPOCHS:
+        raise CommandError(f"--step {args.step} gives {steps + 1:.3g} epochs from --start to "
+                           f"--stop, more than the {MAX_EPOCHS} of one run; use a larger "
+                           "--step or a shorter span")
+    count = math.floor(steps * (1 + 1e-12)) + 1
+    times = start + np.arange(count) * step
+    times.format = "isot"
+    return times
+
+
+def parse_site(text):
+    """(lat, lon, height) of a site 'LAT,LON,HEIGHT', or None for a station name."""
+    if "," not in text:
+        return None
+    parts = text.split(",")
+    try:
+        values = [float(part) for part in parts]
+    except ValueError:
+        values = []
+    if len(values) != 3:
+        raise CommandError(f"site {text.strip()!r}: expected {SITE_FORMAT}")
+    lat, lon, height = values
+    if not all(math.isfinite(value) for value in values):
+        raise CommandError(f"site {text.strip()!r}: LAT, LON and HEIGHT must be finite "
+                           "numbers")
+    if not -90 <= lat <= 90:
+        raise CommandError(f"latitude {lat:g} of site {text.strip()!r} is not in [-90, 90] deg; "
+                           "the order is LAT,LON,HEIGHT")
+    if not -180 <= lon <= 360:
+        raise CommandError(f"longitude {lon:g} of site {text.strip()!r} is not in [-180, 360] "
+                           "deg; the order is LAT,LON,HEIGHT")
+    return lat, lon, height
+
+
+def parse_antenna(text, args, catalogue):
+    site = parse_site(text)
+    if site is None:
+        if args.mount is not None or args.focus is not None:
+            raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
+                               f"catalogue station {text!r}")
+        return catalogue.get_antenna(text.strip())
+    lat, lon, height = site
+    location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
+    try:
+        mount, focus = mount_from_label("AZEL" if args.mount is None else args.mount,
+                                        "geodetic")
+    except ValueError as error:
+        raise CommandError(f"--mount: {error}") from None
+    if args.focus:
+        focus = focus_from_name(args.focus, "--focus")
+    # One name per place, however the numbers are written (40 and 40.0).
+    name = "site " + ",".join(format(value, ".15g") for value in site)
+    try:
+        return Antenna(location, mount, focus, name=name)
+    except ValueError as error:
+        raise CommandError(f"site {text.strip()!r}: {one_line(error)}") from None
+
+
+def natural_target(args):
+    frame = "icrs" if args.frame is None else args.frame.strip().lower()
+    if frame not in CELESTIAL_FRAMES:
+        known = frame_transform_graph.lookup_name(frame) is not None
+        raise CommandError(
+            f"--frame {args.frame!r}: "
+            + ("a frame tied to an observing time or place; " if known else
+               "unknown frame; ")
+            + "give the coordinates in a celestial frame: " + ", ".join(CELESTIAL_FRAMES))
+    if args.source is not None:
+        if args.ra is not None or args.dec is not None:
+            raise CommandError("give the source either with --source or with --ra and --dec")
+        for kwargs in ({}, {"unit": (u.hourangle, u.deg)}):
+            try:
+                with np.errstate(all="ignore"):  # absurd numbers: refused below, not warned
+                    coord = SkyCoord(args.source, frame=frame, **kwargs)
+            except (ValueError, TypeError, u.UnitsError) as error:
+                reason = one_line(error)
+                continue
+            return one_source(coord, "--source", args.source)
+        raise CommandError(f"--source: cannot read {args.source!r} as coordinates ({reason}); "
+                           "write e.g. '03h19m48.16s +41d30m42.1s' or '49.95d 41.51d'; looking "
+                           "up names needs the internet, give the coordinates instead")
+    if args.ra is None or args.dec is None:
+        raise CommandError("give the source with --source, or with both --ra and --dec")
+    plain = re.fullmatch(r"\s*[-+]?\d+(\.\d*)?\s*", args.ra) is not None
+    ra_unit = u.deg if plain else u.hourangle
+    try:
+        with np.errstate(all="ignore"):  # absurd numbers: refused below, not warned
+            coord = SkyCoord(args.ra, args.dec, unit=(ra_unit, u.deg), frame=frame)
+    except (ValueError, TypeError, u.UnitsError) as error:
+        raise CommandError(f"--ra/--dec: cannot read {args.ra!r} {args.dec!r} as coordinates "
+                           f"({one_line(error)}); e.g. --ra 03:19:48.16 --dec +41:30:42.1 "
+                           "(hours, degrees) or --ra 49.95 --dec 41.51 (degrees)") from None
+    return one_source(coord, "--ra/--dec", f"{args.ra} {args.dec}")
+
+
+def one_source(coord, what, text):
+    if not coord.isscalar:
+        raise CommandError(f"{what}: give one source, got {text!r}")
+    spherical = coord.spherical
+    if not (np.isfinite(spherical.lon) and np.isfinite(spherical.lat)):
+        raise CommandError(f"{what}: the coordinates {text!r} are not finite")
+    return coord
+
+
+def read_path(path, what):
+    """``path`` if it names a readable file."""
+    given = Path(path).expanduser()
+    if given.is_dir():
+        raise CommandError(f"{what}: {path!r} is a directory, not a file")
+    if not given.is_file():
+        raise CommandError(f"{what}: no such file {path!r}")
+    if not os.access(given, os.R_OK):
+        raise CommandError(f"{what}: cannot read {path!r}: permission denied")
+    return str(given)
+
+
+def read_input(reader, path, what, *args, **kwargs):
+    """``reader(path, ...)``, naming the option in the errors of a file that does not read."""
+    try:
+        return reader(read_path(path, what), *args, **kwargs)
+    except UnicodeDecodeError:
+        raise CommandError(f"{what}: {path!r} is not a text file") from None
+    except (FileFormatError, ValueError) as error:
+        message = one_line(error)
+        raise CommandError(message if str(path) in message else f"{what}: {message}") from None
+
+
+def station_catalogue(args):
+    if getattr(args, "catalogue", None):
+        return read_input(read_catalogue, args.catalogue, "--catalogue")
+    return default_catalogue()
+
+
+# Output files -----------------------------------------------------------------------------
+
+
+def input_files(args):
+    """(option, path) of every file the command reads."""
+    inputs = [(f"--{name}", getattr(args, name)) for name in ("tle", "sp3", "orbex", "catalogue")
+              if getattr(args, name, None) is not None]
+    if getattr(args, "catalogue", None) is None:
+        inputs.append(("embedded station catalogue", str(sample_file("stations.ecsv"))))
+    return inputs
+
+
+def figure_types():
+    try:
+        from matplotlib.figure import Figure
+    except ImportError:
+        raise CommandError('--plot needs matplotlib: pip install "astropy_feedrot[all]"') from None
+    return ["." + name for name in Figure().canvas.get_supported_filetypes()]
+
+
+def drawer(table, kind, path):
+    def write(name):
+        import matplotlib.pyplot as plt  # optional: checked by figure_types
+
+        try:
+            plt.close(getattr(plotting, f"plot_{kind}")(table, name))
+        except (RuntimeError, ValueError, OSError) as error:
+            # e.g. a .pgf figure without LaTeX
+            raise CommandError(f"--plot: cannot draw {str(path)!r}: {one_line(error)}") from None
+    return write
+
+
+def table_outputs(args):
+    """The checked table and figure paths of a table command (None: not written)."""
+    types = figure_types() if args.plot is not None else ()
+    paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
+                           ("--plot", args.plot, types)],
+                          input_files(args), args.overwrite)
+    if paths[0] is not None:
+        table_format(paths[0])
+    return paths
+
+
+def write_table(table, paths, kind):
+    output, figure = paths
+    files = []
+    if output is not None:
+        files.append((output, table_writer(table, table_format(output))))
+    if figure is not None:
+        files.append((figure, drawer(table, kind, figure)))
+    then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
+    write_files(files, then)
+
+
+# Options ----------------------------------------------------------------------------------
+
+
+def add_time_options(parser, required=True):
+    group = parser.add_argument_group("time")
+    group.add_argument("--start", metavar="TIME",
+                       help="first epoch, ISO UTC (e.g. 2023-01-25T18:00) or 'now'"
+                       + ("" if required else "; default: start of the SP3 file"))
+    group.add_argument("--stop", metavar="TIME", help="last epoch (included if on the step)"
+                       + ("" if required else "; default: end of the SP3 file"))
+    group.add_argument("--step", metavar="DURATION", default="10min",
+                       help="sampling interval with a unit (30s, 10min, 1h; default 10min; a "
+                       f"plain number is seconds); at most {MAX_EPOCHS} epochs per run")
+
+
+def add_natural_options(parser):
+    group = parser.add_argument_group("natural source (coordinates are parsed offline)")
+    group.add_argument("--source", metavar="COORD",
+                       help="coordinates in one string, e.g. '03h19m48.16s +41d30m42.1s'")
+    group.add_argument("--ra", metavar="RA", help="right ascension: hours if sexagesimal "
+                       "(03:19:48.16, 3h19m48s), degrees if a plain number")
+    group.add_argument("--dec", metavar="DEC", help="declination in degrees (+41:30:42.1, 41.51)")
+    group.add_argument("--frame", metavar="FRAME",
+                       help="celestial frame of the coordinates (default icrs): "
+                       + ", ".join(CELESTIAL_FRAMES))
+
+
+def add_common_options(parser):
+    group = parser.add_argument_group("antenna and output")
+    group.add_argument("--mount", metavar="CODE", help="mount of a LAT,LON,HEIGHT site: AZEL "
+                       "(default), EQUA, X-YN, X-YE, NASR, NASL, BWG, GNSS")
+    group.add_argument("--focus", metavar="NAME",
+                       help="focus of a LAT,LON,HEIGHT site: " + ", ".join(
+                           k for k in FOCUS_NAMES if k))
+    group.add_argument("--catalogue", metavar="FILE",
+                       help="an ECSV station catalogue of one's own instead of the embedded one")
+    group.add_argument("--polarization", choices=("RCP", "LCP"), type=str.upper,
+                       help="hand of the receiver (default: the satellite's hand; RCP for a "
+                       "natural source); a satellite is heard by a receiver of its own hand only")
+    group.add_argument("--min-elevation", metavar="ANGLE",
+                       help="NaN below this elevation (degrees, or with a unit); the continuous "
+                       "series restarts after such gaps")
+    group.add_argument("-o", "--output", metavar="FILE",
+                       help="write the table here instead of standard output, in the format of "
+                       "its extension: " + ", ".join(TABLE_FORMATS))
+    group.add_argument("--plot", metavar="FILE.png", help="also draw the table (needs "
+                       "matplotlib; .png, .pdf, .svg...)")
+    group.add_argument("--overwrite", action="store_true",
+                       help="replace an existing output file (never an input)")
