@@ -268,8 +268,37 @@ def test_degenerate_rows_are_nan_with_zero_weight(tmp_path):
 def test_already_corrected_is_refused(tmp_path):
     source, _ = run(tmp_path)
     correct_fitsidi(source, tmp_path / "out.idifits")
-    with pytest.raises(ValueError, match="already removed"):
+    with pytest.raises(ValueError, match=r"removed already .*pass redo=True \(--redo\)"):
         correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits")
+    assert not (tmp_path / "again.idifits").exists()
+    correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits", redo=True)
+    # The capitals of releases before 0.2 are recognised too.
+    old = rewrite(source, tmp_path / "old.idifits", lambda hdul: hdul[0].header.add_history(
+        "FEED ROTATION REMOVED by astropy_feedrot 0.1: UV_DATA FLUX corrected"))
+    with pytest.raises(ValueError, match="removed already"):
+        correct_fitsidi(old, tmp_path / "old_again.idifits")
+
+
+@pytest.mark.parametrize("products, angles", [(("RR", "LL", "RL", "LR"), CIRCULAR_ANGLES),
+                                              (("XX", "YY", "XY", "YX"), LINEAR_ANGLES)])
+def test_apply_then_remove_gives_the_input_back(tmp_path, products, angles):
+    # Identity: applying the feed rotation inverts removing it, row by row.
+    source, info = run(tmp_path, products=products, angles=angles, n_freqid=2)
+    removed = tmp_path / "removed.idifits"
+    correct_fitsidi(source, removed)
+    applied = tmp_path / "applied.idifits"
+    correct_fitsidi(removed, applied, direction="apply")
+    with fits.open(source) as a, fits.open(applied) as b:
+        np.testing.assert_allclose(b["UV_DATA"].data["FLUX"], a["UV_DATA"].data["FLUX"],
+                                   rtol=0, atol=1e-6)
+        assert "Feed rotation applied by astropy_feedrot" in "".join(
+            str(h) for h in b[0].header["HISTORY"])
+    # Applied to the sky-fixed products, the forward direction gives what the
+    # writer's model measured (its voltage-level model, ERFA hd2pa).
+    with pytest.raises(ValueError, match="applied already"):
+        correct_fitsidi(applied, tmp_path / "twice.idifits", direction="apply")
+    with pytest.raises(ValueError, match="direction must be one of"):
+        correct_fitsidi(source, tmp_path / "x.idifits", direction="forward")
 
 
 def test_paths(tmp_path):

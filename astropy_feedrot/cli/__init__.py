@@ -9,8 +9,8 @@ lists the station catalogue (``--network``, ``--mount``); ``feedrot
 coverage`` tabulates the range of feed rotation that candidate polarization
 calibrators offer a network. ``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
-visibility file with the feed rotation removed (see
-`astropy_feedrot.visibility_files`).
+visibility file with the feed rotation removed, or corrects a Measurement Set
+in place (see `astropy_feedrot.visibilities`).
 
 Each family of commands is a module of this package (``tables``, ``demo``,
 ``stations``, ``coverage``, ``data``) with a ``register(commands)`` that adds
@@ -93,8 +93,10 @@ def _run(args):
         print("feedrot: error: out of memory; use fewer epochs (a larger --step or a shorter "
               "span)", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print("feedrot: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as error:
+        # Long corrections say what an interruption left behind.
+        detail = f": {one_line(error)}" if error.args else ""
+        print(f"feedrot: interrupted{detail}", file=sys.stderr)
         return 130
     except Exception as error:
         print(f"feedrot: error: internal error ({type(error).__name__}: {one_line(error)}); "

@@ -1,6 +1,7 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """``feedrot antennas`` and ``feedrot correct``: the antennas of a visibility
-file as read, and a copy of the file with the feed rotation removed."""
+file as read, and the feed rotation removed (or applied): a corrected copy of
+any file, or a Measurement Set corrected in place."""
 
 import argparse
 import sys
@@ -13,7 +14,14 @@ from ..outputs import (
     table_writer,
     write_files,
 )
-from ..visibility_files import antenna_table, correct_file, read_antennas
+from ..visibilities import (
+    antenna_table,
+    correct_file,
+    correct_ms,
+    file_kind,
+    parse_feeds,
+    read_antennas,
+)
 from .common import CELESTIAL_FRAMES, one_line
 
 __all__ = ["register"]
@@ -33,10 +41,44 @@ def _run_antennas(args):
     return 0
 
 
+def _feeds(args):
+    if args.feeds is None:
+        return None
+    try:
+        return parse_feeds(args.feeds)
+    except ValueError as error:
+        raise CommandError(f"--feeds: {one_line(error)}") from None
+
+
 def _run_correct(args):
+    direction = "apply" if args.apply else "remove"
+    progress = not args.quiet and sys.stderr.isatty()
+    feeds = _feeds(args)
+    if args.in_place:
+        if args.output is not None:
+            raise CommandError("-o/--output and --in-place exclude each other: a Measurement "
+                               "Set is corrected in place, other files into a copy")
+        if file_kind(args.input) != "ms":
+            raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
+                               "files are corrected into a copy (-o OUTPUT)")
+        try:
+            correct_ms(args.input, data_column=args.data_column, corrected_column=args.column,
+                       direction=direction, frame=args.frame, vertical=args.vertical,
+                       progress=progress, feeds=feeds, redo=args.redo)
+        except ImportError as error:
+            raise CommandError(one_line(error)) from None
+        return 0
+    if args.output is None:
+        raise CommandError("give -o/--output OUTPUT for the corrected copy, or --in-place "
+                           "for a Measurement Set")
+    for option, value in (("--data-column", args.data_column != "DATA"),
+                          ("--column", args.column != "CORRECTED_DATA")):
+        if value:
+            raise CommandError(f"{option} is for a Measurement Set corrected --in-place")
     try:
         correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
-                     overwrite=args.overwrite, progress=not args.quiet and sys.stderr.isatty())
+                     overwrite=args.overwrite, progress=progress, direction=direction,
+                     feeds=feeds, redo=args.redo)
     except FileExistsError as error:
         raise CommandError(f"-o/--output: {one_line(error)}") from None
     except ImportError as error:
@@ -65,18 +107,40 @@ def register(commands):
     antennas.set_defaults(run=_run_antennas)
 
     correct = commands.add_parser(
-        "correct", help="a copy of a visibility file with the feed rotation removed",
-        description="Write a copy of a visibility file with the feed rotation removed from "
-        "every visibility: FITS-IDI to FITS-IDI (memory-mapped), and every format pyuvdata "
-        "reads to the format of the output's extension (.uvfits, .uvh5, .ms). The input is "
-        "never modified.",
+        "correct", help="remove (or apply) the feed rotation of a visibility file",
+        description="Remove the feed rotation from every visibility (or, with --apply, "
+        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (memory-mapped) and every "
+        "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
+        ".ms), the input never modified; or a Measurement Set in place (--in-place), from "
+        "one column into another (python-casacore), every other column left as it was.",
         epilog="examples:\n  feedrot correct vla.uvfits -o vla_corrected.uvfits\n"
         "  feedrot correct experiment.idifits -o corrected.idifits --frame icrs\n"
-        "  feedrot correct alma.ms -o alma_corrected.ms --vertical geocentric",
+        "  feedrot correct obs.ms --in-place\n"
+        "  feedrot correct obs.ms --in-place --data-column MODEL_DATA --column MODEL_DATA "
+        "--apply\n"
+        "  feedrot correct atca.uv -o atca.uvfits --feeds X,Y",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
-    correct.add_argument("-o", "--output", required=True, metavar="OUTPUT",
-                         help="the corrected copy")
+    correct.add_argument("-o", "--output", metavar="OUTPUT",
+                         help="the corrected copy (not with --in-place)")
+    correct.add_argument("--in-place", action="store_true",
+                         help="correct a Measurement Set in place: read --data-column, write "
+                         "--column")
+    correct.add_argument("--data-column", default="DATA", metavar="COLUMN",
+                         help="with --in-place: the column read (default DATA)")
+    correct.add_argument("--column", default="CORRECTED_DATA", metavar="COLUMN",
+                         help="with --in-place: the column written, created if missing "
+                         "(default CORRECTED_DATA)")
+    correct.add_argument("--apply", action="store_true",
+                         help="apply the feed rotation (corrupt a sky model) instead of "
+                         "removing it")
+    correct.add_argument("--feeds", metavar="R,L|X,Y",
+                         help="receptors for antennas the file gives none (ATCA Miriad, old "
+                         "UVFITS): two letters with optional angles in degrees, e.g. "
+                         "X:0,Y:90")
+    correct.add_argument("--redo", action="store_true",
+                         help="correct data whose history says they were corrected in the "
+                         "same direction already")
     correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
                          help="north of the corrected polarization angles: the apparent pole "
                          "of date (default) or a catalogue frame such as icrs")

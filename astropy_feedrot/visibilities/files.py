@@ -30,7 +30,8 @@ from ..labels import label_from_mount
 from ..outputs import same_file
 from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
-from .kinds import FILE_KINDS, file_kind, existing_path
+from .kinds import FILE_KINDS, existing_path, file_kind
+from .ms import ms_antennas
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file"]
@@ -74,6 +75,8 @@ def read_antennas(path, *, vertical="geodetic"):
         return fitsidi_antennas(path, vertical=vertical), writing_program(path)[1]
     if kind == "uvfits":
         return uvfits_antennas(path, vertical=vertical), writing_program(path)[1]
+    if kind == "ms":
+        return ms_antennas(path, vertical=vertical), "casacore"
     from .uvdata import antennas_from_uvdata, read_uvdata  # pyuvdata is optional
 
     uv = read_uvdata(path, read_data=False)
@@ -172,7 +175,7 @@ def _replace(temporary, target):
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
-                 progress=False):
+                 progress=False, direction="remove", feeds=None, redo=False):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -193,6 +196,14 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         Replace an existing output (never the input).
     progress : bool or callable, optional
         Show a progress bar (astropy's `~astropy.utils.console.ProgressBar`).
+    direction : {'remove', 'apply'}, optional
+        Remove the feed rotation (default), or apply it to a model.
+    feeds : `~astropy_feedrot.Receptors` or mapping, optional
+        Receptors for antennas the file gives none
+        (`~astropy_feedrot.visibilities.with_receptors`).
+    redo : bool, optional
+        Correct data whose history says they were corrected in the same
+        direction already.
 
     Returns
     -------
@@ -226,12 +237,14 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     kind = file_kind(source)
     target = _check_output(source, output, overwrite)
     if kind == "fits-idi":
-        correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress)
+        correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
+                        vertical=vertical, direction=direction, feeds=feeds, redo=redo)
         return target
     from .uvdata import correct_uvdata, read_uvdata, write_uvdata  # pyuvdata is optional
 
     uv = read_uvdata(source)
-    correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress)
+    correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
+                   direction=direction, feeds=feeds, redo=redo)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -196,7 +196,7 @@ def receptor_position_angles(antennas, antenna1, antenna2, obstime, sources,
 def _tile(obstime):
     """Two copies of a time array, end to end."""
     obstime = obstime if isinstance(obstime, Time) else Time(obstime)
-    return Time([obstime, obstime]).reshape(-1) if obstime.ndim else Time([obstime, obstime])
+    return obstime[np.tile(np.arange(obstime.size), 2)]
 
 
 def _given(antenna, receptors):
