@@ -37,7 +37,7 @@ from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
-from .receptors import receptor_position_angles, with_receptors
+from .receptors import check_receptors, receptor_position_angles, with_receptors
 
 __all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
 
@@ -222,9 +222,11 @@ class _Feeds:
 
     def __init__(self, path, antennas, feeds):
         self.path = path
+        self.antennas = antennas
         self.rows = _feed_rows(path)
-        given = with_receptors(antennas, feeds) if feeds is not None else antennas
-        self.virtual, self.key = {}, {}
+        given = with_receptors(antennas, feeds, replace=True) if feeds is not None \
+            else antennas
+        self.virtual, self.key, self.number = {}, {}, {}
         self.by_antenna = {}
         for index, (antenna, _, _, _, _, types, angles) in enumerate(self.rows):
             if antenna not in antennas:
@@ -241,16 +243,32 @@ class _Feeds:
         if key not in self.key:
             k = len(self.key)
             self.key[key] = k
+            self.number[k] = number
             self.virtual[k] = Antenna(antenna.location, antenna.mount, antenna.focus,
                                       name=antenna.name, vertical=antenna.vertical,
                                       receptors=receptors)
         return self.key[key]
+
+    def check(self, keys, products, dd):
+        """MSError unless the receptors of the virtual antennas ``keys`` give ``products``."""
+        for key in np.unique(keys).tolist():
+            antenna = self.virtual[key]
+            label = f"antenna {self.number[key]} ({antenna.name})"
+            try:
+                check_receptors(antenna.receptors, products, label, str(self.path),
+                                "it has no FEED rows; add them to FEED, or give them "
+                                "(feeds=, --feeds R,L)")
+            except ValueError as error:
+                raise MSError(f"{error} (data description {dd})") from None
 
     def keys(self, antennas, numbers, feed, spw, mjd_s):
         """The virtual antenna of each row (antenna ``numbers``, ``feed`` ids, times)."""
         out = np.full(numbers.shape, -1)
         for number in np.unique(numbers).tolist():
             rows = np.flatnonzero(numbers == number)
+            if number not in antennas:
+                raise MSError(f"{str(self.path)!r}: rows use antenna {number}, which the "
+                              "ANTENNA table lacks (or holds as a flagged placeholder)")
             if number in self.fallback:
                 out[rows] = self.fallback[number]
                 continue
@@ -464,32 +482,59 @@ def _chunk_rows(table, column, chunk_rows):
     return max(1, _CHUNK_BYTES // max(cell.nbytes, 1))
 
 
-def _correct_block(table, rows, plan, column, out_column, direction):
-    """Correct rows [start, stop) of a table of one data description; NaN rows count."""
-    start, stop = rows
-    n = stop - start
-    time = table.getcol("TIME", start, n)
-    a1, a2 = table.getcol("ANTENNA1", start, n), table.getcol("ANTENNA2", start, n)
-    f1, f2 = table.getcol("FEED1", start, n), table.getcol("FEED2", start, n)
-    field = table.getcol("FIELD_ID", start, n)
-    feeds, antennas, fields, spw, products, frame = plan
-    k1 = feeds.keys(antennas, a1, f1, spw, time)
-    k2 = feeds.keys(antennas, a2, f2, spw, time)
-    missing = sorted(set(np.unique(field).tolist()) - set(fields))
+def _meta(table):
+    """The columns that say what each row is, for all rows (a few bytes per row)."""
+    return {name: table.getcol(name) for name in ("TIME", "ANTENNA1", "ANTENNA2", "FEED1",
+                                                  "FEED2", "FIELD_ID", "DATA_DESC_ID")}
+
+
+def _plan(path, meta, descriptions, fields, feeds):
+    """Per data description: rows, products, and the virtual antennas of each row.
+
+    Everything is checked here, before anything is written.
+    """
+    ddid = meta["DATA_DESC_ID"]
+    missing = sorted(set(np.unique(meta["FIELD_ID"]).tolist()) - set(fields))
     if missing:
-        raise MSError(f"rows use FIELD_ID {missing} that the FIELD table lacks")
-    obstime = Time(time / 86400.0, format="mjd", scale="utc")
+        raise MSError(f"{str(path)!r}: rows use FIELD_ID {missing} that the FIELD table lacks")
+    plans = []
+    for dd in np.unique(ddid).tolist():
+        if dd not in descriptions:
+            raise MSError(f"{str(path)!r}: rows use DATA_DESC_ID {dd} that the "
+                          "DATA_DESCRIPTION table lacks")
+        spw, products = descriptions[dd]
+        rows = np.flatnonzero(ddid == dd)
+        time = meta["TIME"][rows]
+        k1 = feeds.keys(feeds.antennas, meta["ANTENNA1"][rows], meta["FEED1"][rows], spw, time)
+        k2 = feeds.keys(feeds.antennas, meta["ANTENNA2"][rows], meta["FEED2"][rows], spw, time)
+        feeds.check(np.concatenate([k1, k2]), products, dd)
+        if basis_of(products) == "linear":
+            lacking = sorted(set(("XX", "XY", "YX", "YY")) - set(products))
+            if lacking:
+                raise MSError(f"{str(path)!r}: data description {dd} holds the linear "
+                              f"products {products} only, without {lacking}: the feed "
+                              "rotation of linear feeds mixes all four, so it cannot be "
+                              "removed visibility by visibility; rotate Stokes Q + iU by "
+                              "twice the feed rotation after imaging instead")
+        plans.append((dd, rows, products, k1, k2))
+    return plans
+
+
+def _correct_block(table, block, meta, fields, feeds, frame, column, out_column, direction):
+    """Correct the rows of one chunk (``table`` holds them); the number of NaN rows."""
+    rows, products, k1, k2 = block
+    obstime = Time(meta["TIME"][rows] / 86400.0, format="mjd", scale="utc")
     theta1, theta2 = receptor_position_angles(
-        feeds.virtual, k1, k2, obstime, fields, field, products=products, frame=frame,
-        where=str(feeds.path), hint="its FEED rows give none; give them (feeds=, --feeds R,L)")
-    data = table.getcol(column, start, n)
+        feeds.virtual, k1, k2, obstime, fields, meta["FIELD_ID"][rows], products=products,
+        frame=frame, where=str(feeds.path))
+    data = table.getcol(column)
     # (rows, channels, products): one angle pair per row, for every channel.
     correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
                                   products, out=data, direction=direction)
     bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
     if bad.any():
         data[bad] = np.nan
-    table.putcol(out_column, data, start, n)
+    table.putcol(out_column, data)
     return int(np.count_nonzero(bad))
 
 
@@ -581,10 +626,12 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     direction = check_direction(direction)
     path = _ms_path(ms)
     _tables()
+    # Before casacore opens anything: it would wait for another process's lock.
+    _check_writable(path)
     with _open(path) as table:
         columns = table.colnames()
         if data_column not in columns:
-            data = [c for c in columns if "DATA" in c]
+            data = [c for c in columns if table.getcoldesc(c).get("valueType") == "complex"]
             raise MSError(f"{str(path)!r} has no column {data_column!r} (its data columns: "
                           f"{data}); choose one with data_column= (--data-column)")
         if table.getcoldesc(data_column).get("valueType") != "complex":
@@ -593,51 +640,43 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         partial = None
         if corrected_column in columns:
             partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
+        meta = _meta(table)
+        step_rows = _chunk_rows(table, data_column, chunk_rows)
     what = f"{data_column} -> {corrected_column}"
-    history = _history_text(path)
     resume = 0
     if partial is not None and partial.get("what") == what \
             and partial.get("direction") == direction:
         resume = int(partial.get("done", 0))
     else:
-        for column in {data_column, corrected_column}:
+        history = _history_text(path)
+        for column in dict.fromkeys([corrected_column, data_column]):
             check_history(history, direction, f"{str(path)!r} (HISTORY of {column})",
                           redo=redo, what=f"-> {column}")
     antennas = ms_antennas(path, vertical=vertical)
-    descriptions = _descriptions(path)
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
-    _check_writable(path)
-    nan_rows = 0
+    plans = _plan(path, meta, _descriptions(path), fields, feed_table)
+    work = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows])
+            for _, rows, products, k1, k2 in plans for k in range(0, rows.size, step_rows)]
+    total = meta["TIME"].size
+    nan_rows = done = 0
     with _open(path, write=True) as table:
         if corrected_column not in table.colnames():
             _add_column(table, data_column, corrected_column)
-        step_rows = _chunk_rows(table, data_column, chunk_rows)
-        ddid = table.getcol("DATA_DESC_ID")
-        order = np.argsort(ddid, kind="stable")
-        groups = [(dd, order[ddid[order] == dd]) for dd in np.unique(ddid).tolist()]
-        work = [(dd, rows[k:k + step_rows]) for dd, rows in groups
-                for k in range(0, rows.size, step_rows)]
-        done = 0
-        total = table.nrows()
         try:
             with progress_steps(progress, len(work)) as step:
-                for dd, rows in work:
-                    if dd not in descriptions:
-                        raise MSError(f"{str(path)!r}: rows use DATA_DESC_ID {dd} that the "
-                                      "DATA_DESCRIPTION table lacks")
-                    spw, products = descriptions[dd]
+                for block in work:
+                    rows = block[0]
                     if rows[-1] < resume:
                         done += rows.size
                         step()
                         continue
-                    plan = (feed_table, antennas, fields, spw, products, frame)
-                    with contextlib.closing(table.selectrows(rows.tolist())) as block:
+                    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
                         with warnings.catch_warnings():
                             warnings.simplefilter("ignore", DegenerateGeometryWarning)
-                            nan_rows += _correct_block(block, (0, rows.size), plan,
-                                                       data_column, corrected_column,
-                                                       direction)
+                            nan_rows += _correct_block(selection, block, meta, fields,
+                                                       feed_table, frame, data_column,
+                                                       corrected_column, direction)
                     done += rows.size
                     table.putcolkeyword(corrected_column, _PARTIAL,
                                         {"what": what, "direction": direction,

@@ -31,7 +31,7 @@ from ..mounts import FixedAxisMount
 from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
 from .rows import feed_rotation_rows
 
-__all__ = ["receptor_position_angles", "with_receptors", "parse_feeds"]
+__all__ = ["receptor_position_angles", "check_receptors", "with_receptors", "parse_feeds"]
 
 _POLCONVERT = ("a baseline between linear and circular feeds is not supported (convert one "
                "of them first, e.g. with PolConvert)")
@@ -54,10 +54,62 @@ def _dipole_antenna(antenna, alpha):
                    vertical=antenna.vertical)
 
 
+def check_receptors(receptors, products, label, where="the data",
+                    hint="give the antennas' receptors"):
+    """Refuse receptors that cannot give the correlation products.
+
+    Parameters
+    ----------
+    receptors : `~astropy_feedrot.receptors.Receptors` or None
+        The receptors of one antenna.
+    products : sequence of str
+        The products of the data (``'RR'``, ``'XY'``...).
+    label : str
+        The antenna, for the message (``'antenna 3 (EA05)'``).
+    where : str, optional
+        The data, for the message.
+    hint : str, optional
+        What to do when ``receptors`` is None.
+
+    Returns
+    -------
+    str
+        The basis, ``'circular'`` or ``'linear'``.
+
+    Raises
+    ------
+    ValueError
+        If ``receptors`` is None, of the other basis than ``products`` (a
+        baseline between a circular and a linear feed), or lacks a receptor
+        the products need.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import check_receptors
+    >>> check_receptors(Receptors("XY", [0, 90] * u.deg), ["RR", "LL"], "antenna 1", "x.ms")
+    Traceback (most recent call last):
+    ...
+    ValueError: x.ms: antenna 1 has linear receptors 'XY' but the data hold circular products ['RR', 'LL']; a baseline between linear and circular feeds is not supported (convert one of them first, e.g. with PolConvert)
+    """
+    basis = basis_of(products)
+    if receptors is None:
+        raise ValueError(f"{where}: {label} has no receptors: {hint}")
+    if receptors.basis != basis:
+        raise ValueError(f"{where}: {label} has {receptors.basis} receptors "
+                         f"{receptors.types!r} but the data hold {basis} products "
+                         f"{list(products)}; {_POLCONVERT}")
+    lacking = sorted(set("".join(products)) - set(receptors.types))
+    if lacking:
+        raise ValueError(f"{where}: {label} has receptors {receptors.types!r} but the "
+                         f"products {list(products)} need {lacking}")
+    return basis
+
+
 def _check_antennas(antennas, used, products, where, hint):
     """The basis of the products, after checking every antenna used can give them."""
     basis = basis_of(products)
-    letters = set("".join(products))
     missing = [int(n) for n in used if int(n) not in antennas]
     if missing:
         raise ValueError(f"{where}: the rows use antenna numbers {missing[:10]} that have no "
@@ -68,17 +120,7 @@ def _check_antennas(antennas, used, products, where, hint):
             raise TypeError(f"antennas[{int(n)}] must be an Antenna, got "
                             f"{type(antenna).__name__}")
         label = f"antenna {int(n)} ({antenna.name})" if antenna.name else f"antenna {int(n)}"
-        receptors = antenna.receptors
-        if receptors is None:
-            raise ValueError(f"{where}: {label} has no receptors: {hint}")
-        if receptors.basis != basis:
-            raise ValueError(f"{where}: {label} has {receptors.basis} receptors "
-                             f"{receptors.types!r} but the data hold {basis} products "
-                             f"{list(products)}; {_POLCONVERT}")
-        lacking = sorted(letters - set(receptors.types))
-        if lacking:
-            raise ValueError(f"{where}: {label} has receptors {receptors.types!r} but the "
-                             f"products {list(products)} need {lacking}")
+        check_receptors(antenna.receptors, products, label, where, hint)
     return basis
 
 
