@@ -64,7 +64,7 @@ def _run_correct(args):
         try:
             correct_ms(args.input, data_column=args.data_column, corrected_column=args.column,
                        direction=direction, frame=args.frame, vertical=args.vertical,
-                       progress=progress, feeds=feeds, redo=args.redo)
+                       progress=progress, feeds=feeds, redo=args.redo, pole=args.pole)
         except ImportError as error:
             raise CommandError(one_line(error)) from None
         return 0
@@ -78,7 +78,7 @@ def _run_correct(args):
     try:
         correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
                      overwrite=args.overwrite, progress=progress, direction=direction,
-                     feeds=feeds, redo=args.redo)
+                     feeds=feeds, redo=args.redo, pole=args.pole)
     except FileExistsError as error:
         raise CommandError(f"-o/--output: {one_line(error)}") from None
     except ImportError as error:
@@ -146,6 +146,10 @@ def register(commands):
                          "of date (default) or a catalogue frame such as icrs")
     correct.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
                          help="the local vertical (geocentric reproduces CASA)")
+    correct.add_argument("--pole", choices=("itrs", "casa"), default="itrs",
+                         help="the pole of the parallactic angle: the Earth-fixed z axis with "
+                         "polar motion (default) or CASA's, without; --vertical geocentric "
+                         "--pole casa reproduces CASA's applycal(parang=True)")
     correct.add_argument("--overwrite", action="store_true",
                          help="replace an existing output (never the input)")
     correct.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -33,6 +33,7 @@ from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
 from .history import APPLY_MARK, HISTORY_MARK
 from .kinds import FILE_KINDS, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
+from .poles import POLES, pole_context
 from .receptors import check_receptors, parse_feeds, receptor_position_angles, with_receptors
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
 from .uvdata import (
@@ -56,6 +57,8 @@ __all__ = [
     "frame_position_angle",
     "distinct_epochs",
     "FRAMES",
+    "POLES",
+    "pole_context",
     "receptor_position_angles",
     "check_receptors",
     "with_receptors",

@@ -32,6 +32,7 @@ from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .kinds import FILE_KINDS, existing_path, file_kind
 from .ms import ms_antennas
+from .poles import pole_context
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file"]
@@ -175,7 +176,7 @@ def _replace(temporary, target):
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
-                 progress=False, direction="remove", feeds=None, redo=False):
+                 progress=False, direction="remove", feeds=None, redo=False, pole="itrs"):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -204,6 +205,8 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     redo : bool, optional
         Correct data whose history says they were corrected in the same
         direction already.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
 
     Returns
     -------
@@ -233,6 +236,14 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name  # doctest: +IGNORE_WARNINGS
     'corrected.uvfits'
     """
+    with pole_context(pole):
+        return _correct_file(path, output, frame=frame, vertical=vertical,
+                             overwrite=overwrite, progress=progress, direction=direction,
+                             feeds=feeds, redo=redo)
+
+
+def _correct_file(path, output, *, frame, vertical, overwrite, progress, direction, feeds,
+                  redo):
     source = existing_path(path)
     kind = file_kind(source)
     target = _check_output(source, output, overwrite)

@@ -37,6 +37,7 @@ from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
+from .poles import POLES, pole_context
 from .receptors import check_receptors, receptor_position_angles, with_receptors
 
 __all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
@@ -540,7 +541,7 @@ def _correct_block(table, block, meta, fields, feeds, frame, column, out_column,
 
 def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
-               progress=False, feeds=None, redo=False):
+               progress=False, feeds=None, redo=False, pole="itrs"):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -578,6 +579,11 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     redo : bool, optional
         Allow a correction in the direction the ``HISTORY`` says was made
         already to either column.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`):
+        the Earth-fixed z axis with polar motion (default), or CASA's (no polar
+        motion). ``vertical='geocentric', pole='casa'`` reproduces
+        ``applycal(parang=True)`` (:doc:`/correcting`).
 
     Returns
     -------
@@ -624,6 +630,8 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     'day2_TDEM0003_10s_norx_1src_1spw_2ints.ms'
     """
     direction = check_direction(direction)
+    if pole not in POLES:
+        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     path = _ms_path(ms)
     _tables()
     # Before casacore opens anything: it would wait for another process's lock.
@@ -660,7 +668,7 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
             for _, rows, products, k1, k2 in plans for k in range(0, rows.size, step_rows)]
     total = meta["TIME"].size
     nan_rows = done = 0
-    with _open(path, write=True) as table:
+    with _open(path, write=True) as table, pole_context(pole):
         if corrected_column not in table.colnames():
             _add_column(table, data_column, corrected_column)
         try:
@@ -696,7 +704,8 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                 raise MSError(f"{message} ({type(error).__name__}: {error})") from error
             raise
         table.removecolkeyword(corrected_column, _PARTIAL)
-    _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical))
+    _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
+                 ("" if pole == "itrs" else f" (pole={pole})"))
     if nan_rows:
         warn_caller(f"the feed rotation is undefined in {nan_rows} of {total} rows (an "
                     "alt-az antenna pointing at the zenith): their output is NaN",
