@@ -141,7 +141,7 @@ def _feed_rows(path):
             half = np.inf if interval <= 0 else interval / 2
             rows.append((int(table.getcell("ANTENNA_ID", k)), int(table.getcell("FEED_ID", k)),
                          int(table.getcell("SPECTRAL_WINDOW_ID", k)), mid - half, mid + half,
-                         types, tuple(np.round(angles[:len(types)], 12))))
+                         types, tuple(np.round(angles[:len(types)], 9))))
     return rows
 
 
