@@ -521,27 +521,64 @@ def _plan(path, meta, descriptions, fields, feeds):
     return plans
 
 
-def _correct_block(table, block, meta, fields, feeds, frame, column, out_column, direction):
-    """Correct the rows of one chunk (``table`` holds them); the number of NaN rows."""
-    rows, products, k1, k2 = block
-    obstime = Time(meta["TIME"][rows] / 86400.0, format="mjd", scale="utc")
-    theta1, theta2 = receptor_position_angles(
-        feeds.virtual, k1, k2, obstime, fields, meta["FIELD_ID"][rows], products=products,
-        frame=frame, where=str(feeds.path))
-    data = table.getcol(column)
-    # (rows, channels, products): one angle pair per row, for every channel.
+class _Block:
+    """One chunk of rows and what correcting it needs; picklable, for dask workers."""
+
+    def __init__(self, rows, products, k1, k2, time, field):
+        self.rows, self.products, self.k1, self.k2 = rows, products, k1, k2
+        self.time, self.field = time, field
+
+
+def _corrected(data, block, virtual, fields, frame, direction, where):
+    """``data`` (rows, channels, products) corrected in place; the NaN rows."""
+    obstime = Time(block.time / 86400.0, format="mjd", scale="utc")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegenerateGeometryWarning)
+        theta1, theta2 = receptor_position_angles(
+            virtual, block.k1, block.k2, obstime, fields, block.field,
+            products=block.products, frame=frame, where=where)
+    # One angle pair per row, for every channel.
     correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
-                                  products, out=data, direction=direction)
+                                  block.products, out=data, direction=direction)
     bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
     if bad.any():
         data[bad] = np.nan
-    table.putcol(out_column, data)
     return int(np.count_nonzero(bad))
+
+
+def _remote_block(path, column, block, virtual, fields, frame, direction, pole):
+    """A dask task: read a chunk (no read lock: the client holds the write lock) and
+    correct it; the client writes it."""
+    tables = _tables()
+    with pole_context(pole), contextlib.closing(
+            tables.table(str(path), ack=False, lockoptions="autonoread")) as table, \
+            contextlib.closing(table.selectrows(block.rows.tolist())) as selection:
+        data = selection.getcol(column)
+        return data, _corrected(data, block, virtual, fields, frame, direction, str(path))
+
+
+def _results(work, client, path, column, virtual, fields, frame, direction, pole):
+    """(block, corrected data or None, NaN rows) in order; dask keeps two per worker going."""
+    if client is None:
+        for block in work:
+            yield block, None, None
+        return
+    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
+    pending = []
+    for block in work + [None] * ahead:
+        if block is not None:
+            pending.append((block, client.submit(_remote_block, path, column, block, virtual,
+                                                 fields, frame, direction, pole,
+                                                 pure=False)))
+        if len(pending) > ahead or (block is None and pending):
+            done, future = pending.pop(0)
+            data, bad = future.result()
+            yield done, data, bad
 
 
 def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
-               progress=False, feeds=None, redo=False, pole="itrs"):
+               progress=False, feeds=None, redo=False, pole="itrs", client=None):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -584,6 +621,9 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         the Earth-fixed z axis with polar motion (default), or CASA's (no polar
         motion). ``vertical='geocentric', pole='casa'`` reproduces
         ``applycal(parang=True)`` (:doc:`/correcting`).
+    client : `dask.distributed.Client`, optional
+        Correct the chunks on its workers, a few at a time each; this process
+        writes them, in order. The result is bit for bit the serial one.
 
     Returns
     -------
@@ -654,7 +694,8 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     resume = 0
     if partial is not None and partial.get("what") == what \
             and partial.get("direction") == direction:
-        resume = int(partial.get("done", 0))
+        # Go on with the chunks of the interrupted run.
+        resume, step_rows = int(partial["chunks"]), int(partial["chunk_rows"])
     else:
         history = _history_text(path)
         for column in dict.fromkeys([corrected_column, data_column]):
@@ -664,40 +705,42 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
     plans = _plan(path, meta, _descriptions(path), fields, feed_table)
-    work = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows])
+    work = [_Block(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
+                   meta["TIME"][rows[k:k + step_rows]], meta["FIELD_ID"][rows[k:k + step_rows]])
             for _, rows, products, k1, k2 in plans for k in range(0, rows.size, step_rows)]
     total = meta["TIME"].size
-    nan_rows = done = 0
+    nan_rows, done, chunks = 0, sum(block.rows.size for block in work[:resume]), resume
+    work = work[resume:]
     with _open(path, write=True) as table, pole_context(pole):
         if corrected_column not in table.colnames():
             _add_column(table, data_column, corrected_column)
         try:
             with progress_steps(progress, len(work)) as step:
-                for block in work:
-                    rows = block[0]
-                    if rows[-1] < resume:
-                        done += rows.size
-                        step()
-                        continue
+                for block, data, bad in _results(work, client, path, data_column,
+                                                 feed_table.virtual, fields, frame, direction,
+                                                 pole):
+                    rows = block.rows
                     with contextlib.closing(table.selectrows(rows.tolist())) as selection:
-                        with warnings.catch_warnings():
-                            warnings.simplefilter("ignore", DegenerateGeometryWarning)
-                            nan_rows += _correct_block(selection, block, meta, fields,
-                                                       feed_table, frame, data_column,
-                                                       corrected_column, direction)
+                        if data is None:
+                            data = selection.getcol(data_column)
+                            bad = _corrected(data, block, feed_table.virtual, fields, frame,
+                                             direction, str(path))
+                        selection.putcol(corrected_column, data)
+                    nan_rows += bad
                     done += rows.size
+                    chunks += 1
                     table.putcolkeyword(corrected_column, _PARTIAL,
-                                        {"what": what, "direction": direction,
-                                         "done": int(rows[-1]) + 1})
+                                        {"what": what, "direction": direction, "done": done,
+                                         "chunks": chunks, "chunk_rows": step_rows})
                     step()
         except BaseException as error:
             table.flush()
             intact = "is intact" if data_column != corrected_column else \
                 "is partly corrected"
             message = (f"{str(path)!r}: interrupted after {done} of {total} rows; "
-                       f"{data_column} {intact}; the rows of {corrected_column} recorded in "
-                       f"its keyword {_PARTIAL} are corrected, the others not: run the same "
-                       "correction again to finish")
+                       f"{data_column} {intact}; the first {chunks} chunks of {step_rows} "
+                       f"rows of {corrected_column} (keyword {_PARTIAL}) are corrected, the "
+                       "others not: run the same correction again to finish")
             if isinstance(error, KeyboardInterrupt):
                 raise KeyboardInterrupt(message) from None
             if isinstance(error, Exception):
