@@ -4,6 +4,7 @@ file as read, and the feed rotation removed (or applied): a corrected copy of
 any file, or a Measurement Set corrected in place."""
 
 import argparse
+import contextlib
 import sys
 
 from ..outputs import (
@@ -50,6 +51,32 @@ def _feeds(args):
         raise CommandError(f"--feeds: {one_line(error)}") from None
 
 
+@contextlib.contextmanager
+def _client(args):
+    """A dask.distributed client for --dask or --workers, or None."""
+    if args.dask is None and args.workers is None:
+        yield None
+        return
+    if args.dask is not None and args.workers is not None:
+        raise CommandError("--dask and --workers exclude each other: connect to a scheduler, "
+                           "or start a local cluster of N workers")
+    if args.workers is not None and args.workers < 1:
+        raise CommandError(f"--workers must be at least 1, got {args.workers}")
+    try:
+        import distributed  # optional: only --dask and --workers need it
+    except ImportError:
+        raise CommandError("--dask and --workers need dask.distributed: pip install "
+                           "'astropy_feedrot[dask]'") from None
+    if args.dask is not None:
+        with distributed.Client(args.dask, timeout="20s") as client:
+            yield client
+        return
+    with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        yield client
+
+
 def _run_correct(args):
     direction = "apply" if args.apply else "remove"
     progress = not args.quiet and sys.stderr.isatty()
@@ -62,9 +89,11 @@ def _run_correct(args):
             raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
                                "files are corrected into a copy (-o OUTPUT)")
         try:
-            correct_ms(args.input, data_column=args.data_column, corrected_column=args.column,
-                       direction=direction, frame=args.frame, vertical=args.vertical,
-                       progress=progress, feeds=feeds, redo=args.redo, pole=args.pole)
+            with _client(args) as client:
+                correct_ms(args.input, data_column=args.data_column,
+                           corrected_column=args.column, direction=direction,
+                           frame=args.frame, vertical=args.vertical, progress=progress,
+                           feeds=feeds, redo=args.redo, pole=args.pole, client=client)
         except ImportError as error:
             raise CommandError(one_line(error)) from None
         return 0
@@ -76,9 +105,10 @@ def _run_correct(args):
         if value:
             raise CommandError(f"{option} is for a Measurement Set corrected --in-place")
     try:
-        correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
-                     overwrite=args.overwrite, progress=progress, direction=direction,
-                     feeds=feeds, redo=args.redo, pole=args.pole)
+        with _client(args) as client:
+            correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
+                         overwrite=args.overwrite, progress=progress, direction=direction,
+                         feeds=feeds, redo=args.redo, pole=args.pole, client=client)
     except FileExistsError as error:
         raise CommandError(f"-o/--output: {one_line(error)}") from None
     except ImportError as error:
@@ -150,6 +180,12 @@ def register(commands):
                          help="the pole of the parallactic angle: the Earth-fixed z axis with "
                          "polar motion (default) or CASA's, without; --vertical geocentric "
                          "--pole casa reproduces CASA's applycal(parang=True)")
+    correct.add_argument("--dask", metavar="SCHEDULER",
+                         help="correct the chunks of a Measurement Set or FITS-IDI file on "
+                         "the workers of this dask.distributed scheduler (its address)")
+    correct.add_argument("--workers", type=int, metavar="N",
+                         help="correct the chunks on a local dask cluster of N worker "
+                         "processes")
     correct.add_argument("--overwrite", action="store_true",
                          help="replace an existing output (never the input)")
     correct.add_argument("--quiet", action="store_true", help="no progress bar")

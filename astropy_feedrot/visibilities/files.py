@@ -176,7 +176,8 @@ def _replace(temporary, target):
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
-                 progress=False, direction="remove", feeds=None, redo=False, pole="itrs"):
+                 progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
+                 client=None):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -207,6 +208,8 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         direction already.
     pole : {'itrs', 'casa'}, optional
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
+    client : `dask.distributed.Client`, optional
+        For FITS-IDI, correct the chunks of rows on its workers.
 
     Returns
     -------
@@ -236,26 +239,20 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name  # doctest: +IGNORE_WARNINGS
     'corrected.uvfits'
     """
-    with pole_context(pole):
-        return _correct_file(path, output, frame=frame, vertical=vertical,
-                             overwrite=overwrite, progress=progress, direction=direction,
-                             feeds=feeds, redo=redo)
-
-
-def _correct_file(path, output, *, frame, vertical, overwrite, progress, direction, feeds,
-                  redo):
     source = existing_path(path)
     kind = file_kind(source)
     target = _check_output(source, output, overwrite)
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
-                        vertical=vertical, direction=direction, feeds=feeds, redo=redo)
+                        vertical=vertical, direction=direction, feeds=feeds, redo=redo,
+                        pole=pole, client=client)
         return target
     from .uvdata import correct_uvdata, read_uvdata, write_uvdata  # pyuvdata is optional
 
     uv = read_uvdata(source)
-    correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
-                   direction=direction, feeds=feeds, redo=redo)
+    with pole_context(pole):
+        correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
+                       direction=direction, feeds=feeds, redo=redo)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -29,6 +29,7 @@ from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .history import HISTORY_MARK, check_direction, check_history, history_entry
+from .poles import POLES, pole_context
 from .receptors import receptor_position_angles, with_receptors
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
@@ -188,10 +189,10 @@ def _flux_layout(hdu, name):
 
 
 def _int_column(records, plan, column):
-    spec = plan.columns[column]
+    bscale, bzero = plan.scales[column]
     values = np.asarray(records[column], dtype=float)
-    if spec.bscale not in (None, 1) or spec.bzero not in (None, 0):
-        values = values * (spec.bscale or 1) + (spec.bzero or 0)
+    if bscale not in (None, 1) or bzero not in (None, 0):
+        values = values * (bscale or 1) + (bzero or 0)
     return values
 
 
@@ -304,7 +305,8 @@ class _Plan:
                                       column=column)
         self.source_column = next((c for c in ("SOURCE_ID", "SOURCE") if c in columns), None)
         self.weight_column = "WEIGHT" if "WEIGHT" in columns else None
-        self.columns = hdu.columns
+        # Plain values only: a plan goes to dask workers.
+        self.scales = {c.name: (c.bscale, c.bzero) for c in hdu.columns}
 
 
 def _rows_of(plan, records, name):
@@ -375,6 +377,44 @@ def _correct_chunk(records, plan, antennas, sources, scale, frame, name, directi
     return int(np.count_nonzero(bad))
 
 
+def _chunk_task(temporary, plan, start, stop, antennas, sources, scale, frame, name,
+                direction, pole="itrs"):
+    """Correct rows [start, stop) of one UV_DATA table of ``temporary`` in place, through
+    a memory map of their bytes only; the number of NaN rows. A dask task too: chunks
+    are disjoint byte ranges of the file."""
+    with pole_context(pole):
+        records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
+                            offset=plan.offset + start * plan.dtype.itemsize,
+                            shape=(stop - start,))
+        try:
+            count = _correct_chunk(records, plan, antennas, sources, scale, frame, name,
+                                   direction)
+            records.flush()
+        finally:
+            del records
+    return count
+
+
+def _chunks(work, client, temporary, antennas, sources, scale, frame, name, direction, pole):
+    """The NaN rows of each chunk, corrected here or, with a client, on dask workers
+    (two chunks per worker at a time)."""
+    if client is None:
+        for plan, start, stop in work:
+            yield _chunk_task(temporary, plan, start, stop, antennas, sources, scale, frame,
+                              name, direction)
+        return
+    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
+    pending = []
+    for item in list(work) + [None] * ahead:
+        if item is not None:
+            plan, start, stop = item
+            pending.append(client.submit(_chunk_task, temporary, plan, start, stop, antennas,
+                                         sources, scale, frame, name, direction, pole,
+                                         pure=False))
+        if len(pending) > ahead or (item is None and pending):
+            yield pending.pop(0).result()
+
+
 def _check_paths(path, output, overwrite):
     source = os.fspath(path)
     target = os.fspath(output)
@@ -404,7 +444,7 @@ def _copy(source, target, header, header_end):
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
                     software=None, vertical="geodetic", chunk_bytes=None, direction="remove",
-                    feeds=None, redo=False):
+                    feeds=None, redo=False, pole="itrs", client=None):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -445,6 +485,11 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     redo : bool, optional
         Correct a file whose HISTORY says it was corrected in the same
         direction already.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
+    client : `dask.distributed.Client`, optional
+        Correct the chunks on its workers (each maps and writes its own rows
+        of the copy); the output is bit for bit the serial one.
 
     Returns
     -------
@@ -497,6 +542,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     'Feed rotation removed by astropy_feedrot'
     """
     direction = check_direction(direction)
+    if pole not in POLES:
+        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     source, target = _check_paths(path, output, overwrite)
     chunk_bytes = _CHUNK_BYTES if chunk_bytes is None else int(chunk_bytes)
     if chunk_bytes < 1:
@@ -534,22 +581,11 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                      for start in range(0, plan.rows, per_chunk)]
         nan_rows = 0
         total_rows = sum(plan.rows for plan in plans)
-        with progress_steps(progress, len(work)) as step:
-            for plan in plans:
-                if not plan.rows:
-                    continue
-                records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
-                                    offset=plan.offset, shape=(plan.rows,))
-                try:
-                    for item, start, stop in work:
-                        if item is not plan:
-                            continue
-                        nan_rows += _correct_chunk(records[start:stop], plan, antennas,
-                                                   sources, scale, frame, source, direction)
-                        step()
-                    records.flush()
-                finally:
-                    del records
+        with progress_steps(progress, len(work)) as step, pole_context(pole):
+            for count in _chunks(work, client, temporary, antennas, sources, scale, frame,
+                                 source, direction, pole):
+                nan_rows += count
+                step()
         os.replace(temporary, target)
     except BaseException:
         if os.path.exists(temporary):
