@@ -12,5 +12,6 @@ import warnings
 from .visibilities.rows import *  # noqa: F401,F403
 from .visibilities.rows import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.rows moved to astropy_feedrot.visibilities.rows; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.rows", "astropy_feedrot.visibilities.rows"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

@@ -12,5 +12,6 @@ import warnings
 from .visibilities.uvdata import *  # noqa: F401,F403
 from .visibilities.uvdata import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.uvdata moved to astropy_feedrot.visibilities.uvdata; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.uvdata", "astropy_feedrot.visibilities.uvdata"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

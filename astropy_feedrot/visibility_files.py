@@ -12,5 +12,6 @@ import warnings
 from .visibilities.files import *  # noqa: F401,F403
 from .visibilities.files import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.visibility_files moved to astropy_feedrot.visibilities.files; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.visibility_files", "astropy_feedrot.visibilities.files"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

@@ -286,7 +286,7 @@ def bench_fitsidi(gib, results, directory, workers=0):
     results.append(("FITS-IDI: extra heap below 64 MiB, whatever the file's size",
                     heap < 64 * 2**20, f"{heap / 2**20:.0f} MiB for {size / GIB:.2f} GiB"))
     results.append(("FITS-IDI: at most 4x a copy of the file", seconds <= 4 * copy_time,
-                     f"{seconds / copy_time:.2f}x"))
+                    f"{seconds / copy_time:.2f}x"))
     if workers:
         cluster, client = _client(workers)
         try:

@@ -12,5 +12,6 @@ import warnings
 from ..visibilities.antenna_tables import *  # noqa: F401,F403
 from ..visibilities.antenna_tables import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.io.antenna_tables moved to astropy_feedrot.visibilities.antenna_tables; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.io.antenna_tables", "astropy_feedrot.visibilities.antenna_tables"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

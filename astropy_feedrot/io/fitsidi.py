@@ -12,5 +12,6 @@ import warnings
 from ..visibilities.fitsidi import *  # noqa: F401,F403
 from ..visibilities.fitsidi import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.io.fitsidi moved to astropy_feedrot.visibilities.fitsidi; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.io.fitsidi", "astropy_feedrot.visibilities.fitsidi"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

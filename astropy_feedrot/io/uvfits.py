@@ -12,5 +12,6 @@ import warnings
 from ..visibilities.uvfits import *  # noqa: F401,F403
 from ..visibilities.uvfits import __all__  # noqa: F401
 
-warnings.warn("astropy_feedrot.io.uvfits moved to astropy_feedrot.visibilities.uvfits; the old import path goes in the next release",
+_OLD, _NEW = "astropy_feedrot.io.uvfits", "astropy_feedrot.visibilities.uvfits"
+warnings.warn(f"{_OLD} moved to {_NEW}; the old import path goes in the next release",
               DeprecationWarning, stacklevel=2)

@@ -20,22 +20,21 @@ import contextlib
 import os
 import shutil
 import tempfile
-import warnings
 from pathlib import Path
 
-from astropy.io import fits
 from astropy.table import Table
 
 from ..labels import label_from_mount
 from ..outputs import same_file
 from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
-from .kinds import FILE_KINDS, existing_path, file_kind
+from .kinds import existing_path, file_kind
 from .ms import ms_antennas
 from .poles import pole_context
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file"]
+
 
 def read_antennas(path, *, vertical="geodetic"):
     """The antennas of a visibility file.

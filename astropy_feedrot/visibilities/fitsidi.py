@@ -14,7 +14,6 @@ and Stokes codes) and their sources.
 import os
 import shutil
 import tempfile
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +27,7 @@ from ..outputs import same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
-from .history import HISTORY_MARK, check_direction, check_history, history_entry
+from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
 from .receptors import receptor_position_angles, with_receptors
 

@@ -155,7 +155,7 @@ def check_history(text, direction, where, *, redo=False, what=None):
     >>> check_history("Feed rotation removed by astropy_feedrot", "remove", "x.ms")
     Traceback (most recent call last):
     ...
-    ValueError: x.ms: the history says the feed rotation was removed already ('Feed rotation removed by astropy_feedrot'); removing it again would add it back: pass redo=True (--redo) if that is what you want
+    ValueError: x.ms: the history says the feed rotation was removed already ...
     """
     direction = check_direction(direction)
     if not redo and last_direction(text, what) == direction:

@@ -141,5 +141,3 @@ def file_kind(path):
                          "(a FITS-IDI file cut short loses its last tables)")
     raise ValueError(f"cannot tell the kind of {str(path)!r}: not FITS, HDF5 (uvh5), a "
                      "Measurement Set, Miriad nor SMA Mir")
-
-

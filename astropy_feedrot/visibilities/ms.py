@@ -20,7 +20,6 @@ python-casacore is an optional dependency (``pip install
 import contextlib
 import fcntl
 import os
-import time as _clock
 import warnings
 from pathlib import Path
 
@@ -239,8 +238,10 @@ class _Feeds:
                 self.fallback[number] = self._virtual(number, antenna, antenna.receptors)
 
     def _virtual(self, number, antenna, receptors):
-        key = (number, None if receptors is None else (receptors.types,
-                                                        tuple(receptors.angles.value)))
+        described = None
+        if receptors is not None:
+            described = (receptors.types, tuple(receptors.angles.value))
+        key = (number, described)
         if key not in self.key:
             k = len(self.key)
             self.key[key] = k

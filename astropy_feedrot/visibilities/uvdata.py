@@ -18,24 +18,22 @@ conjugation, feed angles, the vertical of CASA) are in ``docs/uvdata.rst``.
 
 import contextlib
 import os
-import warnings
 
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import AltAz, Angle, EarthLocation, SkyCoord
 from astropy.time import Time
 
-from .. import __version__
 from ..antenna import Antenna
 from ..correction import correct_receptor_visibilities
 from ..eop import iers_context
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..frames import VERTICALS, local_frame
+from ..frames import VERTICALS
 from ..labels import mount_from_label
-from ..mounts import AltAzMount, FixedAxisMount
+from ..mounts import AltAzMount
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
-from .history import HISTORY_MARK, check_direction, check_history, history_entry
+from .history import check_direction, check_history, history_entry
 from .receptors import receptor_position_angles, with_receptors
 
 __all__ = [
