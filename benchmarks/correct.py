@@ -309,7 +309,7 @@ def bench_fitsidi(gib, results, directory, workers=0):
 
 def _ms(directory, gib):
     """A Measurement Set of at least ``gib`` GiB of DATA: the VLA set of the tests, its
-    rows doubled, 10 s epochs."""
+    153 baselines repeated over 10 s epochs (rows added, the columns written in blocks)."""
     import tarfile
 
     from casacore.tables import table
@@ -319,23 +319,28 @@ def _ms(directory, gib):
         tar.extractall(directory, filter="data")
     path = Path(directory) / name
     with table(str(path), readonly=False, ack=False) as t:
-        row_bytes = t.getcell("DATA", 0).nbytes
-        while t.nrows() * row_bytes < gib * GIB:
-            t.copyrows(t, nrow=t.nrows())
-        n = t.nrows()
-        a1, a2 = t.getcol("ANTENNA1"), t.getcol("ANTENNA2")
-        baselines = len(set(zip(a1[:306].tolist(), a2[:306].tolist())))
-        start = t.getcol("TIME", 0, 1)[0]
-        t.putcol("TIME", start + (np.arange(n) // baselines) * 10.0)
-        rng = np.random.default_rng(1)
-        shape = t.getcell("DATA", 0).shape
-        block = 65536
-        for k in range(0, n, block):
-            m = min(block, n - k)
-            values = (rng.standard_normal((m,) + shape, dtype=np.float32)
-                      + 1j * rng.standard_normal((m,) + shape, dtype=np.float32))
-            t.putcol("DATA", values.astype(np.complex64), k, m)
-    return path, n, n * int(np.prod(shape)), n * row_bytes
+        cell = t.getcell("DATA", 0)
+        first = t.getcol("TIME")
+        one = first == first[0]  # the rows of the first epoch: one per baseline
+        names = ("ANTENNA1", "ANTENNA2", "FEED1", "FEED2", "FIELD_ID", "DATA_DESC_ID")
+        columns = {c: t.getcol(c)[one] for c in names}
+        per_epoch = int(np.count_nonzero(one))
+        epochs = int(np.ceil(gib * GIB / (cell.nbytes * per_epoch)))
+        n = epochs * per_epoch
+        t.addrows(n - t.nrows())
+        phase = np.exp(1j * np.linspace(0, 6, cell.size)).astype(np.complex64)
+        block_epochs = max(1, 65536 // per_epoch)
+        for e in range(0, epochs, block_epochs):
+            m = min(block_epochs, epochs - e)
+            start, rows = e * per_epoch, m * per_epoch
+            for column, values in columns.items():
+                t.putcol(column, np.tile(values, m), start, rows)
+            t.putcol("TIME", first[0] + np.repeat(np.arange(e, e + m), per_epoch) * 10.0,
+                     start, rows)
+            t.putcol("FLAG_ROW", np.zeros(rows, bool), start, rows)
+            t.putcol("DATA", np.broadcast_to(phase.reshape(cell.shape),
+                                             (rows,) + cell.shape).copy(), start, rows)
+    return path, n, n * cell.size, n * cell.nbytes
 
 
 def _floor(path, chunk_rows):

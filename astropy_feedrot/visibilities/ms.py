@@ -490,7 +490,7 @@ def _meta(table):
                                                   "FEED2", "FIELD_ID", "DATA_DESC_ID")}
 
 
-def _plan(path, meta, descriptions, fields, feeds):
+def _plan(path, meta, descriptions, fields, feeds, frame, pole):
     """Per data description: rows, products, and the virtual antennas of each row.
 
     Everything is checked here, before anything is written.
@@ -518,26 +518,54 @@ def _plan(path, meta, descriptions, fields, feeds):
                               "rotation of linear feeds mixes all four, so it cannot be "
                               "removed visibility by visibility; rotate Stokes Q + iU by "
                               "twice the feed rotation after imaging instead")
-        plans.append((dd, rows, products, k1, k2))
+        with pole_context(pole):
+            angles = _Angles(feeds, fields, frame, products, time, meta["FIELD_ID"][rows],
+                             k1, k2)
+        plans.append((dd, rows, products, k1, k2, angles))
     return plans
 
 
+class _Angles:
+    """The receptors' position angles of one data description, computed once for each
+    distinct (epoch, field, virtual antenna) and looked up by the rows of each chunk."""
+
+    def __init__(self, feeds, fields, frame, products, time, field, k1, k2):
+        self.epochs = np.unique(time)
+        self.fields = np.unique(field)
+        self.n_keys = max(feeds.virtual) + 1
+        codes = np.unique(np.concatenate([self._codes(time, field, k1),
+                                          self._codes(time, field, k2)]))
+        keys = codes % self.n_keys
+        rest = codes // self.n_keys
+        field_ids = self.fields[rest % self.fields.size]
+        epochs = self.epochs[rest // self.fields.size]
+        obstime = Time(epochs / 86400.0, format="mjd", scale="utc")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DegenerateGeometryWarning)
+            self.table, _ = receptor_position_angles(
+                feeds.virtual, keys, keys, obstime, fields, field_ids, products=products,
+                frame=frame, where=str(feeds.path))
+        self.codes = codes
+
+    def _codes(self, time, field, keys):
+        t = np.searchsorted(self.epochs, time)
+        f = np.searchsorted(self.fields, field)
+        return (t * self.fields.size + f) * self.n_keys + keys
+
+    def __call__(self, time, field, keys):
+        return self.table[np.searchsorted(self.codes, self._codes(time, field, keys))]
+
+
 class _Block:
-    """One chunk of rows and what correcting it needs; picklable, for dask workers."""
+    """One chunk of rows and its receptors' position angles; picklable, for dask."""
 
-    def __init__(self, rows, products, k1, k2, time, field):
-        self.rows, self.products, self.k1, self.k2 = rows, products, k1, k2
-        self.time, self.field = time, field
+    def __init__(self, rows, products, theta1, theta2):
+        self.rows, self.products, self.theta1, self.theta2 = rows, products, theta1, theta2
 
 
-def _corrected(data, block, virtual, fields, frame, direction, where):
+def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
-    obstime = Time(block.time / 86400.0, format="mjd", scale="utc")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DegenerateGeometryWarning)
-        theta1, theta2 = receptor_position_angles(
-            virtual, block.k1, block.k2, obstime, fields, block.field,
-            products=block.products, frame=frame, where=where)
+    theta1, theta2 = block.theta1, block.theta2
     # One angle pair per row, for every channel.
     correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
                                   block.products, out=data, direction=direction)
@@ -547,34 +575,37 @@ def _corrected(data, block, virtual, fields, frame, direction, where):
     return int(np.count_nonzero(bad))
 
 
-def _remote_block(path, column, block, virtual, fields, frame, direction, pole):
+def _remote_block(path, column, block, direction):
     """A dask task: read a chunk (no read lock: the client holds the write lock) and
     correct it; the client writes it."""
     tables = _tables()
-    with pole_context(pole), contextlib.closing(
-            tables.table(str(path), ack=False, lockoptions="autonoread")) as table, \
+    with contextlib.closing(tables.table(str(path), ack=False,
+                                         lockoptions="autonoread")) as table, \
             contextlib.closing(table.selectrows(block.rows.tolist())) as selection:
         data = selection.getcol(column)
-        return data, _corrected(data, block, virtual, fields, frame, direction, str(path))
+        return data, _corrected(data, block, direction)
 
 
-def _results(work, client, path, column, virtual, fields, frame, direction, pole):
+def _results(work, client, path, column, direction):
     """(block, corrected data or None, NaN rows) in order; dask keeps two per worker going."""
     if client is None:
         for block in work:
             yield block, None, None
         return
     ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
-    pending = []
-    for block in work + [None] * ahead:
-        if block is not None:
-            pending.append((block, client.submit(_remote_block, path, column, block, virtual,
-                                                 fields, frame, direction, pole,
-                                                 pure=False)))
-        if len(pending) > ahead or (block is None and pending):
-            done, future = pending.pop(0)
-            data, bad = future.result()
-            yield done, data, bad
+    blocks, pending = iter(work), []
+    while True:
+        while len(pending) < ahead:
+            block = next(blocks, None)
+            if block is None:
+                break
+            pending.append((block, client.submit(_remote_block, path, column, block,
+                                                 direction, pure=False)))
+        if not pending:
+            return
+        done, future = pending.pop(0)
+        data, bad = future.result()
+        yield done, data, bad
 
 
 def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
@@ -705,27 +736,30 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     antennas = ms_antennas(path, vertical=vertical)
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
-    plans = _plan(path, meta, _descriptions(path), fields, feed_table)
-    work = [_Block(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
-                   meta["TIME"][rows[k:k + step_rows]], meta["FIELD_ID"][rows[k:k + step_rows]])
-            for _, rows, products, k1, k2 in plans for k in range(0, rows.size, step_rows)]
+    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole)
+    chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
+                 angles) for dd, rows, products, k1, k2, angles in plans
+                for k in range(0, rows.size, step_rows)]
     total = meta["TIME"].size
-    nan_rows, done, chunks = 0, sum(block.rows.size for block in work[:resume]), resume
-    work = work[resume:]
-    with _open(path, write=True) as table, pole_context(pole):
+    nan_rows, done, chunks = 0, sum(item[0].size for item in chunking[:resume]), resume
+
+    def blocks():
+        for rows, products, k1, k2, angles in chunking[resume:]:
+            time, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
+            yield _Block(rows, products, angles(time, field, k1), angles(time, field, k2))
+
+    with _open(path, write=True) as table:
         if corrected_column not in table.colnames():
             _add_column(table, data_column, corrected_column)
         try:
-            with progress_steps(progress, len(work)) as step:
-                for block, data, bad in _results(work, client, path, data_column,
-                                                 feed_table.virtual, fields, frame, direction,
-                                                 pole):
+            with progress_steps(progress, len(chunking) - resume) as step:
+                for block, data, bad in _results(blocks(),
+                                                 client, path, data_column, direction):
                     rows = block.rows
                     with contextlib.closing(table.selectrows(rows.tolist())) as selection:
                         if data is None:
                             data = selection.getcol(data_column)
-                            bad = _corrected(data, block, feed_table.virtual, fields, frame,
-                                             direction, str(path))
+                            bad = _corrected(data, block, direction)
                         selection.putcol(corrected_column, data)
                     nan_rows += bad
                     done += rows.size
