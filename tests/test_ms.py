@@ -371,3 +371,25 @@ def test_degenerate_rows_warn_once(circular, monkeypatch):
     with pytest.warns(DegenerateGeometryWarning, match=r"undefined in \d+ of 306 rows"):
         correct_ms(ms)
     assert np.isnan(column(ms, "CORRECTED_DATA")).any()
+
+
+def test_several_data_descriptions_interleaved(tmp_path):
+    # Odd rows in a second data description (same window and products): rows of
+    # one description are not contiguous; the result is that of one description.
+    plain = unpack(tmp_path / "a")
+    model = fill_model(plain)
+    split = unpack(tmp_path / "b")
+    fill_model(split)
+    with table(str(split / "DATA_DESCRIPTION"), readonly=False, ack=False) as dd:
+        dd.copyrows(dd, nrow=1)
+    with table(str(split), readonly=False, ack=False) as t:
+        ddid = t.getcol("DATA_DESC_ID")
+        ddid[1::2] = 1
+        t.putcol("DATA_DESC_ID", ddid)
+    correct_ms(plain, chunk_rows=50)
+    correct_ms(split, chunk_rows=50)
+    np.testing.assert_array_equal(column(split, "CORRECTED_DATA"),
+                                  column(plain, "CORRECTED_DATA"))
+    got = corrected(split, model)
+    np.testing.assert_allclose(got, np.broadcast_to(model["expected"][:, None, :], got.shape),
+                               rtol=0, atol=2e-6)

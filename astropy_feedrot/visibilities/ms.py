@@ -575,14 +575,25 @@ def _corrected(data, block, direction):
     return int(np.count_nonzero(bad))
 
 
+@contextlib.contextmanager
+def _selection(table, rows):
+    """(table, start, count) of the rows: the table itself for a contiguous range, else a
+    selection of them (a reference table)."""
+    if rows[-1] - rows[0] + 1 == rows.size:
+        yield table, int(rows[0]), int(rows.size)
+        return
+    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
+        yield selection, 0, int(rows.size)
+
+
 def _remote_block(path, column, block, direction):
     """A dask task: read a chunk (no read lock: the client holds the write lock) and
     correct it; the client writes it."""
     tables = _tables()
     with contextlib.closing(tables.table(str(path), ack=False,
                                          lockoptions="autonoread")) as table, \
-            contextlib.closing(table.selectrows(block.rows.tolist())) as selection:
-        data = selection.getcol(column)
+            _selection(table, block.rows) as (selection, start, n):
+        data = selection.getcol(column, start, n)
         return data, _corrected(data, block, direction)
 
 
@@ -756,11 +767,11 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                 for block, data, bad in _results(blocks(),
                                                  client, path, data_column, direction):
                     rows = block.rows
-                    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
+                    with _selection(table, rows) as (selection, start, n):
                         if data is None:
-                            data = selection.getcol(data_column)
+                            data = selection.getcol(data_column, start, n)
                             bad = _corrected(data, block, direction)
-                        selection.putcol(corrected_column, data)
+                        selection.putcol(corrected_column, data, start, n)
                     nan_rows += bad
                     done += rows.size
                     chunks += 1
