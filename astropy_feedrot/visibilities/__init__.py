@@ -34,7 +34,13 @@ from .history import APPLY_MARK, HISTORY_MARK
 from .kinds import FILE_KINDS, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
 from .poles import POLES, pole_context
-from .receptors import check_receptors, parse_feeds, receptor_position_angles, with_receptors
+from .receptors import (
+    ReceptorAngleTable,
+    check_receptors,
+    parse_feeds,
+    receptor_position_angles,
+    with_receptors,
+)
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
 from .uvdata import (
     WRITERS,
@@ -60,6 +66,7 @@ __all__ = [
     "POLES",
     "pole_context",
     "receptor_position_angles",
+    "ReceptorAngleTable",
     "check_receptors",
     "with_receptors",
     "parse_feeds",

@@ -29,7 +29,7 @@ from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
-from .receptors import receptor_position_angles, with_receptors
+from .receptors import ReceptorAngleTable, with_receptors
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -330,26 +330,43 @@ def _rows_of(plan, records, name):
     return a1, a2, date, time, source
 
 
-def _correct_chunk(records, plan, antennas, sources, scale, frame, name, direction):
-    """Correct the FLUX of a chunk of records in place; the number of NaN rows."""
+def _row_sources(plan, records, sources, name):
+    """Antennas, Julian dates (one float) and source ids of rows, the ids checked."""
     a1, a2, date, time, source = _rows_of(plan, records, name)
-    n = len(a1)
     if source is None:
         if len(sources) != 1:
             raise FITSFormatError(name, "UV_DATA", "a SOURCE_ID (or SOURCE) column when the "
                                   "SOURCE table has several sources", None,
                                   column="SOURCE_ID")
-        source = np.full(n, next(iter(sources)))
+        source = np.full(len(a1), next(iter(sources)))
     missing = sorted(set(np.unique(source).tolist()) - set(sources))
     if missing:
         raise FITSFormatError(name, "UV_DATA", "source ids of the SOURCE table "
                               f"{sorted(sources)}", str(missing), column=plan.source_column)
-    obstime = Time(date, time, format="jd", scale=scale)
-    theta1, theta2 = receptor_position_angles(
-        antennas, a1, a2, obstime, sources, source, products=plan.products, frame=frame,
-        where=f"{name}, table UV_DATA",
+    return a1, a2, date + time, source
+
+
+def _angle_table(temporary, plan, antennas, sources, scale, frame, name):
+    """The receptors' position angles of every row of one UV_DATA table, computed once
+    per distinct epoch, source and antenna (the rows' few metadata bytes are read)."""
+    records = np.memmap(temporary, dtype=plan.dtype, mode="r", offset=plan.offset,
+                        shape=(plan.rows,))
+    try:
+        a1, a2, jd, source = _row_sources(plan, records, sources, name)
+    finally:
+        del records
+    return ReceptorAngleTable(
+        antennas, jd, source, a1, a2, sources, lambda t: Time(t, format="jd", scale=scale),
+        products=plan.products, frame=frame, where=f"{name}, table UV_DATA",
         hint="the ANTENNA table has no row for it; give the feeds (feeds=Receptors(...), "
              "or --feeds R,L on the command line)")
+
+
+def _correct_chunk(records, plan, table, sources, name, direction):
+    """Correct the FLUX of a chunk of records in place; the number of NaN rows."""
+    a1, a2, jd, source = _row_sources(plan, records, sources, name)
+    n = len(a1)
+    theta1, theta2 = table(jd, source, a1), table(jd, source, a2)
     raw = records["FLUX"]
     # Native single precision, as stored: the correction keeps float32 accuracy
     # and the chunk's extra memory to about twice its size.
@@ -376,42 +393,42 @@ def _correct_chunk(records, plan, antennas, sources, scale, frame, name, directi
     return int(np.count_nonzero(bad))
 
 
-def _chunk_task(temporary, plan, start, stop, antennas, sources, scale, frame, name,
-                direction, pole="itrs"):
+def _chunk_task(temporary, plan, start, stop, table, sources, name, direction):
     """Correct rows [start, stop) of one UV_DATA table of ``temporary`` in place, through
     a memory map of their bytes only; the number of NaN rows. A dask task too: chunks
     are disjoint byte ranges of the file."""
-    with pole_context(pole):
-        records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
-                            offset=plan.offset + start * plan.dtype.itemsize,
-                            shape=(stop - start,))
-        try:
-            count = _correct_chunk(records, plan, antennas, sources, scale, frame, name,
-                                   direction)
-            records.flush()
-        finally:
-            del records
+    records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
+                        offset=plan.offset + start * plan.dtype.itemsize, shape=(stop - start,))
+    try:
+        count = _correct_chunk(records, plan, table, sources, name, direction)
+        records.flush()
+    finally:
+        del records
     return count
 
 
-def _chunks(work, client, temporary, antennas, sources, scale, frame, name, direction, pole):
+def _chunks(work, client, temporary, tables, sources, name, direction):
     """The NaN rows of each chunk, corrected here or, with a client, on dask workers
     (two chunks per worker at a time)."""
     if client is None:
         for plan, start, stop in work:
-            yield _chunk_task(temporary, plan, start, stop, antennas, sources, scale, frame,
-                              name, direction)
+            yield _chunk_task(temporary, plan, start, stop, tables[plan.index], sources, name,
+                              direction)
         return
     ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
-    pending = []
-    for item in list(work) + [None] * ahead:
-        if item is not None:
+    items, pending = iter(work), []
+    while True:
+        while len(pending) < ahead:
+            item = next(items, None)
+            if item is None:
+                break
             plan, start, stop = item
-            pending.append(client.submit(_chunk_task, temporary, plan, start, stop, antennas,
-                                         sources, scale, frame, name, direction, pole,
+            pending.append(client.submit(_chunk_task, temporary, plan, start, stop,
+                                         tables[plan.index], sources, name, direction,
                                          pure=False))
-        if len(pending) > ahead or (item is None and pending):
-            yield pending.pop(0).result()
+        if not pending:
+            return
+        yield pending.pop(0).result()
 
 
 def _check_paths(path, output, overwrite):
@@ -580,9 +597,12 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                      for start in range(0, plan.rows, per_chunk)]
         nan_rows = 0
         total_rows = sum(plan.rows for plan in plans)
-        with progress_steps(progress, len(work)) as step, pole_context(pole):
-            for count in _chunks(work, client, temporary, antennas, sources, scale, frame,
-                                 source, direction, pole):
+        with pole_context(pole):
+            tables = {plan.index: _angle_table(temporary, plan, antennas, sources, scale,
+                                               frame, source) for plan in plans if plan.rows}
+        with progress_steps(progress, len(work)) as step:
+            for count in _chunks(work, client, temporary, tables, sources, source,
+                                 direction):
                 nan_rows += count
                 step()
         os.replace(temporary, target)

@@ -20,7 +20,6 @@ python-casacore is an optional dependency (``pip install
 import contextlib
 import fcntl
 import os
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +36,7 @@ from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
 from .poles import POLES, pole_context
-from .receptors import check_receptors, receptor_position_angles, with_receptors
+from .receptors import ReceptorAngleTable, check_receptors, with_receptors
 
 __all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
 
@@ -519,41 +518,12 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
                               "removed visibility by visibility; rotate Stokes Q + iU by "
                               "twice the feed rotation after imaging instead")
         with pole_context(pole):
-            angles = _Angles(feeds, fields, frame, products, time, meta["FIELD_ID"][rows],
-                             k1, k2)
+            angles = ReceptorAngleTable(
+                feeds.virtual, time, meta["FIELD_ID"][rows], k1, k2, fields,
+                lambda t: Time(t / 86400.0, format="mjd", scale="utc"), products=products,
+                frame=frame, where=str(path))
         plans.append((dd, rows, products, k1, k2, angles))
     return plans
-
-
-class _Angles:
-    """The receptors' position angles of one data description, computed once for each
-    distinct (epoch, field, virtual antenna) and looked up by the rows of each chunk."""
-
-    def __init__(self, feeds, fields, frame, products, time, field, k1, k2):
-        self.epochs = np.unique(time)
-        self.fields = np.unique(field)
-        self.n_keys = max(feeds.virtual) + 1
-        codes = np.unique(np.concatenate([self._codes(time, field, k1),
-                                          self._codes(time, field, k2)]))
-        keys = codes % self.n_keys
-        rest = codes // self.n_keys
-        field_ids = self.fields[rest % self.fields.size]
-        epochs = self.epochs[rest // self.fields.size]
-        obstime = Time(epochs / 86400.0, format="mjd", scale="utc")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DegenerateGeometryWarning)
-            self.table, _ = receptor_position_angles(
-                feeds.virtual, keys, keys, obstime, fields, field_ids, products=products,
-                frame=frame, where=str(feeds.path))
-        self.codes = codes
-
-    def _codes(self, time, field, keys):
-        t = np.searchsorted(self.epochs, time)
-        f = np.searchsorted(self.fields, field)
-        return (t * self.fields.size + f) * self.n_keys + keys
-
-    def __call__(self, time, field, keys):
-        return self.table[np.searchsorted(self.codes, self._codes(time, field, keys))]
 
 
 class _Block:

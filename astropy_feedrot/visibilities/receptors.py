@@ -31,7 +31,8 @@ from ..mounts import FixedAxisMount
 from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
 from .rows import feed_rotation_rows
 
-__all__ = ["receptor_position_angles", "check_receptors", "with_receptors", "parse_feeds"]
+__all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
+           "parse_feeds"]
 
 _POLCONVERT = ("a baseline between linear and circular feeds is not supported (convert one "
                "of them first, e.g. with PolConvert)")
@@ -233,6 +234,83 @@ def receptor_position_angles(antennas, antenna1, antenna2, obstime, sources,
     theta1 = np.stack([phi[:n_rows, 0], phi[n_rows:, 0]], axis=-1) + offset[pos1]
     theta2 = np.stack([phi[:n_rows, 1], phi[n_rows:, 1]], axis=-1) + offset[pos2]
     return theta1, theta2
+
+
+class ReceptorAngleTable:
+    """The receptors' position angles of many rows, computed once for each distinct
+    (time, source, antenna) and looked up by rows.
+
+    A visibility file repeats each epoch and source for every baseline, and is
+    read in chunks: the angles are computed here for all the rows at once, at
+    their distinct epochs (`receptor_position_angles`), and each chunk looks
+    its rows up (`__call__`) instead of running the geometry again.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{key: Antenna}`` with receptors.
+    time : array-like of float, shape (N,)
+        The time of each row, in any unit ``to_time`` understands.
+    source : array-like of int, shape (N,)
+        The source (key of ``sources``) of each row.
+    key1, key2 : array-like of int, shape (N,)
+        The antennas of each row.
+    sources : mapping
+        ``{source key: source}``, as `feed_rotation_rows` takes them.
+    to_time : callable
+        Turns an array of ``time`` values into a `~astropy.time.Time`.
+    products, frame, where, hint
+        As `receptor_position_angles`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import ReceptorAngleTable, with_receptors
+    >>> antennas = with_receptors({1: get_antenna("FD-VLBA"), 2: get_antenna("PIETOWN")},
+    ...                           Receptors("RL", [0, 0] * u.deg))
+    >>> jd = np.array([2459970.3, 2459970.3, 2459970.4])
+    >>> table = ReceptorAngleTable(antennas, jd, [0, 0, 0], [1, 2, 1], [2, 1, 2],
+    ...                            {0: SkyCoord("3h19m48s +41d30m42s")},
+    ...                            lambda t: Time(t, format="jd"), products=["RR"])
+    >>> theta = table(jd, np.zeros(3, int), np.array([1, 2, 1]))
+    >>> theta.shape, bool(theta[0, 0] != theta[1, 0])
+    ((3, 2), True)
+    """
+
+    def __init__(self, antennas, time, source, key1, key2, sources, to_time, *, products,
+                 frame="apparent", where="the data", hint="give the antennas' receptors"):
+        time, source = np.asarray(time, float), np.asarray(source)
+        self.times = np.unique(time)
+        self.sources = np.unique(source)
+        self.n_keys = int(max(antennas)) + 1
+        codes = np.unique(np.concatenate([self._codes(time, source, np.asarray(key1)),
+                                          self._codes(time, source, np.asarray(key2))]))
+        keys = codes % self.n_keys
+        rest = codes // self.n_keys
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DegenerateGeometryWarning)
+            self.table, _ = receptor_position_angles(
+                antennas, keys, keys, to_time(self.times[rest // self.sources.size]),
+                sources, self.sources[rest % self.sources.size], products=products,
+                frame=frame, where=where, hint=hint)
+        self.codes = codes
+
+    def _codes(self, time, source, keys):
+        t = np.searchsorted(self.times, time)
+        s = np.searchsorted(self.sources, source)
+        return (t * self.sources.size + s) * self.n_keys + keys
+
+    def __call__(self, time, source, keys):
+        """The position angles (deg), shape (N, 2), of the receptors of antennas
+        ``keys`` in rows of these times and sources (rows the table was made from)."""
+        return self.table[np.searchsorted(self.codes, self._codes(np.asarray(time, float),
+                                                                  np.asarray(source),
+                                                                  np.asarray(keys)))]
 
 
 def _tile(obstime):
