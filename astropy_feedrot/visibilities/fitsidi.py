@@ -370,17 +370,21 @@ def _correct_chunk(records, plan, table, sources, name, direction):
     raw = records["FLUX"]
     # Native single precision, as stored: the correction keeps float32 accuracy
     # and the chunk's extra memory to about twice its size.
-    flux = np.asarray(raw, dtype=np.float32).reshape((n,) + plan.shape)
-    vis = np.empty(flux.shape[:-1], dtype=np.complex64)
-    vis.real, vis.imag = flux[..., 0], flux[..., 1]
+    flux = raw.astype(np.float32).reshape((n,) + plan.shape)
+    if plan.complex == 2:
+        # (real, imaginary) pairs are complex64 as they lie: corrected in place.
+        vis = flux.view(np.complex64)[..., 0]
+    else:
+        vis = np.empty(flux.shape[:-1], dtype=np.complex64)
+        vis.real, vis.imag = flux[..., 0], flux[..., 1]
     axis = plan.stokes_axis + 1
-    vis = np.moveaxis(vis, axis, -1)
-    expand = (n,) + (1,) * (vis.ndim - 2) + (2,)
-    vis = correct_receptor_visibilities(vis, theta1.reshape(expand) * u.deg,
-                                        theta2.reshape(expand) * u.deg, plan.products,
-                                        conjugate=True, out=vis, direction=direction)
-    vis = np.moveaxis(vis, -1, axis)
-    flux[..., 0], flux[..., 1] = vis.real, vis.imag
+    moved = np.moveaxis(vis, axis, -1)
+    expand = (n,) + (1,) * (moved.ndim - 2) + (2,)
+    correct_receptor_visibilities(moved, theta1.reshape(expand) * u.deg,
+                                  theta2.reshape(expand) * u.deg, plan.products,
+                                  conjugate=True, out=moved, direction=direction)
+    if plan.complex != 2:
+        flux[..., 0], flux[..., 1] = vis.real, vis.imag
     bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
     if bad.any():
         flux[bad, ..., 0:2] = np.nan
@@ -454,8 +458,20 @@ def _copy(source, target, header, header_end):
     """Write ``header`` then the bytes of ``source`` after ``header_end`` to ``target``."""
     with open(source, "rb") as fin, open(target, "wb") as fout:
         fout.write(header.tostring().encode("ascii"))
+        fout.flush()
         fin.seek(header_end)
-        shutil.copyfileobj(fin, fout, 16 * 2**20)
+        try:  # in the kernel where it can (Linux), as shutil.copyfile does
+            offset, size = header_end, os.fstat(fin.fileno()).st_size
+            while offset < size:
+                sent = os.sendfile(fout.fileno(), fin.fileno(), offset, min(size - offset,
+                                                                            2**30))
+                if sent == 0:
+                    break
+                offset += sent
+        except (AttributeError, OSError):
+            fin.seek(header_end)
+            fout.seek(0, os.SEEK_END)
+            shutil.copyfileobj(fin, fout, 16 * 2**20)
 
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
