@@ -346,15 +346,21 @@ def _row_sources(plan, records, sources, name):
     return a1, a2, date + time, source
 
 
-def _angle_table(temporary, plan, antennas, sources, scale, frame, name):
+def _angle_table(temporary, plan, antennas, sources, scale, frame, name, per_chunk):
     """The receptors' position angles of every row of one UV_DATA table, computed once
-    per distinct epoch, source and antenna (the rows' few metadata bytes are read)."""
-    records = np.memmap(temporary, dtype=plan.dtype, mode="r", offset=plan.offset,
-                        shape=(plan.rows,))
-    try:
-        a1, a2, jd, source = _row_sources(plan, records, sources, name)
-    finally:
-        del records
+    per distinct epoch, source and antenna (the rows' few metadata bytes are read, a
+    chunk mapped at a time)."""
+    parts = []
+    for start in range(0, plan.rows, per_chunk):
+        stop = min(start + per_chunk, plan.rows)
+        records = np.memmap(temporary, dtype=plan.dtype, mode="r",
+                            offset=plan.offset + start * plan.dtype.itemsize,
+                            shape=(stop - start,))
+        try:
+            parts.append(_row_sources(plan, records, sources, name))
+        finally:
+            del records
+    a1, a2, jd, source = (np.concatenate(values) for values in zip(*parts))
     return ReceptorAngleTable(
         antennas, jd, source, a1, a2, sources, lambda t: Time(t, format="jd", scale=scale),
         products=plan.products, frame=frame, where=f"{name}, table UV_DATA",
@@ -404,8 +410,9 @@ def _chunk_task(temporary, plan, start, stop, table, sources, name, direction):
     records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
                         offset=plan.offset + start * plan.dtype.itemsize, shape=(stop - start,))
     try:
+        # No msync: the shared mapping's pages are the file's pages in the page cache,
+        # seen by every process, and written out by the kernel as a copy's are.
         count = _correct_chunk(records, plan, table, sources, name, direction)
-        records.flush()
     finally:
         del records
     return count
@@ -615,7 +622,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         total_rows = sum(plan.rows for plan in plans)
         with pole_context(pole):
             tables = {plan.index: _angle_table(temporary, plan, antennas, sources, scale,
-                                               frame, source) for plan in plans if plan.rows}
+                                               frame, source,
+                                               max(1, chunk_bytes // plan.dtype.itemsize))
+                      for plan in plans if plan.rows}
         with progress_steps(progress, len(work)) as step:
             for count in _chunks(work, client, temporary, tables, sources, source,
                                  direction):
