@@ -8,9 +8,9 @@ telescopes and GNSS antennas").
 
 Everything a user calls is importable from here; the modules (``grid``,
 ``stations``, ``tables``...) stay importable for those who want them.
-``astropy_feedrot.uvdata`` (pyuvdata's ``UVData`` objects: antennas, feed
-rotation, correction) is imported on its own, as it needs the optional
-pyuvdata.
+``astropy_feedrot.visibilities`` (visibility files: FITS-IDI, UVFITS,
+Measurement Sets, pyuvdata's ``UVData`` objects) is imported on its own, as
+its formats need the optional pyuvdata and python-casacore.
 """
 
 from .antenna import Antenna, AntennaAngles, FeedRotationTerms
@@ -54,6 +54,7 @@ from .rotators import Rotator
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table
+from .yaw_models import ModelAttitude
 
 try:
     from ._version import version as __version__
@@ -92,6 +93,7 @@ __all__ = [
     "CoordinateOrbit",
     "NominalAttitude",
     "QuaternionAttitude",
+    "ModelAttitude",
     "read_tle",
     "read_sp3",
     "read_orbex",

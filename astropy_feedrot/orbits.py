@@ -26,7 +26,7 @@ from .earth import EarthOrientation, fast_path_applies, orientation_of
 from .eop import iers_context
 from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
-from .io import read_sp3
+from .io import SP3Data, read_sp3
 from .io.tle import check_tle_pair
 from .propagation import propagate
 
@@ -684,8 +684,9 @@ class SP3Orbit(Orbit):
 
     Parameters
     ----------
-    source : str, path-like or file object
-        An SP3-c or SP3-d file.
+    source : str, path-like, file object or `~astropy_feedrot.io.SP3Data`
+        An SP3-c or SP3-d file, or its contents (several days joined by
+        `~astropy_feedrot.io.sp3.join_sp3`, for instance).
     satellite : str
         The satellite's SP3 name, e.g. ``'G05'``.
     points : int, optional
@@ -756,7 +757,7 @@ class SP3Orbit(Orbit):
     """
 
     def __init__(self, source, satellite, points=10):
-        data = read_sp3(source)
+        data = source if isinstance(source, SP3Data) else read_sp3(source)
         if satellite not in data.positions:
             raise ValueError(
                 f"satellite {satellite!r} is not in the SP3 file; it has "

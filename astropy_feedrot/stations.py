@@ -2,21 +2,26 @@
 """A catalogue of antennas: positions, mounts and focus types by name.
 
 The embedded catalogue holds the stations of the VLBI networks (VLBA, EVN and
-e-MERLIN, IVS, KVN, VERA and the EAVN, the LBA, the GMVA, the EHT) and
-reference positions of connected arrays, built by
-``catalogue/build_stations.py`` from public station files (the catalogues of
-the VLBI scheduling program SCHED, the EVN observation planner, casacore's
-observatory table, eht-imaging's EHT array file; see :doc:`/stations`). Each
-row gives the source of its position, mount and focus; a focus that no source
-gives is marked "assumed" with the reason. The paper's antennas come first,
+e-MERLIN, IVS and VGOS, KVN, VERA and the EAVN, the LBA, the GMVA, the EHT, the
+DSN), the pads of the VLA and the ATCA, and reference positions of connected
+arrays, built by ``catalogue/build_stations.py`` from public station files (the
+catalogues of the VLBI scheduling program SCHED, the EVN observation planner,
+casacore's tables, eht-imaging's EHT array files, astropy-data's sites,
+pyuvdata's known telescopes, DiFX's antenna table, the IVS antenna-info file;
+see :doc:`/stations`) and checked against every other source that holds each
+station. Each row gives the source of its position, mount and focus; a focus
+that no source gives is marked "assumed" with the reason. The paper's antennas come first,
 with the positions of its Tables 1 and 3 (DBR205, FD-VLBA, GGAO12M, WETTZ13S),
 its mounts and focus types, and the mirror trains of YEBES40M and WARK30M
 (Appendix C). Mounts are written as the geodetic station-catalogue codes (see
 `astropy_feedrot.labels`).
 
 Names resolve without regard to case, spaces or punctuation: IVS eight-character
-names, two-letter codes and observatory names. A code that two stations share
-is refused as ambiguous, naming both.
+names, two-letter VLBI codes, EHT codes, DSN ``DSS-NN`` names and observatory
+names. A name that several stations share (``KP``, ``Ap``...) is refused as
+ambiguous, naming them and their networks, unless a ``network`` chooses one
+(``get_antenna("KP", network="EHT")``). An unknown name is answered with the
+nearest five names.
 
 A catalogue of one's own is an ECSV file with the same columns; only
 ``name``, ``x``, ``y``, ``z`` and ``mount`` are required.
@@ -361,25 +366,47 @@ class StationCatalogue:
         """`~astropy.table.Table`: A copy of the catalogue's table."""
         return self._table.copy()
 
-    def _row(self, name):
+    def _row(self, name, network=None):
         if not isinstance(name, str):
             raise TypeError(f"an antenna name must be a str, got {type(name).__name__}")
-        if _key(name) in self._index:
-            return self._index[_key(name)]
-        if _key(name) in self._ambiguous:
-            rows = self._ambiguous[_key(name)]
-            raise ValueError(f"ambiguous antenna name {name!r} in {self._origin}: it is an "
-                             f"alias of {' and '.join(self.names[r] for r in rows)}; give "
-                             "one of those names")
+        key = _key(name)
+        candidates = ([self._index[key]] if key in self._index
+                      else list(self._ambiguous.get(key, [])))
+        if network is not None:
+            members = set(self.network_names(network))
+            in_network = [row for row in candidates if self.names[row] in members]
+            if len(in_network) == 1:
+                return in_network[0]
+            if candidates and not in_network:
+                raise ValueError(
+                    f"antenna {name!r} ({' or '.join(self._described(r) for r in candidates)}) "
+                    f"is not a station of the network {network!r} in {self._origin}; give "
+                    "another network, or none")
+        if len(candidates) == 1:
+            return candidates[0]
+        if candidates:
+            # A network that holds exactly one of them chooses it.
+            choosers = [n for r in reversed(candidates) for n in self._networks(r)
+                        if sum(n in self._networks(c) for c in candidates) == 1]
+            how = (f", or the network, e.g. get_antenna({name!r}, network={choosers[0]!r})"
+                   if choosers else "")
+            raise ValueError(
+                f"ambiguous antenna name {name!r} in {self._origin}: it names "
+                f"{' and '.join(self._described(r) for r in candidates)}; give one of those "
+                f"names{how}")
         labels = {}
         for row, station in enumerate(self.names):
             for label in [station, *self._aliases(row)]:
-                labels.setdefault(label.upper(), station)
-        close = difflib.get_close_matches(name.strip().upper(), list(labels), n=5, cutoff=0.6)
-        close = list(dict.fromkeys(labels[label] for label in close))
-        hint = f"; did you mean {' or '.join(close)}?" if close else "."
-        raise ValueError(f"unknown antenna {name!r} in {self._origin}{hint} Known antennas: "
-                         f"{', '.join(self.names)}")
+                labels.setdefault(_key(label), station)
+        close = difflib.get_close_matches(key, list(labels), n=20, cutoff=0.0)
+        nearest = list(dict.fromkeys(labels[label] for label in close))[:5]
+        raise ValueError(f"unknown antenna {name!r} in {self._origin}; the nearest names: "
+                         f"{', '.join(nearest)}")
+
+    def _described(self, row):
+        """A station's name with its networks, for messages."""
+        networks = ", ".join(self._networks(row))
+        return f"{self.names[row]} ({networks})" if networks else self.names[row]
 
     def networks(self):
         """The networks named in the catalogue's ``networks`` column.
@@ -482,7 +509,7 @@ class StationCatalogue:
             return []
         return [a.strip() for a in str(self._table["aliases"][row]).split(",") if a.strip()]
 
-    def location(self, name, epoch=None):
+    def location(self, name, epoch=None, network=None):
         """The position of an antenna, moved to an epoch with its velocity.
 
         Parameters
@@ -492,6 +519,9 @@ class StationCatalogue:
         epoch : `~astropy.time.Time` or str, optional
             Epoch of the position; by default the catalogue's reference epoch
             (the velocity is not applied).
+        network : str, optional
+            A network of `networks` that chooses among the stations sharing
+            ``name`` (e.g. ``"KP"`` is KP-VLBA in the VLBA and KP12 in the EHT).
 
         Returns
         -------
@@ -502,9 +532,12 @@ class StationCatalogue:
         TypeError
             If ``epoch`` is not a time.
         ValueError
-            For an unknown name (close matches are suggested), an ``epoch``
-            that is masked or not a single time, or one so far from the
-            catalogue's that the velocity moves the station off the Earth.
+            For an unknown name (the nearest five names are given), a name
+            that several stations share (they are named, with their
+            networks) and no ``network`` that chooses one, an unknown
+            network, an ``epoch`` that is masked or not a single time, or one
+            so far from the catalogue's that the velocity moves the station
+            off the Earth.
 
         Examples
         --------
@@ -513,7 +546,7 @@ class StationCatalogue:
         >>> loc.z  # doctest: +FLOAT_CMP
         <Quantity -3767192.27540999 m>
         """
-        row = self._row(name)
+        row = self._row(name, network)
         xyz = self._xyz[row]
         if epoch is not None:
             epoch = _epoch(epoch)
@@ -525,7 +558,7 @@ class StationCatalogue:
                               f"{epoch.isot}")
         return EarthLocation.from_geocentric(*xyz)
 
-    def get_antenna(self, name, epoch=None, focus=None):
+    def get_antenna(self, name, epoch=None, focus=None, network=None):
         """The `~astropy_feedrot.Antenna` of a catalogue entry.
 
         Parameters
@@ -537,6 +570,8 @@ class StationCatalogue:
         focus : `~astropy_feedrot.focus.Focus`, optional
             Replaces the catalogue's focus (e.g. ``NasmythFocus("right")``
             instead of YEBES40M's traced mirror train).
+        network : str, optional
+            Chooses among stations that share ``name`` (see `location`).
 
         Returns
         -------
@@ -553,10 +588,12 @@ class StationCatalogue:
         >>> from astropy_feedrot.stations import default_catalogue
         >>> default_catalogue().get_antenna("WARK30M").mount
         AltAzMount()
+        >>> default_catalogue().get_antenna("KP", network="EHT").name
+        'KP12'
         """
-        row = self._row(name)
+        row = self._row(name, network)
         mount, catalogue_focus = self._mount_and_focus(row)
-        return Antenna(self.location(name, epoch), mount,
+        return Antenna(self.location(self.names[row], epoch), mount,
                        focus if focus is not None else catalogue_focus,
                        name=str(self._table["name"][row]), rotator=self._rotator(row))
 
@@ -685,7 +722,7 @@ def read_catalogue(source):
     return StationCatalogue.read(source)
 
 
-def get_antenna(name, catalogue=None, epoch=None, focus=None):
+def get_antenna(name, catalogue=None, epoch=None, focus=None, network=None):
     """An `~astropy_feedrot.Antenna` by name, from the embedded catalogue or one's own.
 
     Parameters
@@ -700,6 +737,10 @@ def get_antenna(name, catalogue=None, epoch=None, focus=None):
         Epoch at which to place the antenna with its catalogue velocity.
     focus : `~astropy_feedrot.focus.Focus`, optional
         Replaces the catalogue's focus.
+    network : str, optional
+        Chooses among the stations that share ``name``: ``"KP"`` is refused
+        as ambiguous (KP-VLBA, KP12), ``get_antenna("KP", network="EHT")``
+        is the EHT's 12 m antenna.
 
     Returns
     -------
@@ -708,8 +749,9 @@ def get_antenna(name, catalogue=None, epoch=None, focus=None):
     Raises
     ------
     TypeError, ValueError
-        For an unknown name (with the close matches), and as
-        `StationCatalogue.get_antenna` and `read_catalogue`.
+        For an unknown name (with the nearest five names), an ambiguous
+        name (naming the stations and how to choose), an unknown network,
+        and as `StationCatalogue.get_antenna` and `read_catalogue`.
 
     Examples
     --------
@@ -717,4 +759,4 @@ def get_antenna(name, catalogue=None, epoch=None, focus=None):
     >>> get_antenna("YEBES40M").focus
     MirrorTrain(<4 mirrors>, feed_rotates=True, name='YEBES40M X')
     """
-    return _as_catalogue(catalogue).get_antenna(name, epoch=epoch, focus=focus)
+    return _as_catalogue(catalogue).get_antenna(name, epoch=epoch, focus=focus, network=network)

@@ -7,10 +7,12 @@ Run from the repository root::
     python catalogue/build_stations.py --output X.ecsv --report Y.txt
 
 Nothing here types a coordinate: every position is read from a saved source
-file (see ``catalogue/sources/README.rst``), and every position is compared
-with a second, independent catalogue; the comparison goes to
-``catalogue/crosscheck.txt``. Reading the casacore ``Observatories`` table
-needs python-casacore.
+file (see ``catalogue/sources/README.rst``), and every position, mount and
+focus is compared with every other source that holds the station
+(``checks.py``); the comparison goes to ``catalogue/crosscheck.txt`` and a
+summary to the terminal. Any disagreement that ``checks.py`` does not list
+with its reason stops the build (exit status 1, nothing written). Reading
+casacore's tables needs python-casacore.
 """
 
 import argparse
@@ -21,47 +23,56 @@ from pathlib import Path
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import EarthLocation
 from astropy.table import Table
+from checks import (
+    ANTINFO,
+    ANTINFO_MOUNTS,
+    DIFX,
+    EHT2025,
+    EHT_NAMES,
+    EHT_NOT_CURRENT,
+    EXCEPTIONS,
+    MOUNT_EXCEPTIONS,
+    PAPER,
+    PYUVDATA,
+    REFERENCE_POINTS,
+    SCHED,
+    SITES,
+    SOURCE_TAGS,
+    SOURCES,
+    TOLERANCES,
+    VPO,
+    crosscheck,
+    failures,
+    is_geodetic,
+    load_sources,
+    mount_checks,
+    name_key,
+    references,
+    source_names,
+    summary,
+)
+from readers import (
+    AXIS_CODES,
+    MOUNT_CODES,
+    read_axistypes,
+    read_locations,
+    read_ms_mounts,
+    read_paper,
+    read_planner,
+    read_sched_stations,
+    validate_axistypes,
+)
 
 HERE = Path(__file__).resolve().parent
-SOURCES = HERE / "sources"
 ROOT = HERE.parent
 OUTPUT = ROOT / "astropy_feedrot" / "data" / "stations.ecsv"
 REPORT = HERE / "crosscheck.txt"
 
-SCHED = "SCHED 1.29.1 catalogs/"          # pythonsched 1.29.1 (PyPI)
-VPO = "vlbiplanobs 4.9.2 data/stations_catalog.inp"
-CASA = "casadata 2025.9.22 geodetic/Observatories"
-EHTIM = "eht-imaging arrays/EHT2017.txt (commit 1b5dc2c)"
-PAPER = "paper"
-
-#: Common epoch (MJD, 2020 Jan 1) at which two geodetic solutions are compared.
-COMPARE_EPOCH = 58849.0
 
 #: Epoch of the paper's simulations (2023 Jan 25, MJD).
 PAPER_EPOCH = 59969.0
 
-#: Tolerance of each kind of cross-check (metres), and what it compares.
-TOLERANCES = {
-    "paper": (0.50, "the paper's Tables 1 and 3 vs SCHED's GSFC position moved to 2023 Jan 25"),
-    "geodetic": (0.10, "one GSFC solution vs an older one (2014a, else 2011a, else 2016a), "
-                       "both moved to 2020.0"),
-    "geodetic-seismic": (1.5, "as geodetic, for stations of eastern Japan whose difference is "
-                              "eastward: the 2011 Mar 11 Tohoku earthquake, whose jump and "
-                              "post-seismic motion the two solutions model differently"),
-    "planner": (150.0, "one telescope in two compiled catalogues (SCHED vs the EVN planner)"),
-    "eht": (150.0, "one telescope in SCHED or the EVN planner vs eht-imaging's EHT2017 file"),
-    "observatory": (3000.0, "a telescope or connected array vs casacore's observatory "
-                            "reference position (array centre, rounded coordinates)"),
-}
-
-#: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
-MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
-
-#: AXISTYPE values of SCHED's locations files (SPAC, a tracking station, has no code here).
-AXIS_CODES = {"ALTZ": "AZEL", "ALTAZ": "AZEL", "ALTA": "AZEL", "EQUA": "EQUA",
-              "XYEW": "X-YE", "XYNS": "X-YN"}
 
 #: Largest distance (m) at which an EVN planner entry is taken to be the same
 #: antenna as a GSFC position, to give it a mount: a nearby but different
@@ -107,186 +118,75 @@ PAPER_ALIASES = {
     "PARKES": ["Parkes", "PA"],
 }
 
-#: Names of casacore's Observatories rows and the station each one is (by
-#: name, no position used).
-OBSERVATORY_NAMES = {
-    "ALMA": "ALMA", "ATCA": "ATCA", "GMRT": "GMRT", "SMA": "SMA", "VLA": "VLA",
-    "ASKAP": "ASKAP", "MeerKAT": "MEERKAT", "NOEMA": "NOEMA", "APEX": "APEX", "SMT": "SMT",
-    "JCMT": "JCMT", "PKS": "PARKES", "MOPRA": "MOPRA", "ARECIBO": "ARECIBO",
-    "GBT": "GBT-VLBA", "Effelsberg": "EFLSBERG", "WSRT": "WB_RT1", "NRO": "NOBEY_45",
-    "FAST": "FAST", "IRAM_PDB": "PDBURE",
+
+#: Connected arrays of pyuvdata's known telescopes: name -> (catalogue name,
+#: the source of the position, why the mount code). A ``fixed`` or ``phased``
+#: array's elements are fixed to the ground: the geodetic code GNSS, a
+#: stationary antenna (astropy_feedrot.labels reads pyuvdata's ``fixed`` so).
+PYUVDATA_ARRAYS = {
+    "ATA": ("ATA", "pyuvdata", "AZEL"),
+    "HERA": ("HERA", "pyuvdata", "GNSS"),
+    "OVRO-LWA": ("OVRO-LWA", "pyuvdata", "GNSS"),
+    "MWA": ("MWA", "sites:mwa", "GNSS"),  # pyuvdata takes MWA's location from astropy
 }
+
+
+#: Stations whose position the catalogue takes from DiFX's antenna_db (the
+#: only source used that holds them off the pole): name -> DiFX name.
+DIFX_POSITIONS = {"SPT": "South Pole"}
+
 
 #: Connected arrays: the network name given to a station by its name.
 CONNECTED = {"VLA": "VLA", "ALMA": "ALMA", "ATCA": "ATCA", "SMA": "SMA", "NOEMA": "NOEMA",
              "PDBURE": "NOEMA", "MEERKAT": "MeerKAT", "GMRT": "GMRT", "ASKAP": "ASKAP",
              "ASKAP32": "ASKAP", "GMRT_C02": "GMRT", "AT_W104": "ATCA"}
 
-#: eht-imaging EHT2017 station names -> SCHED or planner codes (names only).
-EHT_NAMES = {"PV": "Pv", "SMT": "Mg", "SMA": "Sw", "LMT": "Lm", "ALMA": "ALMA",
-             "APEX": "Ap", "JCMT": "Jc", "SPT": "Sz"}
 
+#: EHT stations whose position the catalogue takes from eht-imaging's current
+#: array file: no geodetic solution used here gives them.
+EHT_POSITIONS = {"APEX", "JCMT", "SMA", "SPT", "GREENLAND", "SMT", "ALMA", "NOEMA"}
 
-def _numbers(text, key):
-    found = re.search(rf"\b{key}\s*=\s*([-+0-9.eE]+)", text)
-    return float(found[1]) if found else None
+#: Stations the catalogue must hold: the EHT's current array and the DSN's
+#: 70 m antennas. The build fails if the cross-check leaves one out.
+REQUIRED = {*(name for code, name in EHT_NAMES.items() if code not in EHT_NOT_CURRENT),
+            "DSS14", "TIDBIN64", "DSS63"}
 
+#: Pads of connected arrays in SCHED's locations.dat, by the FRAME of their
+#: entries: (network, the SCHED station whose MOUNT the array's antennas share).
+PADS = {
+    "VLA antenna data Sep. 28, 2011 adjusted to N8 from gsfc2014a.": ("VLA", "VLA27"),
+    "Calculated by offset from AT_W104 pad": ("ATCA", "ATCA"),
+}
 
-def sched_blocks(path):
-    """(text, first line number) of each ``/``-terminated entry, comments removed."""
-    blocks, current, start = [], [], None
-    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
-        line = line.split("!")[0]
-        if not line.strip():
-            continue
-        if start is None:
-            start = number
-        if line.strip() == "/":
-            blocks.append((" ".join(current), start))
-            current, start = [], None
-        else:
-            current.append(line)
-    return blocks
+#: Pads whose position SCHED derives from another pad's: confirmed when that
+#: pad is (no other source holds them).
+DERIVED_FROM = {"Calculated by offset from AT_W104 pad": "AT_W104"}
 
+#: The EVN planner's entries that are not the antenna its code first matches:
+#: section -> catalogue name (names only).
+PLANNER_STATIONS = {"Robledo 70": "DSS63", "Robledo 34": "DSS65A", "ARO12m": "KP12",
+                    "Usuda": "USUDA64", "Tidbinbilla-70": "TIDBIN64", "VLA 27": "VLA"}
 
-def _word(text, key):
-    found = re.search(rf"\b{key}\s*=\s*'([^']*)'|\b{key}\s*=\s*(\S+)", text)
-    if not found:
-        return None
-    return (found[1] if found[1] is not None else found[2]).strip()
+#: Other names by which users know a station (the DSN's DSS-NN names come from
+#: the station names; these are common names no source file spells).
+COMMON_NAMES = {
+    "GBT-VLBA": ["GBT", "Green Bank 100m"],
+    "DSS63": ["Robledo 70", "Madrid 70m", "DSS-63"],
+    "DSS14": ["Goldstone 70m", "Mars"],
+    "TIDBIN64": ["Tidbinbilla 70m", "DSS-43"],
+    "KP12": ["Kitt Peak 12m", "ARO 12m"],
+    "GREENLAND": ["Greenland Telescope"],
+    # SCHED's PDBURE repeats NOEMA's position and is left out: its name stays.
+    "NOEMA": ["PDBURE", "Plateau de Bure"],
+}
 
-
-def read_locations(path):
-    """DBNAME -> the entry valid now (END 100000, latest BEGIN)."""
-    entries = {}
-    for text, line in sched_blocks(path):
-        name = _word(text, "DBNAME")
-        x = _numbers(text, "X")
-        end = _numbers(text, "END")
-        if name is None or x is None or (end is not None and end < 99999):
-            continue
-        begin = _numbers(text, "BEGIN") or 0
-        if name in entries and entries[name]["begin"] > begin:
-            continue
-        vel = [_numbers(text, k) for k in ("DXDT", "DYDT", "DZDT")]
-        entries[name] = dict(
-            begin=begin, xyz=[x, _numbers(text, "Y"), _numbers(text, "Z")],
-            vel=vel if None not in vel else [0.0, 0.0, 0.0],
-            epoch=_numbers(text, "EPOCH") if None not in vel else math.nan,
-            frame=_word(text, "FRAME") or "", line=line)
-    return entries
-
-
-def read_axistypes(path):
-    """DBNAME -> (AXISTYPE, DBCODE or '', line) of a locations file that gives them."""
-    found = {}
-    for text, line in sched_blocks(path):
-        name, axis = _word(text, "DBNAME"), _word(text, "AXISTYPE")
-        if name and axis:
-            found.setdefault(name, (axis.upper(), _word(text, "DBCODE") or "", line))
-    return found
-
-
-def validate_axistypes(axistypes, sched):
-    """Compare an AXISTYPE column with stations.dat's MOUNT: (agreements, disagreements)."""
-    mounts = {}
-    for entry in sched:
-        if entry["dbname"] and entry["mount"]:
-            mounts.setdefault(entry["dbname"], set()).add(
-                MOUNT_CODES.get(entry["mount"].upper(), entry["mount"].upper()))
-    agree, disagree = 0, []
-    for name, (axis, _, line) in sorted(axistypes.items()):
-        if name in mounts:
-            if AXIS_CODES.get(axis, axis) in mounts[name]:
-                agree += 1
-            else:
-                disagree.append((name, axis, sorted(mounts[name])))
-    return agree, disagree
-
-
-def read_sched_stations(path):
-    """SCHED station entries in file order."""
-    stations = []
-    for text, line in sched_blocks(path):
-        name = _word(text, "STATION")
-        if name is None:
-            continue
-        xyz = [_numbers(text, k) for k in ("X", "Y", "Z")]
-        vel = [_numbers(text, k) for k in ("DXDT", "DYDT", "DZDT")]
-        stations.append(dict(
-            station=name, code=_word(text, "STCODE"), dbname=_word(text, "DBNAME"),
-            mount=_word(text, "MOUNT"), line=line, frame=_word(text, "FRAME") or "",
-            xyz=xyz if None not in xyz else None,
-            vel=vel if None not in vel else [0.0, 0.0, 0.0],
-            epoch=_numbers(text, "EPOCH") if None not in vel else math.nan))
-    return stations
-
-
-def read_planner(path):
-    """The EVN planner's stations: [section] blocks of ``key = value``."""
-    stations, current = [], None
-    for number, line in enumerate(path.read_text().splitlines(), 1):
-        line = line.split("#")[0].rstrip()
-        if line.startswith("["):
-            current = {"section": line.strip("[]"), "line": number}
-            stations.append(current)
-        elif "=" in line and current is not None:
-            key, value = line.split("=", 1)
-            current[key.strip()] = value.strip()
-    for station in stations:
-        station["xyz"] = [float(v) for v in station["position"].split(",")]
-        station["networks"] = [n.strip() for n in station.get("networks", "").split(",")
-                               if n.strip()]
-    return stations
-
-
-def read_observatories(path):
-    """casacore's Observatories table: name -> ITRF position (m)."""
-    from casacore.tables import table  # optional: python-casacore
-
-    found = {}
-    with table(str(path), ack=False) as tab:
-        for row in tab:
-            lon, lat, height = row["Long"], row["Lat"], row["Height"]
-            if row["Type"] == "ITRF":  # spherical geocentric, Height is the radius
-                if height < 6e6:
-                    continue
-                lon_r, lat_r = math.radians(lon), math.radians(lat)
-                xyz = [height * math.cos(lat_r) * math.cos(lon_r),
-                       height * math.cos(lat_r) * math.sin(lon_r), height * math.sin(lat_r)]
-            else:
-                loc = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
-                xyz = [float(v.to_value(u.m)) for v in (loc.x, loc.y, loc.z)]
-            found.setdefault(row["Name"], xyz)
-    return found
-
-
-def read_eht(path):
-    rows = {}
-    for line in path.read_text().splitlines():
-        if line.startswith("#") or not line.strip():
-            continue
-        parts = line.split()
-        rows[parts[0]] = dict(xyz=[float(v) for v in parts[1:4]],
-                              fr_par=float(parts[6]), fr_elev=float(parts[7]))
-    return rows
-
-
-def read_paper(path):
-    rows = {}
-    for line in path.read_text().splitlines():
-        parts = [p.strip() for p in line.strip().strip("|").split("|")]
-        if len(parts) == 5 and re.fullmatch(r"[-−]?[0-9]+\.[0-9]+", parts[2]):
-            rows[parts[0]] = [float(p.replace("−", "-")) for p in parts[2:]]
-    return rows
-
-
-def read_ms_mounts(path):
-    """The MOUNT strings of a Measurement Set's ANTENNA table (python-casacore)."""
-    from casacore.tables import table  # optional: python-casacore
-
-    with table(str(path), ack=False) as tab:
-        return sorted(set(tab.getcol("MOUNT")))
+#: VGOS stations (names only, their IVS names; no source used here lists the
+#: network): the broadband antennas of the IVS's VGOS network that the
+#: catalogue holds. AGGO (6 m) and SEJONG (22 m; antenna-info gives both) are
+#: S/X antennas, not VGOS ones, and are not tagged.
+VGOS = {"GGAO12M", "WETTZ13S", "WETTZ13N", "ISHIOKA", "ONSA13NE", "ONSA13SW", "NYALE13N",
+        "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "HOBART12", "KATH12M",
+        "YARRA12M", "WESTFORD"}
 
 
 # A real ALMA Measurement Set (pyuvdata 3.1.3 test data, written by CASA 5.1.1's
@@ -295,23 +195,15 @@ ALMA_MS = ("ALMA Measurement Set X5707_1spw_1scan_10chan_1time_1bl_noatm.ms (pyu
            "test data; CASA 5.1.1 importasdm), ANTENNA table")
 
 
-def _moved(xyz, vel, epoch, to):
-    if math.isnan(epoch):
-        return np.array(xyz)
-    return np.array(xyz) + np.array(vel) * (to - epoch) / 365.25
-
-
 def build():
     locations = read_locations(SOURCES / "sched" / "locations.dat")
     older = read_locations(SOURCES / "sched" / "locations.dat.gsfc_2014a")
-    older_2011 = read_locations(SOURCES / "sched" / "locations.dat.gsfc2011a")
-    later_2016 = read_locations(SOURCES / "sched" / "locations_gsfc2016aplus.dat")
     axis_now = read_axistypes(SOURCES / "sched" / "locations.dat")
     axis_2005 = read_axistypes(SOURCES / "sched" / "locations.dat.2005f")
     sched = read_sched_stations(SOURCES / "sched" / "stations.dat")
     planner = read_planner(SOURCES / "vlbiplanobs" / "stations_catalog.inp")
-    observatories = read_observatories(SOURCES / "casadata" / "Observatories")
-    eht = read_eht(SOURCES / "eht-imaging" / "EHT2017.txt")
+    sources = load_sources()
+    eht, eht_now = sources["eht2017"], sources["eht2025"]
     paper = read_paper(SOURCES / "paper" / "tables_1_and_3.txt")
 
     rows = {}  # name -> row dict
@@ -362,9 +254,17 @@ def build():
                     (entries is older and name in locations):
                 continue
             code, mount_source, dbcode, planner_code = None, "", "", None
-            for axes, axes_file in ((axis_now, "locations.dat"),
+            # locations.dat's AXISTYPE, else the IVS antenna-info file, else the
+            # 2005f AXISTYPE (which writes 'altz' for some polar and X-Y mounts).
+            info = sources["antinfo"].get(name)
+            for axes, axes_file in ((axis_now, "locations.dat"), (None, "antinfo"),
                                     (axis_2005, "Master_NRAO/locations.dat.2005f")):
-                if name in axes:
+                if axes is None and info is not None and info["mount"] in ANTINFO_MOUNTS:
+                    code = ANTINFO_MOUNTS[info["mount"]]
+                    mount_source = f"{ANTINFO} line {info['line']} ({info['mount']})"
+                    dbcode = axis_2005.get(name, ("", "", 0))[1]
+                    break
+                if axes is not None and name in axes:
                     axis, dbcode, line = axes[name]
                     code = AXIS_CODES.get(axis)
                     mount_source = f"{SCHED}{axes_file} line {line} (AXISTYPE={axis})"
@@ -378,6 +278,11 @@ def build():
                     planner_code = station["code"].upper()
                     mount_source = (f"{VPO} [{station['section']}] "
                                     f"(mount = {station['mount']})")
+            if code is None and name in VGOS:
+                code = "AZEL"
+                mount_source = ("assumed: alt-az, as every VGOS antenna (the VGOS design: "
+                                "fast-slewing 12-13 m alt-az antennas); no source used gives "
+                                "its mount")
             if code is None:
                 no_mount.append(name)
                 continue
@@ -388,6 +293,28 @@ def build():
                 position_source=f"{SCHED}{file_name} line {loc['line']} ({loc['frame']})",
                 mount_source=mount_source, focus_source="", checks=[])
 
+    # 1c. The pads of the VLA and the ATCA in SCHED's locations.dat (the
+    # antennas move between them): alt-az antennas, as SCHED's VLA and ATCA
+    # stations say.
+    station_line = {entry["station"]: entry["line"] for entry in sched}
+    by_key = {name_key(name): name for name in rows}
+    for name, loc in locations.items():
+        array = PADS.get(loc["frame"])
+        if array is None or name in rows:
+            continue
+        network, station = array
+        if name_key(name) in by_key:  # the pad is a geodetic station (VLA-N8): one row
+            rows[by_key[name_key(name)]]["networks"].add(network)
+            continue
+        rows[name] = dict(
+            name=name, aliases=[], networks={network}, xyz=loc["xyz"], vel=loc["vel"],
+            epoch=loc["epoch"], mount="AZEL", focus="cassegrain", frame=loc["frame"],
+            sched_codes=set(),
+            position_source=f"{SCHED}locations.dat line {loc['line']} ({loc['frame']})",
+            mount_source=f"{SCHED}stations.dat line {station_line[station]} ({station}: "
+                         f"MOUNT=ALTAZ, the antennas of the {network})",
+            focus_source="", checks=[])
+
     # 2. The EVN planner: networks for SCHED stations (same code, within 5 km),
     # and stations SCHED lacks.
     for station in planner:
@@ -397,7 +324,10 @@ def build():
             distance = float(np.linalg.norm(np.subtract(row["xyz"], station["xyz"])))
             if distance < 5000 and (code in row["sched_codes"] or code[:2] in row["sched_codes"]):
                 near.append((distance, row["name"]))
-        if near:
+        if station["section"] in PLANNER_STATIONS and \
+                PLANNER_STATIONS[station["section"]] in rows:
+            row = rows[PLANNER_STATIONS[station["section"]]]
+        elif near:
             row = rows[min(near)[1]]
         else:
             mount = station.get("mount")
@@ -415,7 +345,8 @@ def build():
                 focus_source="", checks=[])
         row["planner"] = station
         row["aliases"] += [station["section"], station["code"], station["station"]]
-        row["networks"].update(n for n in station["networks"])
+        # The EHT tag comes from eht-imaging's current array file (step 4).
+        row["networks"].update(n for n in station["networks"] if n != "EHT")
 
     # 3. The paper's antennas: positions of its Tables 1 and 3, mounts and
     # focus types of the paper.
@@ -435,30 +366,75 @@ def build():
                    focus_source=focus_source)
         row["aliases"] += PAPER_ALIASES.get(name, [])
 
-    # 4. Focus types: eht-imaging's feed-rotation coefficients (Nasmyth
-    # stations), else assumed.
-    by_code = {}
-    for row in rows.values():
-        codes = set(row["sched_codes"])
-        if "planner" in row:
-            codes.add(row["planner"]["code"].upper())
-        for code in codes:
-            by_code.setdefault(code, []).append(row["name"])
-    for eht_name, code in EHT_NAMES.items():
-        targets = by_code.get(code.upper(), [])
-        if len(targets) != 1 or eht_name not in eht:
+    # 3b. Connected arrays of pyuvdata's known telescopes: reference positions
+    # and the mount pyuvdata states.
+    for key, (name, where, code) in PYUVDATA_ARRAYS.items():
+        entry = sources["pyuvdata"][key]
+        if where == "pyuvdata":
+            xyz, source = entry["xyz"], f"{PYUVDATA} line {entry['line']} ({key}: " \
+                f"{entry['citation']})"
+        else:
+            site = sources["sites"][where.split(":")[1]]
+            xyz, source = site["xyz"], f"{SITES} ({where.split(':')[1]}: {site['source']})"
+        stationary = code == "GNSS"
+        rows[name] = dict(
+            name=name, aliases=[key], networks={name}, xyz=xyz, vel=[0.0] * 3,
+            epoch=math.nan, frame="", sched_codes=set(), mount=code,
+            focus="" if stationary else "cassegrain", position_source=source,
+            mount_source=f"{PYUVDATA} line {entry['line']} (mount_type "
+                         f"'{entry['mount_type']}'" + ("; elements fixed to the ground)"
+                                                       if stationary else ")"),
+            focus_source=("none: elements fixed to the ground have no focus that moves"
+                          if stationary else
+                          "assumed: Cassegrain; pyuvdata gives none (the ATA's offset "
+                          "Gregorian optics give the same feed rotation)"),
+            checks=[])
+
+    # 4. The EHT: its current array (eht-imaging's EHT2025.txt), positions
+    # of the stations no geodetic solution gives, and the focus each file states.
+    for eht_name, coeff in eht_now.items():
+        if eht_name in EHT_NOT_CURRENT:
             continue
-        row = rows[targets[0]]
-        coeff = eht[eht_name]
-        if coeff["fr_elev"] and row["mount"] == "AZEL":
-            side = "right" if coeff["fr_elev"] > 0 else "left"
-            row["mount"] = "NASR" if side == "right" else "NASL"
-            row["focus"] = f"nasmyth-{side}"
-            row["mount_source"] += (f"; Nasmyth from {EHTIM} FR_ELEV_ANGLE="
-                                    f"{coeff['fr_elev']:+g}")
-            row["focus_source"] = f"{EHTIM}: FR_ELEV_ANGLE={coeff['fr_elev']:+g}"
-        row["eht"] = coeff
+        row = rows[EHT_NAMES[eht_name]]
+        row["networks"].add("EHT")
         row["aliases"].append(eht_name)
+        if row["name"] in DIFX_POSITIONS:
+            entry = sources["difx"][DIFX_POSITIONS[row["name"]]]
+            row.update(xyz=entry["xyz"], vel=[0.0] * 3, epoch=math.nan, frame="",
+                       position_source=f"{DIFX} line {entry['line']} ({entry['name']})")
+        elif row["name"] in EHT_POSITIONS:
+            row.update(xyz=coeff["xyz"], vel=[0.0] * 3, epoch=math.nan, frame="",
+                       position_source=f"{EHT2025} line {coeff['line']} ({eht_name})")
+    for tag, table in (("eht2025", eht_now), ("eht2017", eht)):
+        for eht_name, coeff in table.items():
+            row = rows.get(EHT_NAMES.get(eht_name, ""))
+            if row is None or eht_name in EHT_NOT_CURRENT or not coeff["fr_par"] or \
+                    row["focus_source"] or row["name"] in PAPER_FOCUS:
+                continue
+            label = f"{SOURCE_TAGS[tag][0]} line {coeff['line']} ({eht_name}): " \
+                    f"FR_PAR_ANGLE={coeff['fr_par']:+g}, FR_ELEV_ANGLE={coeff['fr_elev']:+g}"
+            if coeff["fr_elev"]:
+                side = "right" if coeff["fr_elev"] > 0 else "left"
+                row["mount"] = "NASR" if side == "right" else "NASL"
+                row["focus"] = f"nasmyth-{side}"
+                row["mount_source"] += f"; Nasmyth from {label}"
+            elif row["mount"] == "AZEL":
+                row["focus"] = "cassegrain"
+            row["focus_source"] = label
+            if coeff["fr_offset"]:
+                row["feed_offset"] = coeff["fr_offset"]
+                row["feed_offset_source"] = f"{label}, FR_OFFSET={coeff['fr_offset']:g} deg"
+    for row in rows.values():
+        info = sources["antinfo"].get(row["name"])
+        if row["focus_source"] or info is None or row["mount"] in ("NASR", "NASL", "BWG"):
+            continue
+        if info["focus"] == "FO_PRIM":
+            row["focus"] = "prime"
+            row["focus_source"] = f"{ANTINFO} line {info['line']} (FO_PRIM: prime focus)"
+        elif info["focus"] == "FO_SECN":
+            row["focus_source"] = (f"assumed: Cassegrain; {ANTINFO} line {info['line']} gives "
+                                   "a secondary focus (FO_SECN), which may also be a Nasmyth "
+                                   "or beam-waveguide one")
     for row in rows.values():
         if row["focus_source"]:
             continue
@@ -473,77 +449,48 @@ def build():
                                    "(a prime or Gregorian focus gives the same feed rotation; "
                                    "a Nasmyth or beam-waveguide focus would not)")
 
-    # 5. Connected arrays and the DSN by name.
+    # 5. Networks and names by name: connected arrays, the DSN, VGOS; the
+    # names of the other sources that hold the station.
     for row in rows.values():
         for label in [row["name"], *row["aliases"]]:
             network = CONNECTED.get(str(label).upper().replace(" ", "")) or \
                 CONNECTED.get(str(label))
             if network:
                 row["networks"].add(network)
-        if "DSS" in row["name"] or any(str(a).startswith("DSS") for a in row["aliases"]):
+        dss = [str(a) for a in [row["name"], *row["aliases"]]
+               if re.fullmatch(r"DSS[0-9]+A?", str(a))]
+        if dss:
             row["networks"].add("DSN")
+            row["aliases"] += [f"DSS-{d[3:].rstrip('A')}" for d in dss]
+        if row["name"] in VGOS:
+            row["networks"].add("VGOS")
+        row["aliases"] += COMMON_NAMES.get(row["name"], [])
+        row["refs"] = references(row, sources)
+        row["aliases"] += [alias for ref in row["refs"]
+                           for alias in source_names(sources, ref)]
 
-    # 6. Cross-checks, best second catalogue first.
-    observatory_of = {}
-    for obs_name, station in OBSERVATORY_NAMES.items():
-        observatory_of.setdefault(station, []).append(obs_name)
+    # 6. Cross-checks against every source that holds the station.
     for row in rows.values():
-        xyz = np.array(row["xyz"], dtype=float)
-        if row.get("position_source", "").startswith(PAPER) and row["name"] in locations:
-            other = locations[row["name"]]
-            there = _moved(other["xyz"], other["vel"], other["epoch"], PAPER_EPOCH)
-            row["checks"].append(("paper", float(np.linalg.norm(xyz - there)),
-                                  f"{SCHED}locations.dat line {other['line']}"))
-        label_set = {str(a).upper() for a in [row["name"], *row["aliases"]]}
-        # One other GSFC solution (never a choice among several): 2014a,
-        # else 2011a, else 2016a, the first that lists the station from a
-        # solution other than the position's own.
-        if row["frame"].startswith("GSFC"):
-            for other_file, solution in (("locations.dat.gsfc_2014a", older),
-                                         ("locations.dat.gsfc2011a", older_2011),
-                                         ("locations_gsfc2016aplus.dat", later_2016)):
-                other = solution.get(row["name"])
-                if other is None or other["frame"] == row["frame"] or \
-                        other["frame"].startswith("VLA"):
-                    continue
-                here = _moved(xyz, row["vel"], row["epoch"], COMPARE_EPOCH)
-                there = _moved(other["xyz"], other["vel"], other["epoch"], COMPARE_EPOCH)
-                kind = "geodetic-seismic" if row["name"] in TOHOKU else "geodetic"
-                row["checks"].append((kind, float(np.linalg.norm(here - there)),
-                                      f"{SCHED}Master_NRAO/{other_file} line "
-                                      f"{other['line']}"))
-                break
-        if "planner" in row and not row["position_source"].startswith(VPO):
-            row["checks"].append(("planner", float(np.linalg.norm(
-                xyz - row["planner"]["xyz"])), f"{VPO} [{row['planner']['section']}]"))
-        if "eht" in row and row["eht"]["xyz"][0] != 0.01:
-            row["checks"].append(("eht", float(np.linalg.norm(xyz - row["eht"]["xyz"])),
-                                  EHTIM))
-        for obs_name, station in OBSERVATORY_NAMES.items():
-            if station.upper() in label_set and obs_name in observatories:
-                row["checks"].append(("observatory", float(np.linalg.norm(
-                    xyz - observatories[obs_name])), f"{CASA} ({obs_name})"))
+        row["checks"] = crosscheck(row["name"], row["xyz"], row["vel"], row["epoch"],
+                                   is_geodetic(row["position_source"]), row["refs"], sources)
+        row["mount_checks"] = mount_checks(row, sources)
 
-    # Stations whose position no second catalogue confirms are left out.
-    # The paper's antennas are kept with the paper as their source even where
-    # no catalogue used here lists them (DBR205, a GNSS antenna; GGAO12M and
-    # WETTZ13S, whose SCHED names differ).
-    kept = [row for row in rows.values() if _best(row) is not None or row["name"] in PAPER_FOCUS]
-    left_out = sorted(row["name"] for row in rows.values()
-                      if _best(row) is None and row["name"] not in PAPER_FOCUS)
-    mount_checks = {
+    # A station is kept if another source confirms its position, or if its
+    # position is the current GSFC VLBI solution (the best there is) and no
+    # other source used holds it; a kept station must agree with every source.
+    confirmed = [row for row in rows.values()
+                 if any(c["status"] != "FAIL" for c in row["checks"])
+                 or (not row["checks"] and "locations.dat line" in row["position_source"]
+                     and row.get("frame", "").startswith("GSFC Jan. 12, 2020"))]
+    confirmed += [row for row in rows.values() if row not in confirmed and
+                  rows.get(DERIVED_FROM.get(row.get("frame"), "")) in confirmed]
+    kept = [row for row in rows.values() if row in confirmed or row["name"] in PAPER_FOCUS]
+    left_out = sorted(row["name"] for row in rows.values() if row not in kept)
+    axis_checks = {
         "locations.dat": validate_axistypes(axis_now, sched),
         "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched),
     }
-    return kept, left_out, sorted(no_mount), mount_checks
-
-
-def _best(row):
-    """The first comparison, in the order of TOLERANCES, within its tolerance."""
-    within = [c for c in row["checks"] if c[1] <= TOLERANCES[c[0]][0]]
-    if not within:
-        return None
-    return min(within, key=lambda c: list(TOLERANCES).index(c[0]))
+    return kept, left_out, sorted(no_mount), axis_checks
 
 
 def _clean_aliases(rows):
@@ -559,12 +506,17 @@ def _clean_aliases(rows):
         row["aliases"] = keep
 
 
+def largest(row):
+    """The largest position difference to a source (reference points aside), or None."""
+    checks = [c for c in row["checks"] if c["status"] != "reference point"]
+    return max(checks, key=lambda c: c["distance"]) if checks else None
+
+
 def to_table(rows):
     order = {name: i for i, name in enumerate(PAPER_ORDER)}
     rows = sorted(rows, key=lambda r: (order.get(r["name"], len(order)), r["name"]))
     _clean_aliases(rows)
-    best = [_best(row) or ("none", math.nan, "none: the paper is the only source")
-            for row in rows]
+    worst = [largest(row) for row in rows]
     table = Table()
     table["name"] = [row["name"] for row in rows]
     table["aliases"] = [",".join(row["aliases"]) for row in rows]
@@ -576,15 +528,17 @@ def to_table(rows):
     table["epoch"] = [row["epoch"] for row in rows]
     table["mount"] = [row["mount"] for row in rows]
     table["focus"] = [row["focus"] for row in rows]
+    table["feed_offset"] = [row.get("feed_offset", 0.0) for row in rows] * u.deg
     table["position_source"] = [row["position_source"] for row in rows]
     table["mount_source"] = [row["mount_source"] for row in rows]
     table["focus_source"] = [row["focus_source"] for row in rows]
+    table["feed_offset_source"] = [row.get("feed_offset_source", "") for row in rows]
     table["rotator"] = [ROTATORS.get(row["name"], ("", ""))[0] for row in rows]
     table["rotator_source"] = [ROTATORS.get(row["name"], ("", ""))[1] for row in rows]
-    table["check_kind"] = [c[0] for c in best]
-    table["check_distance"] = np.round([c[1] for c in best], 4) * u.m
-    table["check_tolerance"] = [TOLERANCES.get(c[0], (math.nan,))[0] for c in best] * u.m
-    table["check_source"] = [c[2] for c in best]
+    table["crosschecks"] = [",".join(row["refs"]) for row in rows]
+    table["largest_difference"] = np.round(
+        [w["distance"] if w else math.nan for w in worst], 3) * u.m
+    table["largest_difference_source"] = [w["ref"] if w else "" for w in worst]
     descriptions = {
         "name": "IVS eight-character name where one exists (SCHED DBNAME)",
         "aliases": "other names, comma-separated (case and punctuation do not matter)",
@@ -594,15 +548,19 @@ def to_table(rows):
         "vz": "velocity in Z", "epoch": "MJD of the position (nan: no velocity model)",
         "mount": "geodetic station-catalogue mount code",
         "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
+        "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
+                       "0 where none does; not applied by get_antenna",
         "position_source": "file and line, or paper table, of the position",
         "mount_source": "where the mount comes from",
         "focus_source": "where the focus comes from, or 'assumed: <reason>'",
+        "feed_offset_source": "where the feed offset comes from",
         "rotator": "field rotator mode (sky: the feed keeps its angle on the sky), or empty",
         "rotator_source": "where the rotator comes from",
-        "check_kind": "kind of the second, independent catalogue position",
-        "check_distance": "distance to the second catalogue's position",
-        "check_tolerance": "tolerance of that kind of comparison",
-        "check_source": "the second catalogue",
+        "crosschecks": "the other sources that hold the station (tag:key, comma-separated; "
+                       "see catalogue/build_stations.py SOURCE_TAGS)",
+        "largest_difference": "largest distance to another source's position at 2020.0 "
+                              "(reference points aside)",
+        "largest_difference_source": "the source of that largest distance",
     }
     for column, text in descriptions.items():
         table[column].description = text
@@ -614,30 +572,41 @@ def to_table(rows):
     return table
 
 
-def report(rows, left_out, no_mount, mount_checks):
-    lines = ["Cross-check of the station catalogue: each position against a second, "
-             "independent catalogue.", "", "Tolerances:"]
+def report(rows, left_out, no_mount, axis_checks):
+    lines = ["Cross-check of the station catalogue: each position against every other "
+             "source that holds the station, both moved to 2020.0.", "", "Tolerances:"]
     for kind, (tol, what) in TOLERANCES.items():
-        lines.append(f"  {kind:16s} {tol:8.2f} m  {what}")
-    lines.append("")
-    for kind in TOLERANCES:
-        d = np.array([c[1] for row in rows for c in row["checks"] if c[0] == kind])
-        if d.size:
-            lines.append(f"{kind:16s} n={d.size:4d}  median {np.median(d):10.3f} m  "
-                         f"max {d.max():10.3f} m  over tolerance "
-                         f"{int(np.sum(d > TOLERANCES[kind][0]))}")
-    lines += ["", "Every comparison (station, kind, distance in m, within tolerance):"]
+        lines.append(f"  {kind:9s} {tol:6.1f} m  {what}")
+    lines += ["", "Sources (tag: file):"]
+    lines += [f"  {tag:10s} {name}" for tag, (name, _) in SOURCE_TAGS.items()]
+    lines += ["", summary(rows), "",
+              "Exceptions beyond the tolerance (station, source: limit, reason):"]
+    lines += [f"  {s:10s} {t:10s} {limit:8.1f} m  {why}"
+              for (s, t), (limit, why) in sorted(EXCEPTIONS.items())]
+    lines += ["", "Reference points (station, source: what the source's position is):"]
+    lines += [f"  {s:10s} {t:10s} {limit:8.0f} m  {why}"
+              for (s, t), (limit, why) in sorted(REFERENCE_POINTS.items())]
+    lines += ["", "Mount and focus statements not followed (station, source: reason):"]
+    lines += [f"  {s:10s} {t:10s} {why}" for (s, t), why in sorted(MOUNT_EXCEPTIONS.items())]
+    lines += ["", "Every comparison (station, source, kind, distance in m, status):"]
     for row in sorted(rows, key=lambda r: r["name"]):
-        for kind, distance, where in row["checks"]:
-            ok = "ok" if distance <= TOLERANCES[kind][0] else "OVER"
-            lines.append(f"  {row['name']:12s} {kind:16s} {distance:12.3f}  {ok:4s}  {where}")
-    lines += ["", "Left out (no second catalogue confirms the position within tolerance): "
+        for c in row["checks"]:
+            lines.append(f"  {row['name']:12s} {c['ref']:28s} {c['kind']:9s} "
+                         f"{c['distance']:12.3f}  {c['status']}")
+        for ref, stated, status, _ in row["mount_checks"]:
+            lines.append(f"  {row['name']:12s} {ref:28s} {stated:9s} (catalogue: "
+                         f"{row['mount']} {row['focus'] or '-'})  {status}")
+    single = sorted(row["name"] for row in rows if not row["checks"])
+    lines += ["", "Kept with one source (the current GSFC solution, the paper, or an ATCA pad "
+              "that SCHED derives from AT_W104; no other source used holds them): "
+              + (", ".join(single) or "none")]
+    lines += ["", "Left out (no other source confirms the position): "
               + (", ".join(left_out) or "none")]
     lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "
               + (", ".join(no_mount) or "none")]
     lines += ["", "AXISTYPE columns used for mounts, against stations.dat MOUNT on the stations "
               "both give:"]
-    for name, (agree, disagree) in mount_checks.items():
+    for name, (agree, disagree) in axis_checks.items():
         lines.append(f"  {SCHED}{name}: {agree} agree, {len(disagree)} disagree"
                      + "".join(f"; {n} {a} vs {m}" for n, a, m in disagree))
     return "\n".join(lines) + "\n"
@@ -648,17 +617,26 @@ def main(argv=None):
     parser.add_argument("--output", default=str(OUTPUT))
     parser.add_argument("--report", default=str(REPORT))
     args = parser.parse_args(argv)
-    rows, left_out, no_mount, mount_checks = build()
+    rows, left_out, no_mount, axis_checks = build()
     mounts = read_ms_mounts(SOURCES / "alma_ms" / "ANTENNA")
     for row in rows:
         if row["name"] == "ALMA" and mounts == ["ALT-AZ"]:
             row["mount"] = "AZEL"
             row["mount_source"] = f"{ALMA_MS}: MOUNT 'ALT-AZ' for its antennas DA41, DA42"
+    failed = failures(rows)
+    kept = {row["name"] for row in rows}
+    failed += [f"{name}: left out, but the catalogue must hold it (REQUIRED)"
+               for name in sorted(REQUIRED - kept)]
+    if failed:
+        print("Unexplained disagreements (fix the row, or list the reason in "
+              "EXCEPTIONS, REFERENCE_POINTS or MOUNT_EXCEPTIONS):\n  " + "\n  ".join(failed),
+              file=sys.stderr)
+        return 1
     table = to_table(rows)
     table.write(args.output, format="ascii.ecsv", overwrite=True)
-    Path(args.report).write_text(report(rows, left_out, no_mount, mount_checks))
-    print(f"{len(table)} stations written to {args.output}; {len(left_out)} left out",
-          file=sys.stderr)
+    Path(args.report).write_text(report(rows, left_out, no_mount, axis_checks))
+    print(summary(rows))
+    print(f"{len(table)} stations written to {args.output}; {len(left_out)} left out")
     return 0
 
 

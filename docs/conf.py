@@ -58,7 +58,8 @@ def _write_station_table():
                 f"{row['x']:.3f}, {row['y']:.3f}, {row['z']:.3f}",
                 row["mount"], text(row["focus"]), row["position_source"],
                 row["mount_source"], row["focus_source"],
-                f"{row['check_distance']:.3f} m ({row['check_kind']})",
+                (f"{row['largest_difference']:.3f} m ({row['largest_difference_source']})"
+                 if text(row["largest_difference_source"]) else "none: one source"),
             ])
 
 

@@ -225,7 +225,7 @@ def test_the_top_level_is_the_import_surface():
     modules = ["antenna", "attitude", "config", "continuity", "correction", "eop",
                "exceptions", "focus", "grid", "io", "labels", "mounts", "orbits", "planning",
                "plotting", "rotators",
-               "satellite", "stations", "tables"]
+               "satellite", "stations", "tables", "yaw_models"]
     homes = {}
     for module in modules:
         module = importlib.import_module(f"astropy_feedrot.{module}")

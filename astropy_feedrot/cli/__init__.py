@@ -10,7 +10,9 @@ coverage`` tabulates the range of feed rotation that candidate polarization
 calibrators offer a network. ``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
 visibility file with the feed rotation removed, or corrects a Measurement Set
-in place (see `astropy_feedrot.visibilities`).
+in place (see `astropy_feedrot.visibilities`). ``feedrot rinex`` writes a copy
+of a RINEX observation file with the carrier-phase wind-up removed (see
+`astropy_feedrot.gnss`).
 
 Each family of commands is a module of this package (``tables``, ``demo``,
 ``stations``, ``coverage``, ``data``) with a ``register(commands)`` that adds
@@ -34,7 +36,7 @@ from astropy import units as u
 from ..eop import iers_context
 from ..io import FileFormatError
 from ..outputs import TABLE_FORMATS, CommandError
-from . import coverage, data, demo, stations, tables
+from . import coverage, data, demo, rinex, stations, tables
 from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
@@ -53,11 +55,12 @@ def build_parser():
         epilog="examples:\n  feedrot demo\n  feedrot stations\n"
         + "\n".join(text.split("\n", 2)[1] for text in tables.EXAMPLES.values())
         + "\n  feedrot antennas vla.uvfits\n  feedrot correct vla.uvfits -o corrected.uvfits"
+        + "\n  feedrot rinex obs.rnx --sp3 igs.sp3 -o corrected.rnx"
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
     )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    for family in (tables, demo, stations, coverage, data):
+    for family in (tables, demo, stations, coverage, data, rinex):
         family.register(commands)
     return parser
 

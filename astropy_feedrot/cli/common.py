@@ -36,6 +36,7 @@ __all__ = [
     "parse_antenna", "natural_target", "one_source", "read_path", "read_input",
     "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
     "write_table", "add_time_options", "add_natural_options", "add_common_options",
+    "PHASE_UNITS", "add_units_option", "in_units",
 ]
 
 #: Most epochs one command may compute (about 1.6 GB and half a minute for
@@ -51,8 +52,8 @@ CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalac
 
 ANTENNA_HELP = (
     "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
-    "not matter) or a site 'LAT,LON,HEIGHT' in degrees, degrees and metres with "
-    "--mount and --focus"
+    "not matter; NAME@NETWORK for a name two stations share, e.g. KP@EHT) or a site "
+    "'LAT,LON,HEIGHT' in degrees, degrees and metres with --mount and --focus"
 )
 
 
@@ -197,7 +198,9 @@ def parse_antenna(text, args, catalogue):
         if args.mount is not None or args.focus is not None:
             raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
                                f"catalogue station {text!r}")
-        return catalogue.get_antenna(text.strip())
+        # NAME@NETWORK chooses among stations that share a name (KP@EHT).
+        name, _, network = text.strip().partition("@")
+        return catalogue.get_antenna(name.strip(), network=network.strip() or None)
     lat, lon, height = site
     location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
     try:
@@ -344,7 +347,29 @@ def write_table(table, paths, kind):
     write_files(files, then)
 
 
+#: Units of ``--units``: a phase in cycles, radians or degrees.
+PHASE_UNITS = {"cycles": u.cycle, "rad": u.rad, "deg": u.deg}
+
+
+def in_units(table, units, columns):
+    """Convert the angle (and angle-rate) columns of a table to the unit of ``--units``."""
+    unit = PHASE_UNITS[units]
+    for name in columns:
+        if name in table.colnames:
+            quantity = u.Quantity(table[name])
+            target = unit / u.s if quantity.unit.is_equivalent(u.deg / u.s) else unit
+            table[name] = quantity.to(target)
+    return table
+
+
 # Options ----------------------------------------------------------------------------------
+
+
+def add_units_option(parser, default):
+    """Add ``--units cycles|rad|deg``: the unit of phase columns."""
+    parser.add_argument("--units", choices=tuple(PHASE_UNITS), default=default,
+                        help=f"unit of the feed rotation (wind-up) columns: cycles, rad or deg "
+                        f"(default {default}; azimuth and elevation stay in deg)")
 
 
 def add_time_options(parser, required=True):

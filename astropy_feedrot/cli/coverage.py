@@ -47,8 +47,9 @@ def _run_coverage(args):
                 found = list(stations.get_network(name))
             except (KeyError, ValueError):
                 found = None
-        if found is None:
-            found = [stations.get_antenna(name)]
+        if found is None:  # NAME@NETWORK chooses among stations sharing a name (KP@EHT)
+            station, _, network = name.partition("@")
+            found = [stations.get_antenna(station.strip(), network=network.strip() or None)]
         for antenna in found:
             antennas.setdefault(antenna.name, antenna)
     sources = {}
@@ -126,7 +127,8 @@ def register(commands):
         "      --start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     coverage.add_argument("--stations", nargs="+", required=True, metavar="NAME",
-                          help="station names of the catalogue (or names of networks)")
+                          help="station names of the catalogue (or names of networks; "
+                               "NAME@NETWORK for a name two stations share, e.g. KP@EHT)")
     coverage.add_argument("--source", action="append", required=True, metavar="NAME=COORD",
                           help="a source and its coordinates (ICRS), e.g. "
                           "'3C84=03h19m48.16s +41d30m42.1s'; repeat for more")

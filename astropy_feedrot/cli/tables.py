@@ -4,11 +4,15 @@ of the feed rotation of one antenna, or of both antennas of a baseline with
 their rotation delay, over a span of time."""
 
 import argparse
+import warnings
 
+import numpy as np
 from astropy import units as u
+from astropy.table import vstack
 
 from ..attitude import NominalAttitude, QuaternionAttitude
-from ..io import read_tle
+from ..exceptions import OrbitWarning, warn_caller
+from ..io import read_sp3, read_tle
 from ..orbits import SP3Orbit, TLEOrbit
 from ..outputs import CommandError
 from ..satellite import Satellite
@@ -16,10 +20,13 @@ from ..tables import baseline_table, feed_rotation_table
 from .common import (
     ANTENNA_HELP,
     add_common_options,
+    add_units_option,
     add_natural_options,
     add_time_options,
     elevation_limit,
+    in_units,
     natural_target,
+    one_line,
     parse_antenna,
     parse_quantity,
     read_input,
@@ -42,7 +49,8 @@ EXAMPLES = {
     "satellite": """examples:
   feedrot satellite DBR205 --tle gps.tle --sat 41328 \\
       --start 2023-01-25T06:00 --stop 2023-01-25T17:00 --step 30s --min-elevation 10
-  feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G05 --orbex igs.obx -o g05.fits""",
+  feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G05 --orbex igs.obx -o g05.fits
+  feedrot satellite GGAO12M --sp3 igs.sp3 --step 30s --units cycles -o all.ecsv""",
     "baseline": """examples:
   feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 \\
       --stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10
@@ -55,6 +63,10 @@ _SATELLITE_OPTIONS = ("tle", "sp3", "sat", "orbex", "points", "satellite_polariz
 
 
 _NATURAL_OPTIONS = ("source", "ra", "dec", "frame")
+
+#: The columns ``--units`` converts (azimuth and elevation stay in degrees).
+_PHASE_COLUMNS = ("parallactic_angle", "transmitter", "receiver", "total", "continuous",
+                  "windup", "rate")
 
 
 def _given(args, names):
@@ -91,21 +103,42 @@ def _satellite(args):
         orbit = TLEOrbit(record.line1, record.line2, name=record.name)
         return Satellite(orbit, polarization=hand, name=record.name), None
     if args.sp3 is None:
-        raise CommandError("give the satellite's orbit with --tle FILE or --sp3 FILE --sat NAME")
-    if args.sat is None:
-        raise CommandError("--sp3 needs --sat, the satellite's SP3 name (e.g. G05)")
-    name = args.sat.strip()
-    points = 10 if args.points is None else args.points
+        raise CommandError("give the satellite's orbit with --tle FILE or --sp3 FILE [--sat NAME]")
+    data = read_input(read_sp3, args.sp3, "--sp3")
+    points = min(10, len(data.epochs)) if args.points is None else args.points
     if points < 2:
         raise CommandError(f"--points must be at least 2 (epochs of the interpolation window), "
                            f"got {points}")
-    orbit = read_input(SP3Orbit, args.sp3, "--sp3", name, points=points)
+    span = (data.epochs[0].utc, data.epochs[-1].utc)
+    if args.sat is not None:
+        return _sp3_satellite(args, data, args.sat.strip(), points, hand), span
+    if getattr(args, "antennas", None) is not None:
+        raise CommandError("--sp3 needs --sat with two antennas, the satellite's SP3 name "
+                           "(e.g. G05)")
+    satellites, skipped = [], []
+    for name in data.satellites:
+        try:
+            satellites.append(_sp3_satellite(args, data, name, points, hand))
+        except CommandError as error:
+            skipped.append(f"{name} ({str(error).removeprefix('--sp3: ')})")
+    if not satellites:
+        raise CommandError(f"no satellite of {args.sp3} can be interpolated: "
+                           + "; ".join(skipped))
+    if skipped:
+        warn_caller(f"left out: {'; '.join(skipped)}", OrbitWarning)
+    return satellites, span
+
+
+def _sp3_satellite(args, data, name, points, hand):
+    try:
+        orbit = SP3Orbit(data, name, points=points)
+    except ValueError as error:
+        raise CommandError(f"--sp3: {one_line(error)}") from None
     if args.orbex is not None:
         attitude = read_input(QuaternionAttitude.from_orbex, args.orbex, "--orbex", name)
     else:
         attitude = NominalAttitude()
-    satellite = Satellite(orbit, attitude, polarization=hand, name=name)
-    return satellite, (orbit.epochs[0].utc, orbit.epochs[-1].utc)
+    return Satellite(orbit, attitude, polarization=hand, name=name)
 
 
 def _target(args):
@@ -126,8 +159,32 @@ def _run_single(args):
     min_elevation = elevation_limit(args)
     target, span = _target(args)
     times = time_span(args, default=span)
-    table = feed_rotation_table(antenna, target, times, polarization=args.polarization,
-                                min_elevation=min_elevation)
+    if isinstance(target, list):  # every satellite of an SP3 file
+        if args.plot is not None:
+            raise CommandError("--plot draws one satellite; choose it with --sat (e.g. --sat "
+                               f"{target[0].name})")
+        tables = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", OrbitWarning)  # holes: NaN rows, as documented
+            for satellite in target:
+                one = feed_rotation_table(antenna, satellite, times,
+                                          polarization=args.polarization,
+                                          min_elevation=min_elevation)
+                one.add_column([satellite.name] * len(one), name="prn", index=1)
+                tables.append(one)
+        table = vstack(tables, metadata_conflicts="silent")
+        table = table[np.argsort(table["time"].jd, kind="stable")]  # by epoch, then PRN
+        table.meta["target"] = ", ".join(satellite.name for satellite in target)
+    else:
+        table = feed_rotation_table(antenna, target, times, polarization=args.polarization,
+                                    min_elevation=min_elevation)
+        if getattr(args, "sp3", None) is not None:
+            table.add_column([target.name] * len(table), name="prn", index=1)
+    if getattr(args, "sp3", None) is not None:  # the GNSS name of the continuous total
+        table.add_column(table["continuous"], name="windup",
+                         index=table.colnames.index("continuous") + 1)
+    if getattr(args, "units", None) is not None:
+        in_units(table, args.units, _PHASE_COLUMNS)
     write_table(table, paths, "feed_rotation")
     return 0
 
@@ -152,6 +209,8 @@ def _run_baseline(args):
     times = time_span(args, default=span)
     table = baseline_table(first, second, target, times, frequency,
                            polarization=args.polarization, min_elevation=min_elevation)
+    in_units(table, args.units, [f"{antenna}_{name}" for antenna in table.meta["antennas"]
+                                 for name in _PHASE_COLUMNS])
     write_table(table, paths, "baseline")
     return 0
 
@@ -162,10 +221,12 @@ def _add_satellite_options(parser):
     group.add_argument("--sp3", metavar="FILE", help="IGS SP3 orbit file (nominal attitude "
                        "unless --orbex)")
     group.add_argument("--sat", metavar="NAME", help="satellite: SP3 name (G05), or TLE name or "
-                       "catalogue number when the file has several")
+                       "catalogue number when the file has several; without it, every "
+                       "satellite of an SP3 file (one row per epoch and satellite, column prn)")
     group.add_argument("--orbex", metavar="FILE", help="ORBEX attitude quaternions (with --sp3)")
     group.add_argument("--points", metavar="N", type=int,
-                       help="epochs of the SP3 interpolation window (default 10)")
+                       help="epochs of the SP3 interpolation window (default 10, or all epochs "
+                       "of a shorter file)")
     group.add_argument("--satellite-polarization", choices=("RCP", "LCP"), type=str.upper,
                        help="hand the satellite transmits (default RCP, as GNSS satellites)")
 
@@ -189,6 +250,7 @@ def register(commands):
         epilog=EXAMPLES["satellite"], formatter_class=argparse.RawDescriptionHelpFormatter)
     satellite.add_argument("antenna", metavar="ANTENNA", help=ANTENNA_HELP)
     _add_satellite_options(satellite)
+    add_units_option(satellite, "deg")
     add_time_options(satellite, required=False)
     add_common_options(satellite)
     satellite.set_defaults(run=_run_satellite)
@@ -204,6 +266,7 @@ def register(commands):
                           help="observing frequency with a unit (1575.42MHz; plain: MHz)")
     add_natural_options(baseline)
     _add_satellite_options(baseline)
+    add_units_option(baseline, "deg")
     add_time_options(baseline, required=False)
     add_common_options(baseline)
     baseline.set_defaults(run=_run_baseline)

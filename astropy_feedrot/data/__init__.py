@@ -7,6 +7,25 @@
 ``sample.obx``
     An ORBEX file with yaw-steering attitude quaternions (Earth-fixed to body)
     for the same satellites over the first minute. Synthetic.
+``gnss_sample.sp3``, ``gnss_sample.rnx``
+    Synthetic GNSS files made by ``tests/data/gnss/make_samples.py``
+    (`astropy_feedrot.gnss.synthetic`): an SP3-d orbit file of 16 simulated
+    satellites (GPS, Galileo, GLONASS, BeiDou; circular orbits with their
+    systems' planes and periods) over 3 hours at 15 minutes on 2023-01-25,
+    GPS time, long enough for the default 10-point interpolation; and a
+    RINEX 3.04 observation file of the same satellites at 30 s for 20
+    minutes, three frequencies each, seen from GGAO12M. Made-up numbers,
+    not measurements.
+``igs_satellite_metadata.snx``
+    The IGS satellite metadata SINEX file, release 2404 (file created
+    2026-02-04, ``%=SNX 2.02 DLR 26:035:25117``; P. Steigenberger and O.
+    Montenbruck, IGS Satellite Metadata File Description 1.10,
+    doi:10.57677/metadata-sinex), as published at
+    https://files.igs.org/pub/station/general/igs_satellite_metadata.snx;
+    this copy, unchanged (SHA-256 7aaabd25...6859a7db), from the repository
+    nfb2021/canvodpy at commit 3bb22a17 (path
+    ``packages/canvod-readers/src/canvod/readers/gnss_specs/data/``). Read by
+    `~astropy_feedrot.io.read_satellite_metadata`.
 ``stations.ecsv``
     The station catalogue of `astropy_feedrot.stations` (positions cited in
     its header).
@@ -23,7 +42,8 @@ from pathlib import Path
 __all__ = ["sample_file", "SAMPLES"]
 
 #: Names of the shipped sample files.
-SAMPLES = ("sample.sp3", "sample.obx", "stations.ecsv", "vla_day2_8chan.uvfits")
+SAMPLES = ("sample.sp3", "sample.obx", "gnss_sample.sp3", "gnss_sample.rnx",
+           "igs_satellite_metadata.snx", "stations.ecsv", "vla_day2_8chan.uvfits")
 
 
 def sample_file(name):
@@ -31,7 +51,8 @@ def sample_file(name):
 
     Parameters
     ----------
-    name : {'sample.sp3', 'sample.obx', 'stations.ecsv', 'vla_day2_8chan.uvfits'}
+    name : str
+        One of `SAMPLES`.
 
     Returns
     -------

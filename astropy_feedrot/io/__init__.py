@@ -5,6 +5,8 @@
   Earth-fixed satellite positions and clock corrections.
 * `read_orbex` reads the attitude quaternions (``ATT`` records) of ORBEX
   files.
+* `read_satellite_metadata` reads the IGS satellite metadata SINEX file
+  (satellite blocks, PRN assignments).
 * `read_tle` reads the element sets of two- and three-line element files;
   `check_tle_line` and `check_tle_pair` check element lines field by field.
 
@@ -40,8 +42,9 @@ Examples
 ('G01',)
 """
 
-from ._common import FileFormatError
+from ._common import TIME_SYSTEMS, FileFormatError, check_epoch, epochs_to_time
 from .orbex import ORBEXData, read_orbex
+from .sinex import SatelliteMetadata, read_satellite_metadata
 from .sp3 import SP3Data, read_sp3
 from .tle import TLE, check_tle_line, check_tle_pair, read_tle
 
@@ -61,12 +64,17 @@ __all__ = [
     "read_sp3",
     "read_orbex",
     "read_tle",
+    "read_satellite_metadata",
+    "SatelliteMetadata",
     "SP3Data",
     "ORBEXData",
     "TLE",
     "check_tle_line",
     "check_tle_pair",
     "FileFormatError",
+    "TIME_SYSTEMS",
+    "check_epoch",
+    "epochs_to_time",
 ]
 
 

@@ -143,6 +143,14 @@ def check_epoch(fields, time_system):
     ``fields`` start with strings ``year month day hour minute second``: five
     unsigned integers and a decimal number. A second of 60 (a leap second) is
     accepted only for UTC-based time systems.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.io import check_epoch
+    >>> check_epoch("2016 12 31 23 59 60.0".split(), "UTC")
+    (2016, 12, 31, 23, 59, 60.0)
+    >>> check_epoch("2016 12 31 23 59 60.0".split(), "GPS") is None  # no leap second
+    True
     """
     if len(fields) < 6 or not all(_INTEGER.fullmatch(f) for f in fields[:5]):
         return None
@@ -175,6 +183,12 @@ def epochs_to_time(epochs, time_system):
     `~astropy.time.Time`, shape (N,)
         Scale ``'tai'`` for the atomic system times (GPS, GAL, QZS, IRN, BDT,
         TAI, TT), ``'utc'`` for UTC and GLO; format ``'isot'``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.io import epochs_to_time
+    >>> epochs_to_time([(2023, 1, 25, 0, 0, 0.0)], "GPS").isot  # GPS = TAI - 19 s
+    array(['2023-01-25T00:00:19.000'], dtype='<U23')
     """
     scale, offset, _ = TIME_SYSTEMS[time_system]
     arr = np.array(epochs, dtype=float).reshape(-1, 6)

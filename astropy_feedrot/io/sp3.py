@@ -41,6 +41,7 @@ import datetime
 import re
 
 import numpy as np
+from astropy import units as u
 from astropy.time import Time
 
 from ._common import (
@@ -54,7 +55,7 @@ from ._common import (
     readonly,
 )
 
-__all__ = ["SP3Data", "read_sp3"]
+__all__ = ["SP3Data", "read_sp3", "join_sp3"]
 
 #: Clock values at or above this (the format writes 999999.999999) are bad or absent.
 BAD_CLOCK = 999999.0
@@ -475,3 +476,86 @@ def read_sp3(source):
     """
     with open_lines(source) as (name, lines):
         return _Reader(name, lines).read()
+
+
+def join_sp3(sources):
+    """Join the SP3 files of consecutive days (or any sequence of spans) into one.
+
+    Parameters
+    ----------
+    sources : sequence of str, path-like, file object or `SP3Data`
+        The files (read with `read_sp3`) or their contents, in any order.
+
+    Returns
+    -------
+    `SP3Data`
+        Epochs of all files in order, each once; satellites of all files (a
+        satellite absent from a file is NaN at its epochs). Where two files
+        give the same epoch, the first file with a valid position gives it.
+        Holes between files are listed in ``gaps``.
+
+    Raises
+    ------
+    ValueError
+        If ``sources`` is empty, or the files differ in time system, in
+        coordinate system or in epoch interval (naming both).
+
+    Examples
+    --------
+    The sample file split in two and joined again:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.io import read_sp3
+    >>> from astropy_feedrot.io.sp3 import SP3Data, join_sp3
+    >>> whole = read_sp3(sample_file("sample.sp3"))
+    >>> def part(i):
+    ...     return SP3Data(whole.version, whole.time_system, whole.coordinate_system,
+    ...                    whole.satellites, whole.epochs[i],
+    ...                    {s: p[i] for s, p in whole.positions.items()},
+    ...                    {s: c[i] for s, c in whole.clock.items()}, whole.interval)
+    >>> joined = join_sp3([part(slice(2, 4)), part(slice(0, 3))])
+    >>> len(joined.epochs), bool(np.array_equal(joined.positions["G01"], whole.positions["G01"]))
+    (4, True)
+    """
+    datas = [s if isinstance(s, SP3Data) else read_sp3(s) for s in sources]
+    if not datas:
+        raise ValueError("sources is empty; give at least one SP3 file")
+    first = datas[0]
+    for data in datas[1:]:
+        for what in ("time_system", "coordinate_system", "interval"):
+            if getattr(data, what) != getattr(first, what):
+                raise ValueError(f"the SP3 files differ in {what.replace('_', ' ')}: "
+                                 f"{getattr(first, what)!r} and {getattr(data, what)!r}; "
+                                 "join files of one product series")
+    if len(datas) == 1:
+        return first
+    satellites = tuple(dict.fromkeys(s for data in datas for s in data.satellites))
+    seconds = [np.asarray((data.epochs - first.epochs[0]).sec, dtype=float) for data in datas]
+    every = np.concatenate(seconds)
+    # One epoch per cluster of times closer than EPOCH_TOLERANCE.
+    order = np.argsort(every, kind="stable")
+    ordered = every[order]
+    new = np.r_[True, np.diff(ordered) > EPOCH_TOLERANCE]
+    unique = ordered[new]
+    index = np.empty(len(every), dtype=int)
+    index[order] = np.cumsum(new) - 1
+    positions = {s: np.full((len(unique), 3), np.nan) for s in satellites}
+    clock = {s: np.full(len(unique), np.nan) for s in satellites}
+    offset = 0
+    for data, secs in zip(datas, seconds):
+        where = index[offset:offset + len(secs)]
+        offset += len(secs)
+        for s in data.satellites:
+            xyz = data.positions[s]
+            empty = np.isnan(positions[s][where, 0])
+            positions[s][where[empty]] = xyz[empty]
+            empty = np.isnan(clock[s][where])
+            clock[s][where[empty]] = data.clock[s][empty]
+    times = first.epochs[0] + unique * u.s
+    times.format = "isot"
+    step = np.diff(unique)
+    gaps = tuple((i, i + 1) for i in np.flatnonzero(step > first.interval + EPOCH_TOLERANCE))
+    return SP3Data(first.version, first.time_system, first.coordinate_system, satellites,
+                   times, {s: readonly(p) for s, p in positions.items()},
+                   {s: readonly(c) for s, c in clock.items()}, first.interval, gaps)

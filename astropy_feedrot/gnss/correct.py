@@ -1,0 +1,599 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Carrier-phase wind-up removed from the phases of a RINEX observation file.
+
+`correct_rinex` streams a RINEX file (`~astropy_feedrot.gnss.rinex`) in
+blocks of epochs, computes the wind-up of every satellite of the block at
+every epoch of it in one call of the engine (`astropy_feedrot.grid.wind_up`:
+orbits from SP3 files, transmitter attitude nominal or from ORBEX
+quaternions, the receiver a crossed dipole turned by the header's antenna
+zero direction), keeps it continuous along each satellite's arc and
+subtracts it, in cycles, from every carrier phase (``L``) of the satellite.
+
+Conventions
+-----------
+* The wind-up is the feed rotation of a right-hand circularly polarized
+  (RHCP) receiver, the phase rotation of Eq 30 (Beyerle's crossed-dipole
+  form) in cycles. It is the same number of cycles at every frequency of a
+  circularly polarized signal (it is an angle, not a length), so the same
+  value is subtracted from L1, L2, L5, E5b...: ``L_corrected = L - windup``,
+  as Appendix D prescribes for RHCP ("subtract the feed rotation from the
+  measured phase") and as RTKLIB and the IGS models apply it (with their
+  own constants: see :doc:`/gnss`).
+* An arc is a run of epochs of one satellite without a gap longer than
+  ``max_gap``, a loss-of-lock indicator (bit 0 of the LLI) on one of its
+  phases, or an epoch flagged 1 (power failure). Within an arc the wind-up
+  is continuous (Eq 9); an arc starts at the principal value, in
+  [-0.5, 0.5) cycles.
+"""
+
+import os
+import warnings
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import EarthLocation
+from astropy.table import QTable
+from astropy.time import Time
+
+from ..attitude import (
+    Attitude,
+    NominalAttitude,
+    QuaternionAttitude,
+    interpolated_sun_position,
+)
+from ..earth import EarthOrientation
+from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
+from ..frames import check_station_xyz, local_frame
+from ..engine import check_form
+from ..grid import wind_up
+from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
+from ..io.sp3 import join_sp3
+from ..orbits import Orbit, SP3Orbit
+from ..outputs import same_file, write_files
+from ..yaw_models import LAWS, ModelAttitude, default_metadata
+from .rinex import RinexReader, record_times
+from .streams import RinexWriter
+
+__all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]
+
+#: The transmitter attitudes `correct_rinex` offers.
+ATTITUDES = ("nominal", "model", "orbex")
+
+#: Data epochs per block: the working memory of a block is about 1 kB per
+#: observation line (2880 epochs of 40 satellites: about 120 MB at most).
+BLOCK_EPOCHS = 2880
+
+_TWO_PI = 2 * np.pi
+
+
+class RinexCorrection(NamedTuple):
+    """What `correct_rinex` did.
+
+    Attributes
+    ----------
+    output : pathlib.Path
+        The file written.
+    epochs : int
+        Observation epochs (flags 0 and 1) in the file.
+    observations : int
+        Satellite observation records (one satellite at one epoch).
+    phases : int
+        Carrier-phase values changed.
+    arcs : int
+        Satellite arcs along which the wind-up was kept continuous.
+    untouched : dict of str to str
+        Satellites (some of) whose phases were left as they were, and why.
+    windup : `~astropy.table.QTable` or None
+        With ``table=True``: columns ``time`` (`~astropy.time.Time`), ``prn``
+        and ``windup`` (`~astropy.units.Quantity` in cycles, as removed), one
+        row per epoch and satellite in the order of the file.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.gnss import RinexCorrection
+    >>> RinexCorrection("out.rnx", 2, 6, 12, 3, {}).phases
+    12
+    """
+
+    output: Path
+    epochs: int
+    observations: int
+    phases: int
+    arcs: int
+    untouched: dict
+    windup: QTable = None
+
+
+def receiver_axes(xyz, zero_direction=0.0):
+    """East, north and up of a GNSS antenna turned by its zero direction, in ITRS.
+
+    Parameters
+    ----------
+    xyz : array-like, shape (3,)
+        The antenna's geocentric ITRS position in metres.
+    zero_direction : float, optional
+        Azimuth of the antenna's zero direction (its north mark), in degrees
+        from north through east (RINEX ``ANTENNA: ZERODIR AZI``).
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Rows: the antenna's aligned dipole (its "east"), transverse dipole
+        (its "north", along the zero direction) and up (the geodetic
+        vertical), as ``station_axes`` of `~astropy_feedrot.grid.wind_up`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.gnss import receiver_axes
+    >>> axes = receiver_axes([6378137.0, 0, 0], 90.0)  # zero direction east
+    >>> axes[1]  # doctest: +FLOAT_CMP
+    array([0., 1., 0.])
+    """
+    xyz = check_station_xyz(np.asarray(xyz, dtype=float), "the antenna position")
+    east, north, up = local_frame(EarthLocation.from_geocentric(*xyz, unit=u.m))
+    azimuth = np.radians(float(zero_direction))
+    c, s = np.cos(azimuth), np.sin(azimuth)
+    return np.stack([c * east - s * north, c * north + s * east, up])
+
+
+def join_orbex(sources, frame=None):
+    """The attitude quaternions of several ORBEX files, joined per satellite.
+
+    Parameters
+    ----------
+    sources : sequence of str, path-like or file object
+        ORBEX files (one per day, for instance).
+    frame : {'itrs', 'gcrs'}, optional
+        For files that do not give their ``FRAME_TYPE``
+        (see `~astropy_feedrot.QuaternionAttitude.from_orbex`).
+
+    Returns
+    -------
+    dict of str to `~astropy_feedrot.QuaternionAttitude`
+        One attitude per satellite with ``ATT`` records; an epoch given by
+        two files is taken from the first.
+
+    Raises
+    ------
+    ValueError
+        If a file gives no frame and ``frame`` is not given, or the files
+        refer to different frames.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.gnss import join_orbex
+    >>> sorted(join_orbex([sample_file("sample.obx")]))
+    ['E11', 'G01', 'G05']
+    """
+    frames = {"ECEF": "itrs", "ECI": "gcrs"}
+    found = {}
+    chosen = frame
+    for source in sources:
+        data = read_orbex(source)
+        this = frames.get(data.frame_type, frame)
+        if this is None:
+            raise ValueError(f"{source}: the ORBEX file does not give FRAME_TYPE; pass "
+                             "frame='itrs' (Earth-fixed) or frame='gcrs' (celestial)")
+        if chosen is not None and this != chosen:
+            raise ValueError(f"the ORBEX files refer to different frames ({chosen!r} and "
+                             f"{this!r}); give files of one series")
+        chosen = this
+        for sat, (times, quaternions) in data.attitude.items():
+            found.setdefault(sat, []).append((times, np.asarray(quaternions)))
+    attitudes = {}
+    for sat, parts in found.items():
+        times = parts[0][0]
+        seconds = [np.asarray((t - times[0]).sec) for t, _ in parts]
+        every = np.concatenate(seconds)
+        q = np.concatenate([q for _, q in parts])
+        order = np.argsort(every, kind="stable")
+        keep = np.r_[True, np.diff(every[order]) > 1e-6]
+        pick = order[keep]
+        attitudes[sat] = QuaternionAttitude(times[0] + every[pick] * u.s, q[pick],
+                                            frame=chosen)
+    return attitudes
+
+
+class _Satellites:
+    """The orbit and attitude of each PRN, made on first use; why a PRN has none."""
+
+    def __init__(self, sp3, orbex, attitude, points, metadata=None):
+        self.metadata = metadata
+        self.sp3 = sp3
+        self.orbex = orbex
+        self.attitude = attitude
+        self.points = points
+        self.models = {}
+        self.why = {}
+
+    def get(self, prn):
+        if prn in self.models:
+            return self.models[prn]
+        model = None
+        if prn not in self.sp3.positions:
+            self.why[prn] = "not in the SP3 files"
+        elif self.attitude == "orbex" and prn not in self.orbex:
+            self.why[prn] = "no attitude in the ORBEX files"
+        else:
+            try:
+                orbit = SP3Orbit(self.sp3, prn, points=self.points)
+            except ValueError as error:
+                self.why[prn] = f"no usable orbit ({error})"
+            else:
+                if self.attitude == "nominal":
+                    att = NominalAttitude()
+                elif self.attitude == "orbex":
+                    att = self.orbex[prn]
+                else:
+                    att = None
+                    try:
+                        block = self.metadata.block(prn, self.sp3.epochs[0])
+                    except ValueError:
+                        self.why[prn] = "not in the satellite metadata on that date"
+                    else:
+                        if block in LAWS:
+                            att = ModelAttitude.from_metadata(orbit, prn, self.sp3.epochs[0],
+                                                              self.metadata)
+                        else:
+                            self.why[prn] = f"no yaw model for its block {block}"
+                model = None if att is None else (orbit, att)
+        self.models[prn] = model
+        return model
+
+
+def _dipoles(attitudes, times, positions, orientation):
+    """Dipoles (S, T, 3) of the satellites; NaN outside an attitude's coverage."""
+    nominal = [i for i, a in enumerate(attitudes) if a.needs_sun]
+    aligned = np.full(positions.shape, np.nan)
+    transverse = np.full(positions.shape, np.nan)
+    if nominal:
+        a, t = Attitude.dipoles_many([attitudes[i] for i in nominal], times, positions[nominal],
+                                     orientation)
+        aligned[nominal], transverse[nominal] = a, t
+    models = [i for i, a in enumerate(attitudes) if isinstance(a, ModelAttitude)]
+    if models:
+        sun = interpolated_sun_position(orientation)  # once for every modelled satellite
+        for i in models:
+            aligned[i], transverse[i] = attitudes[i].sun_and_dipoles(times, positions[i], sun)
+    for i, attitude in enumerate(attitudes):
+        if attitude.needs_sun or i in models:
+            continue
+        first, last = attitude.epochs[0], attitude.epochs[-1]
+        inside = ((times - first).sec >= -1e-6) & ((last - times).sec >= -1e-6)
+        if np.any(inside):
+            a, t = attitude.dipoles(times[inside], positions[i, inside])
+            aligned[i, inside], transverse[i, inside] = a, t
+    return aligned, transverse
+
+
+class _Continuity:
+    """Eq 9 along each satellite's arcs, across blocks of epochs."""
+
+    def __init__(self, max_gap):
+        self.max_gap = max_gap
+        self.last = {}  # prn -> (seconds, wrapped cycles, whole cycles)
+        self.arcs = 0
+
+    def apply(self, prns, seconds, wrapped, restart):
+        """Continuous wind-up (cycles) of rows given in time order per PRN.
+
+        ``prns`` (R,) object array, ``seconds`` (R,), ``wrapped`` (R,) in
+        [-0.5, 0.5), ``restart`` (R,) bool: a new arc starts at the row.
+        """
+        order = np.lexsort((seconds, prns))
+        p, t, w, r = prns[order], seconds[order], wrapped[order], restart[order]
+        first = np.r_[True, p[1:] != p[:-1]]
+        prev_t = np.r_[np.nan, t[:-1]]
+        prev_w = np.r_[np.nan, w[:-1]]
+        carried = np.zeros(len(p))
+        if len(p):
+            for k in np.flatnonzero(first):
+                state = self.last.get(p[k])
+                if state is None:
+                    prev_t[k], prev_w[k] = -np.inf, np.nan
+                else:
+                    prev_t[k], prev_w[k], carried[k] = state
+        new = r | (t - prev_t > self.max_gap) | np.isnan(prev_w)
+        step = np.where(new, 0.0, np.rint(prev_w - w) + np.where(first, carried, 0.0))
+        start = new | first
+        total = np.cumsum(step)
+        begin = np.maximum.accumulate(np.where(start, np.arange(len(p)), 0))
+        whole = total - total[begin] + step[begin]
+        self.arcs += int(np.count_nonzero(new))
+        last = np.r_[p[1:] != p[:-1], True] if len(p) else np.zeros(0, bool)
+        for k in np.flatnonzero(last):
+            self.last[p[k]] = (t[k], w[k], whole[k])
+        out = np.empty(len(p))
+        out[order] = w + whole
+        return out
+
+
+def _check_output(source, output, overwrite):
+    if isinstance(output, (str, os.PathLike)):
+        path = Path(output).expanduser()
+    else:
+        raise TypeError(f"output must be a path, got {type(output).__name__}")
+    if isinstance(source, (str, os.PathLike)) and same_file(path.resolve(),
+                                                            Path(source).expanduser().resolve()):
+        raise ValueError(f"output {str(output)!r} is the input file, which is never "
+                         "overwritten; choose another name")
+    if path.is_dir():
+        raise ValueError(f"output {str(output)!r} is a directory; give a file name")
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"output {str(output)!r} exists; pass overwrite=True to "
+                              "replace it, or choose another name")
+    if not path.resolve().parent.is_dir():
+        raise FileNotFoundError(f"cannot write {str(output)!r}: directory "
+                                f"{str(path.resolve().parent)!r} does not exist")
+    return path.resolve()
+
+
+def _as_list(value, what):
+    if value is None:
+        return []
+    if isinstance(value, (str, os.PathLike)) or hasattr(value, "readline"):
+        return [value]
+    value = list(value)
+    return value
+
+
+def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300 * u.s,
+                  points=None, position=None, form="beyerle", metadata=None, table=False,
+                  overwrite=False):
+    """Write a copy of a RINEX observation file with the carrier-phase wind-up removed.
+
+    Parameters
+    ----------
+    source : str, path-like or file object
+        The RINEX observation file (2.11, 3.0x or 4.0x; plain, gzip or
+        Hatanaka-compressed).
+    output : str or path-like
+        The file to write (gzip-compressed if its name ends in ``.gz``);
+        never the input. Written to a temporary file beside it and renamed
+        into place at the end: an error leaves no file behind.
+    sp3 : str, path-like, file object or a sequence of them
+        SP3 orbit files covering the observations (several days are joined).
+    orbex : str, path-like, file object or a sequence of them, optional
+        ORBEX attitude files; with them the attitude defaults to ``'orbex'``.
+    attitude : {'nominal', 'model', 'orbex'}, optional
+        The transmitter attitude: nominal yaw steering (Eqs 26-27, default
+        without ``orbex``), the yaw-attitude model of each satellite's block
+        through noon and midnight turns and shadows
+        (`~astropy_feedrot.ModelAttitude`; satellites of blocks without a
+        model are left untouched), or the ORBEX quaternions.
+    max_gap : `~astropy.units.Quantity`, optional
+        A satellite's gap longer than this starts a new arc (default 300 s).
+    points : int, optional
+        Points of the Lagrange interpolation of the orbits (default 10, or
+        the number of epochs of shorter SP3 files).
+    position : array-like, shape (3,), optional
+        The antenna's ITRS position in metres, if the header has no ``APPROX
+        POSITION XYZ`` (or to override it).
+    form : {'beyerle', 'wu'}, optional
+        The crossed-dipole form of Eq 30 (Beyerle 2009, default) or the
+        effective-dipole form of Eq 31 (Wu et al. 1993, as RTKLIB and the IGS
+        analysis centres use it); they differ by up to ~0.01 deg for a
+        receiver whose boresight (up) is not along the line of sight.
+    metadata : str, path-like or `~astropy_feedrot.io.SatelliteMetadata`, optional
+        The IGS satellite metadata SINEX file giving each PRN's block for
+        ``attitude='model'`` (default: the shipped copy, release 2404).
+    table : bool, optional
+        Also return the wind-up removed, one row per epoch and satellite
+        (``RinexCorrection.windup``; its memory grows with the file).
+    overwrite : bool, optional
+        Whether an existing ``output`` may be replaced.
+
+    Returns
+    -------
+    `RinexCorrection`
+
+    Raises
+    ------
+    astropy_feedrot.io.FileFormatError
+        For a RINEX file that breaks its format (a file cut short, a wrong
+        version line, a satellite of a system whose observation types the
+        header does not declare, ...), or an SP3/ORBEX file that breaks
+        its own.
+    ValueError
+        If ``output`` is the input, the SP3 files do not cover the epochs of
+        the observations, the header has no position and ``position`` is
+        not given, or for an unknown ``attitude``.
+    FileExistsError
+        If ``output`` exists and ``overwrite`` is False.
+
+    Warns
+    -----
+    `~astropy_feedrot.OrbitWarning`
+        Once, listing the satellites whose phases were left untouched (all
+        or some of them) and why: not in the SP3 files, no ORBEX attitude,
+        epochs in holes of an orbit or outside the attitude's coverage,
+        degenerate geometry.
+
+    Notes
+    -----
+    Every line of the file is written as read except the ``L`` values that
+    are corrected (their loss-of-lock and signal-strength flags are kept) and
+    one ``COMMENT`` line added before ``END OF HEADER``. The wind-up is that
+    of an RHCP receiver in cycles, subtracted from every carrier phase of a
+    satellite (the same number of cycles at every frequency); an arc starts
+    at its principal value in [-0.5, 0.5) cycles and stays continuous
+    (Eq 9) until a gap longer than ``max_gap``, a loss of lock or an epoch
+    flagged as a power failure. The epochs are read and corrected in blocks
+    of `BLOCK_EPOCHS`, each with one call of the wind-up engine for all its
+    epochs and satellites, so memory stays bounded for any file length.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.gnss import correct_rinex
+    >>> out = os.path.join(tempfile.mkdtemp(), "corrected.rnx")
+    >>> report = correct_rinex(sample_file("gnss_sample.rnx"), out,
+    ...                        sample_file("gnss_sample.sp3"))
+    >>> report.epochs, report.phases, report.arcs, report.untouched
+    (40, 1920, 16, {})
+    """
+    if attitude is None:
+        attitude = "orbex" if orbex is not None else "nominal"
+    form = check_form(form)
+    if attitude not in ATTITUDES:
+        raise ValueError(f"attitude must be one of {ATTITUDES}, got {attitude!r}")
+    orbex_files = _as_list(orbex, "orbex")
+    if attitude == "orbex" and not orbex_files:
+        raise ValueError("attitude='orbex' needs the ORBEX files: pass orbex=")
+    sp3_files = _as_list(sp3, "sp3")
+    max_gap = u.Quantity(max_gap, u.s).to_value(u.s)
+    path = _check_output(source, output, overwrite)
+    orbits = join_sp3(sp3_files)
+    if points is None:
+        points = min(10, len(orbits.epochs))
+    attitudes = join_orbex(orbex_files) if attitude == "orbex" else {}
+    if attitude == "model":
+        if metadata is None:
+            metadata = default_metadata()
+        elif not isinstance(metadata, SatelliteMetadata):
+            metadata = read_satellite_metadata(metadata)
+    satellites = _Satellites(orbits, attitudes, attitude, points, metadata)
+    report = {}
+
+    def write(name):
+        with RinexReader(source) as reader, RinexWriter(name) as writer:
+            header = reader.header
+            xyz = header.position if position is None else np.asarray(position, dtype=float)
+            if xyz is None:
+                raise ValueError(f"{reader.name}: the header gives no APPROX POSITION XYZ; "
+                                 "pass the antenna's position (position=[x, y, z] in metres)")
+            axes = receiver_axes(xyz, header.zero_direction)
+            writer.write_header(header, f"L - WIND-UP (CYCLES, RHCP, {attitude.upper()} ATTITUDE) "
+                                "astropy_feedrot")
+            state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap), form)
+            state.rows = [] if table else None
+            block, epochs = [], 0
+            for record in reader:
+                block.append(record)
+                epochs += record.observations
+                if epochs >= BLOCK_EPOCHS:
+                    state.correct(block, reader.name)
+                    for record in block:
+                        writer.write_record(record)
+                    block, epochs = [], 0
+            state.correct(block, reader.name)
+            for record in block:
+                writer.write_record(record)
+        report.update(state.totals)
+        report["rows"] = state.rows
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OrbitWarning)
+        warnings.simplefilter("ignore", DegenerateGeometryWarning)
+        write_files([(path, write)])
+    untouched = dict(satellites.why)
+    for prn, count in report["gaps"].items():
+        untouched.setdefault(prn, f"{count} epochs in holes of the orbit, outside the attitude "
+                             "or with degenerate geometry")
+    if untouched:
+        listed = "; ".join(f"{prn}: {why}" for prn, why in sorted(untouched.items()))
+        warn_caller(f"phases left untouched: {listed}", OrbitWarning)
+    windup = None
+    if table:
+        rows = report["rows"]
+        if rows:
+            times = Time(np.concatenate([r[0] for r in rows]),
+                         np.concatenate([r[1] for r in rows]), format="jd", scale="tai")
+            times.format = "isot"
+            prns = np.concatenate([r[2] for r in rows]).astype(str)
+            cycles = np.concatenate([r[3] for r in rows])
+        else:
+            times, prns, cycles = Time([], format="jd", scale="tai"), np.array([], str), []
+        windup = QTable({"time": times, "prn": prns, "windup": np.asarray(cycles) * u.cycle})
+        windup.meta.update({"file": str(getattr(source, "name", source)), "attitude": attitude,
+                            "form": form, "polarization": "RCP"})
+    return RinexCorrection(path, report["epochs"], report["observations"], report["phases"],
+                           report["arcs"], untouched, windup)
+
+
+class _Block:
+    """Correct blocks of epoch records, carrying the arcs from block to block."""
+
+    def __init__(self, header, xyz, axes, orbits, satellites, continuity, form):
+        self.form = form
+        self.header = header
+        self.xyz = np.asarray(xyz, dtype=float)
+        self.axes = axes
+        self.orbits = orbits
+        self.satellites = satellites
+        self.continuity = continuity
+        self.fields = {code: header.phase_fields(code) for code in header.obs_types}
+        self.totals = {"epochs": 0, "observations": 0, "phases": 0, "arcs": 0, "gaps": {}}
+        self.rows = None
+        self.first = orbits.epochs[0]
+        self.span = (orbits.epochs[-1] - self.first).sec
+
+    def correct(self, block, name):
+        data = [record for record in block if record.observations]
+        if not data:
+            return
+        times = record_times(data, self.header.time_system)
+        seconds = np.asarray((times - self.first).sec, dtype=float)
+        outside = (seconds < -1e-6) | (seconds > self.span + 1e-6)
+        if np.any(outside):
+            k = int(np.argmax(outside))
+            raise ValueError(
+                f"the SP3 files cover {self.first.isot} to {self.orbits.epochs[-1].isot} "
+                f"{self.first.scale.upper()}, but {name} has observations at "
+                f"{times[k].isot} {times.scale.upper()} (line {data[k].lineno}); give the SP3 "
+                "files of every day the observations span")
+        # Rows: one per satellite observation with an orbit and an attitude.
+        prns = sorted({sat for record in data for sat in record.satellites})
+        models = {prn: self.satellites.get(prn) for prn in prns}
+        usable = [prn for prn in prns if models[prn] is not None]
+        column = {prn: j for j, prn in enumerate(usable)}
+        rows_t, rows_s, rows_new, where = [], [], [], []
+        for t, record in enumerate(data):
+            for i, sat in enumerate(record.satellites):
+                self.totals["observations"] += 1
+                j = column.get(sat)
+                if j is None:
+                    continue
+                fields = self.fields[sat[0]]
+                values, lost = record.phases(i, fields)
+                rows_t.append(t)
+                rows_s.append(j)
+                rows_new.append(lost or record.flag == 1)
+                where.append((record, i, fields, values))
+        self.totals["epochs"] += len(data)
+        if not usable or not rows_t:
+            return
+        orbits = [models[prn][0] for prn in usable]
+        attitudes = [models[prn][1] for prn in usable]
+        orientation = EarthOrientation(times)  # its Sun: 1e-13 rad from the exact one
+        positions = Orbit.positions(orbits, times, orientation)
+        aligned, transverse = _dipoles(attitudes, times, positions, orientation)
+        phase = wind_up(self.xyz[np.newaxis], self.axes[np.newaxis], [True],
+                        np.swapaxes(positions, 0, 1), np.swapaxes(aligned, 0, 1),
+                        np.swapaxes(transverse, 0, 1), form=self.form)[:, 0, :]
+        rows_t = np.asarray(rows_t)
+        rows_s = np.asarray(rows_s)
+        wrapped = phase[rows_t, rows_s] / _TWO_PI
+        good = np.isfinite(wrapped)
+        if not np.all(good):
+            for j, count in zip(*np.unique(rows_s[~good], return_counts=True)):
+                gaps = self.totals["gaps"]
+                gaps[usable[j]] = gaps.get(usable[j], 0) + int(count)
+        names = np.array(usable, dtype=object)[rows_s[good]]
+        total = self.continuity.apply(names, seconds[rows_t[good]], wrapped[good],
+                                      np.asarray(rows_new, dtype=bool)[good])
+        self.totals["arcs"] = self.continuity.arcs
+        if self.rows is not None:
+            tai = times.tai
+            index = rows_t[good]  # rows are in the file's order
+            self.rows.append((tai.jd1[index], tai.jd2[index], names, total))
+        changed = 0
+        kept = (w for w, g in zip(where, good) if g)
+        for (record, i, fields, values), cycles in zip(kept, total):
+            changed += record.subtract(i, fields, values, cycles)
+        self.totals["phases"] += changed

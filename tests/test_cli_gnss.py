@@ -1,0 +1,121 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""``feedrot rinex``."""
+
+import numpy as np
+import pytest
+from astropy import units as u
+from astropy.table import QTable
+
+from astropy_feedrot.cli import main
+from astropy_feedrot.data import sample_file
+
+RNX = str(sample_file("gnss_sample.rnx"))
+SP3 = str(sample_file("gnss_sample.sp3"))
+
+
+def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
+    out, table = tmp_path / "out.rnx", tmp_path / "windup.ecsv"
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--table", str(table)]) == 0
+    assert "1920 carrier phases of 640 observations at 40 epochs corrected, 16 arcs" in \
+        capsys.readouterr().err
+    windup = QTable.read(table)
+    assert len(windup) == 640 and windup["windup"].unit == u.cycle
+    assert list(windup["prn"][:3]) == ["G01", "G02", "G03"]
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "deg.rnx"), "--table",
+                 str(tmp_path / "deg.ecsv"), "--units", "deg"]) == 0
+    degrees = QTable.read(tmp_path / "deg.ecsv")["windup"]
+    # 1 cycle = 360 deg (the unit's definition).
+    np.testing.assert_allclose(degrees.to_value(u.deg), windup["windup"].value * 360)
+    assert (tmp_path / "deg.rnx").read_bytes() == out.read_bytes()
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["-o", "{tmp}/a.crx"], "names a Compact RINEX"),
+    (["-o", RNX], "is the input file, which is never overwritten"),
+    (["-o", "{tmp}/a.rnx", "--attitude", "orbex"], "--attitude orbex needs --orbex"),
+    (["-o", "{tmp}/a.rnx", "--orbex", "x.obx", "--attitude", "nominal"],
+     "--orbex goes with --attitude orbex"),
+    (["-o", "{tmp}/a.rnx", "--position", "1,2"], "--position: expected X,Y,Z"),
+    (["-o", "{tmp}/a.rnx", "--table", "{tmp}/t.txt"], "--table: cannot tell a format"),
+    (["-o", "{tmp}/a.rnx", "--orbex", "{tmp}/none.obx"], "--orbex: no such file '"),
+])
+def test_rinex_errors(tmp_path, capsys, argv, match):
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    assert main(["rinex", RNX, "--sp3", SP3] + argv) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and match in err
+    assert not (tmp_path / "a.rnx").exists()
+
+
+def test_rinex_output_exists(tmp_path, capsys):
+    (tmp_path / "a.rnx").write_text("keep")
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "a.rnx")]) == 1
+    assert "-o/--output: output" in capsys.readouterr().err
+    assert (tmp_path / "a.rnx").read_text() == "keep"
+
+
+# -- satellite commands: every satellite of an SP3 file, units, default interpolation ---------
+
+
+def _table(capsys, *argv):
+    assert main(list(argv)) == 0
+    out, err = capsys.readouterr()
+    return QTable.read(out, format="ascii.ecsv"), err
+
+
+def test_every_satellite_of_an_sp3_file(capsys):
+    table, err = _table(capsys, "satellite", "GGAO12M", "--sp3", SP3, "--step", "1h")
+    assert err == ""
+    assert table.colnames[:3] == ["time", "prn", "azimuth"]
+    np.testing.assert_array_equal(table["windup"], table["continuous"])
+    assert len(table) == 4 * 16  # 00:00 to 03:00, 16 satellites, by epoch then PRN
+    assert list(table["prn"][:2]) == ["G01", "G02"] and table["time"][15] == table["time"][0]
+    single, _ = _table(capsys, "satellite", "GGAO12M", "--sp3", SP3, "--sat", "E02", "--step",
+                       "1h")
+    rows = table[table["prn"] == "E02"]
+    np.testing.assert_array_equal(rows["total"], single["total"])  # the same computation
+
+
+def test_every_satellite_is_not_plotted(tmp_path, capsys):
+    assert main(["satellite", "GGAO12M", "--sp3", SP3, "--plot", str(tmp_path / "a.png")]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--plot draws one satellite; choose it with --sat" in err
+    assert not (tmp_path / "a.png").exists()
+
+
+def test_default_interpolation_on_the_shipped_sample(capsys):
+    # sample.sp3 has 4 epochs: the window defaults to all of them (a cubic); G05 and E11
+    # have no 4 consecutive valid epochs and are left out with one warning.
+    table, err = _table(capsys, "satellite", "GGAO12M", "--sp3", str(sample_file("sample.sp3")),
+                        "--step", "15min")
+    assert set(table["prn"]) == {"G01"} and len(table) == 4
+    assert err.count("\n") == 1 and "left out: G05 (G05 has no 4 consecutive epochs" in err
+
+
+@pytest.mark.parametrize("command", ["satellite", "baseline"])
+def test_units(capsys, command):
+    second = ["WETTZ13S", "--frequency", "1575.42MHz"] if command == "baseline" else []
+    argv = [command, "GGAO12M"] + second + ["--sp3", SP3, "--sat", "G03", "--step", "1h"]
+    degrees, _ = _table(capsys, *argv)
+    cycles, _ = _table(capsys, *argv, "--units", "cycles")
+    radians, _ = _table(capsys, *argv, "--units", "rad")
+    prefix = "GGAO12M_" if command == "baseline" else ""
+    for name in ("total", "continuous", "transmitter", "parallactic_angle") + (
+            ("windup",) if command == "satellite" else ()):
+        column = prefix + name
+        assert cycles[column].unit == u.cycle and radians[column].unit == u.rad
+        # 1 cycle = 2 pi rad = 360 deg (the units' definitions).
+        np.testing.assert_allclose(cycles[column].value * 360, degrees[column].value)
+        np.testing.assert_allclose(radians[column].value, np.radians(degrees[column].value))
+    assert cycles[prefix + "rate"].unit == u.cycle / u.s
+    assert cycles[prefix + "elevation"].unit == u.deg
+
+
+def test_rinex_model_attitude(tmp_path, capsys):
+    out = tmp_path / "out.rnx"
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--attitude", "model"]) == 0
+    assert "16 arcs" in capsys.readouterr().err
+    assert "MODEL ATTITUDE" in out.read_text()
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "x.rnx"),
+                 "--metadata", str(sample_file("igs_satellite_metadata.snx"))]) == 1
+    assert "--metadata goes with --attitude model" in capsys.readouterr().err
