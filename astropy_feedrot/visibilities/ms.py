@@ -619,7 +619,9 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         The antennas' local vertical (``'geocentric'`` reproduces CASA).
     chunk_rows : int, optional
         Rows read at once (default: 32 MiB of the data column); the extra
-        memory is about twice a chunk, whatever the size of the set.
+        memory is about twice a chunk, plus some 60 bytes per row for the
+        columns that say what each row is (time, antennas, feeds, field, data
+        description).
     progress : bool or callable, optional
         True shows astropy's progress bar; a callable is called as
         ``progress(done, total)`` after each chunk.
