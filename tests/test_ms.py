@@ -393,3 +393,57 @@ def test_several_data_descriptions_interleaved(tmp_path):
     got = corrected(split, model)
     np.testing.assert_allclose(got, np.broadcast_to(model["expected"][:, None, :], got.shape),
                                rtol=0, atol=2e-6)
+
+
+def _ephemeris_field(ms, mjd, ra_deg, dec_deg):
+    """FIELD 0 follows a CASA ephemeris table FIELD/EPHEM0_SRC.tab (MJD, RA, DEC in deg)."""
+    from casacore.tables import makescacoldesc, maketabdesc
+
+    description = maketabdesc([makescacoldesc("MJD", 0.0), makescacoldesc("RA", 0.0),
+                               makescacoldesc("DEC", 0.0)])
+    with table(str(ms / "FIELD" / "EPHEM0_SRC.tab"), description, nrow=len(mjd),
+               ack=False) as eph:
+        eph.putcol("MJD", np.asarray(mjd, float))
+        eph.putcol("RA", np.asarray(ra_deg, float))
+        eph.putcol("DEC", np.asarray(dec_deg, float))
+        eph.putkeyword("posrefsys", "ICRF/ICRS")
+    with table(str(ms / "FIELD"), readonly=False, ack=False) as field:
+        if "EPHEMERIS_ID" not in field.colnames():
+            field.addcols(maketabdesc(makescacoldesc("EPHEMERIS_ID", -1)))
+        field.putcell("EPHEMERIS_ID", 0, 0)
+        field.putcell("PHASE_DIR", 0, np.zeros((1, 2)))  # the offset from the ephemeris
+
+
+def test_ephemeris_field(tmp_path):
+    # A "moving" source whose ephemeris stays at the field's position (ICRS):
+    # the same result as the fixed ICRS field; outside the ephemeris, refused.
+    from astropy.coordinates import FK5, SkyCoord
+
+    fixed = unpack(tmp_path / "a")
+    fill_model(fixed)
+    moving = unpack(tmp_path / "b")
+    fill_model(moving)
+    with table(str(fixed / "FIELD"), ack=False) as field:
+        ra, dec = field.getcell("PHASE_DIR", 0)[0]
+    icrs = SkyCoord(ra * u.rad, dec * u.rad, frame=FK5(equinox="J2000")).icrs
+    with table(str(fixed / "FIELD"), readonly=False, ack=False) as field:
+        field.putcell("PHASE_DIR", 0, np.array([[icrs.ra.rad, icrs.dec.rad]]))
+    field_info = {"type": "direction", "Ref": "ICRS"}
+    with table(str(fixed / "FIELD"), readonly=False, ack=False) as field:
+        keywords = field.getcolkeywords("PHASE_DIR")
+        keywords["MEASINFO"] = field_info
+        field.putcolkeywords("PHASE_DIR", keywords)
+    with table(str(moving), ack=False) as t:
+        times = t.getcol("TIME") / 86400
+    mjd = [times.min() - 0.01, times.max() + 0.01]
+    _ephemeris_field(moving, mjd, [icrs.ra.deg] * 2, [icrs.dec.deg] * 2)
+    correct_ms(fixed)
+    correct_ms(moving)
+    np.testing.assert_allclose(column(moving, "CORRECTED_DATA"), column(fixed, "CORRECTED_DATA"),
+                               rtol=0, atol=1e-6)
+    short = unpack(tmp_path / "c")
+    _ephemeris_field(short, [times.min() - 1, times.min() - 0.5], [icrs.ra.deg] * 2,
+                     [icrs.dec.deg] * 2)
+    with pytest.raises(MSError, match=r"the ephemeris of field .* covers MJD .* give an "
+                                      "ephemeris that spans the observation"):
+        correct_ms(short)
