@@ -630,8 +630,12 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
             p, q = name
             angle = (polarization_sign(p) * theta1[..., index[p]]
                      - polarization_sign(q) * theta2[..., index[q]])
-            np.multiply(values[..., k], np.exp(1j * sign * angle), out=out[..., k],
-                        casting="same_kind")
+            factor = np.exp(1j * sign * angle)
+            if values.dtype == np.complex64:
+                # Single-precision data (visibility files): a factor of the same
+                # precision, so that the multiplication needs no wider copy.
+                factor = factor.astype(np.complex64)
+            np.multiply(values[..., k], factor, out=out[..., k], casting="same_kind")
         return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:
