@@ -551,3 +551,28 @@ def test_not_a_fits_file(tmp_path):
 
 def test_stations_used_by_the_writer_are_in_the_catalogue():
     assert [name for name, _, _ in STATIONS] == ["FD-VLBA", "EFLSBERG", "YEBES40M", "WETTZ13S"]
+
+
+def test_feeds_given_where_the_antenna_table_has_none(tmp_path):
+    # Antenna 2 (EFLSBERG) loses its ANTENNA rows, as a file without receptors
+    # (the ATCA Miriad case): refused, naming --feeds; given, the result is the
+    # writer's model (its receptors are R and L at 0 deg).
+    source, info = run(tmp_path, angles=CIRCULAR_ANGLES)
+
+    def edit(hdul):
+        table = hdul["ANTENNA"]
+        keep = table.data["ANTENNA_NO"] != 2
+        hdul["ANTENNA"] = fits.BinTableHDU(table.data[keep], header=table.header,
+                                           name="ANTENNA")
+
+    bad = rewrite(source, tmp_path / "nofeed.idifits", edit)
+    with pytest.raises(ValueError, match=r"antenna 2 \(EFLSBERG\) has no receptors: the "
+                                         r"ANTENNA table has no row for it; give the feeds .*"
+                                         r"--feeds R,L"):
+        correct_fitsidi(bad, tmp_path / "out.idifits")
+    assert not (tmp_path / "out.idifits").exists()
+    correct_fitsidi(bad, tmp_path / "out.idifits",
+                    feeds={"EFLSBERG": Receptors("RL", [0, 0] * u.deg)})
+    got = corrected_products(tmp_path / "out.idifits", info)
+    np.testing.assert_allclose(got, np.broadcast_to(info["expected"][:, None, None, :],
+                                                    got.shape), atol=2e-6)
