@@ -626,16 +626,19 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
         sign = -sign
     if basis == "circular":
         index = {letter: k for k, letter in enumerate(RECEPTOR_TYPES["circular"])}
-        for k, name in enumerate(names):
+        factors = []
+        for name in names:
             p, q = name
             angle = (polarization_sign(p) * theta1[..., index[p]]
                      - polarization_sign(q) * theta2[..., index[q]])
-            factor = np.exp(1j * sign * angle)
-            if values.dtype == np.complex64:
-                # Single-precision data (visibility files): a factor of the same
-                # precision, so that the multiplication needs no wider copy.
-                factor = factor.astype(np.complex64)
-            np.multiply(values[..., k], factor, out=out[..., k], casting="same_kind")
+            factors.append(np.exp(1j * sign * angle))
+        # One factor per product, then one pass over the data; single-precision
+        # data (visibility files) take single-precision factors, so that the
+        # multiplication needs no wider copy.
+        factor = np.stack(np.broadcast_arrays(*factors), axis=-1)
+        if values.dtype == np.complex64:
+            factor = factor.astype(np.complex64)
+        np.multiply(values, factor, out=out, casting="same_kind")
         return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:
