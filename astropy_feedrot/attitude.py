@@ -282,6 +282,8 @@ def sun_position(obstime):
     0.984
     """
     obstime = as_time(obstime)
+    if obstime.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+        return np.empty(obstime.shape + (3,))
     with iers_context(obstime):
         itrs = _sun_gcrs(obstime).transform_to(ITRS(obstime=obstime))
     return np.moveaxis(itrs.cartesian.xyz.to_value(u.m), 0, -1)

@@ -25,14 +25,16 @@ large the UT1 error may be and what that does to hour and parallactic angles
 
 import contextlib
 import contextvars
+import re
 import time
 import warnings
+from importlib import metadata
 from typing import NamedTuple
 
 import erfa
 import numpy as np
 from astropy import units as u
-from astropy.time import Time
+from astropy.time import Time, update_leap_seconds
 from astropy.utils import iers
 from astropy.utils.exceptions import AstropyWarning
 
@@ -88,7 +90,9 @@ class EarthOrientationStatus(NamedTuple):
     predicted_until: Time
     #: The leap-second table's expiry: later leap seconds are not known.
     leap_seconds_expire: Time
-    #: Days from ``measured_until`` to ``now``.
+    #: Days from the release of the tables to ``now``: astropy-iers-data's
+    #: release date (its version) for the tables it installs, else the last
+    #: measured value.
     age: u.Quantity
     #: First and last (unmasked, finite) epochs; None if there were none.
     first: Time
@@ -173,6 +177,34 @@ def _date(time):
     return time.utc.iso[:10]
 
 
+# Days between the last measured value of the IERS-A tables that astropy-iers-data
+# installs and the date of its release (its version number): a week or two.
+_RELEASE_LAG = 45.0
+
+
+def _release_mjd(measured):
+    """MJD of the release of the tables in use.
+
+    The tables astropy-iers-data installs carry its release date in its
+    version (``0.2026.11.2.0.34.55``: 2026-11-02), a week or two after their
+    last measured value; for any other tables (downloaded, or made by hand),
+    the last measured value stands for it.
+    """
+    try:
+        version = metadata.version("astropy-iers-data")
+    except metadata.PackageNotFoundError:  # pragma: no cover - astropy requires it
+        return measured
+    match = re.match(r"0\.(\d{4})\.(\d{1,2})\.(\d{1,2})", version)
+    if match is None:
+        return measured
+    year, month, day = (int(g) for g in match.groups())
+    try:
+        released = float(erfa.cal2jd(year, month, day)[1])
+    except erfa.ErfaError:
+        return measured
+    return released if 0 <= released - measured <= _RELEASE_LAG else measured
+
+
 def earth_orientation_status(obstime=None, now=None):
     """How well the Earth-orientation tables in use cover some epochs.
 
@@ -227,7 +259,12 @@ def _status(obstime, now):
     start, end, measured = _table_facts()
     now_mjd = (Time.now() if now is None else Time(now)).utc.mjd
     expires = Time(erfa.leap_seconds.expires)
-    age = now_mjd - measured
+    if expires.mjd < now_mjd:
+        # ERFA's built-in table until astropy's first UTC conversion replaces it with its
+        # own (astropy-iers-data's): ask astropy for it.
+        update_leap_seconds()
+        expires = Time(erfa.leap_seconds.expires)
+    age = now_mjd - _release_mjd(measured)
     span = _mjd_range(obstime)
     if span is None:
         first = last = None
@@ -263,36 +300,38 @@ def _status(obstime, now):
 
 def _message(f, stale):
     """The one line of the warning."""
-    tables = (f"the Earth-orientation tables in use (measured values to "
-              f"{_date(f['measured_until'])}, predictions to {_date(f['predicted_until'])}, "
-              f"{f['age'].to_value(u.day):.0f} days old)")
+    tables = (f"the Earth-orientation tables in use ({f['age'].to_value(u.day):.0f} days "
+              "old)")
     parts = []
     if f["before_start"] > 0:
         parts.append(f"epochs from {_date(f['first'])} lie "
-                     f"{f['before_start'].to_value(u.day):.0f} days before {tables} start, "
-                     "where UT1 - UTC and polar motion are held at their first values "
-                     "(errors up to about a second of UT1)")
+                     f"{f['before_start'].to_value(u.day):.0f} days before the "
+                     f"Earth-orientation tables start ({_date(f['table_start'])}), where UT1 "
+                     "- UTC and polar motion are held at their first values (UT1 off by up "
+                     "to about a second)")
     if f["beyond_measured"] > 0:
-        where = f"epochs up to {_date(f['last'])} lie {f['beyond_measured'].to_value(u.day):.0f} " \
-                f"days after the last measured value of {tables}"
+        where = (f"epochs up to {_date(f['last'])} lie {f['beyond_measured'].to_value(u.day):.0f}"
+                 f" days after the last measured value of {tables}")
         if f["beyond_predicted"] > 0:
             where += (f", {f['beyond_predicted'].to_value(u.day):.0f} days past the predictions, "
                       "where UT1 - UTC is held at its last predicted value and polar motion at "
-                      "its 50-year mean (arcsecond level)")
+                      "its mean")
         elif stale:
             where += ", within predictions older than the 30 days astropy accepts"
         parts.append(where)
-        parts.append(f"UT1 may be off by about {f['ut1_error'].to_value(u.s):.2g} s, which "
-                     f"turns hour angles by {f['hour_angle_error'].to_value(u.arcsec):.2g} arcsec "
-                     "and parallactic angles by at most that times cos(lat) / cos(el) "
-                     f"({f['parallactic_angle_error'].to_value(u.arcsec):.2g} arcsec at 80 deg "
-                     "elevation)")
+        parts.append(f"UT1 may be off by {f['ut1_error'].to_value(u.s):.2g} s, which turns hour "
+                     f"angles by {f['hour_angle_error'].to_value(u.arcsec):.2g} arcsec and "
+                     "parallactic angles by up to "
+                     f"{f['parallactic_angle_error'].to_value(u.arcsec):.2g} arcsec at 80 deg "
+                     "elevation")
     if f["last"] is not None and f["last"] > f["leap_seconds_expire"]:
-        parts.append(f"leap seconds after {_date(f['leap_seconds_expire'])} are not known "
-                     "(one would shift UTC epochs by 1 s)")
-    return ("computed anyway: " + "; ".join(parts) + ". Refresh the tables with "
-            "'python -m pip install -U astropy-iers-data', or, online, set "
-            "astropy_feedrot.conf.iers_auto_download = True")
+        parts.append(f"leap seconds after {_date(f['leap_seconds_expire'])} are not known")
+    if stale:
+        parts.append("newer tables: python -m pip install -U astropy-iers-data (or, online, "
+                     "astropy_feedrot.conf.iers_auto_download = True)")
+    elif f["beyond_predicted"] > 0:  # recent tables: no newer ones reach further
+        parts.append("no tables predict further")
+    return "computed anyway: " + "; ".join(parts)
 
 
 class _Scope:

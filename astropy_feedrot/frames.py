@@ -429,10 +429,12 @@ def source_direction(target, location, obstime):
     >>> s.shape
     (2, 3)
     """
-    target = as_skycoord(target)
     location = as_location(location)
     obstime, masked = fill_masked(obstime)
+    target = as_skycoord(target, obstime)
     shape = broadcast_shape(target=target.shape, obstime=obstime.shape)
+    if 0 in shape:  # nothing to compute (astropy 6.0 fails on empty epochs)
+        return np.empty(shape + (3,))
     if masked is not None and masked.all():
         return np.full(shape + (3,), np.nan)
     s = _apparent_direction(at_epochs(target, obstime), location, obstime)

@@ -50,7 +50,7 @@ from .frames import (
 from .orbits import Orbit
 from .polarization import polarization_sign
 from .rotators import rotation_angles
-from .satellite import Satellite
+from .satellite import Satellite, check_transmitter_positions
 
 __all__ = [
     "UNIT_TOLERANCE",
@@ -550,6 +550,8 @@ def _satellite_arrays(satellites, obstime, polarization, masked=None):
                                  f"for obstime of shape {obstime.shape}; a grid needs one "
                                  "position per epoch") from None
         raise
+    for i, sat in enumerate(satellites):
+        check_transmitter_positions(xyz[i], sat.name or f"targets[{i}]")
     if masked is not None:
         xyz[:, masked] = np.nan
     aligned, transverse = Attitude.dipoles_many(attitudes, obstime, xyz, orientation)

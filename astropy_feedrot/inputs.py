@@ -9,10 +9,37 @@ with a message that says what was wrong and how to fix it.
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import BaseCoordinateFrame, EarthLocation, SkyCoord
+from astropy.coordinates import (
+    CIRS,
+    GCRS,
+    ITRS,
+    TEME,
+    TETE,
+    AltAz,
+    BaseCoordinateFrame,
+    EarthLocation,
+    HADec,
+    PrecessedGeocentric,
+    SkyCoord,
+    UnitSphericalRepresentation,
+)
 from astropy.time import Time, TimeDelta
 
-__all__ = ["as_location", "as_time", "as_skycoord", "broadcast_shape"]
+__all__ = ["as_location", "as_time", "as_skycoord", "broadcast_shape",
+           "MIN_GEOCENTRIC_DISTANCE"]
+
+#: A target with a distance closer to the geocentre than this is inside the Earth
+#: (the polar radius is 6,357 km): refused, as kilometres read as metres would be.
+MIN_GEOCENTRIC_DISTANCE = 6.3e6 * u.m
+
+# Frames whose origin is the geocentre, where a distance is a geocentric radius.
+_GEOCENTRIC = (GCRS, CIRS, TETE, TEME, PrecessedGeocentric, ITRS)
+
+# Frames of a site's sky: a direction there depends on the epoch.
+_OBSERVED = (AltAz, HADec)
+
+# The epochs of an observed-frame target and of the observation agree within this.
+_SAME_EPOCH = 1 * u.us
 
 
 def as_location(location, name="location"):
@@ -113,44 +140,147 @@ def as_time(obstime):
         ) from None
 
 
-def as_skycoord(target):
-    """Coerce a celestial ``target`` to `~astropy.coordinates.SkyCoord`.
+def as_skycoord(target, obstime=None):
+    """Coerce a celestial ``target`` to `~astropy.coordinates.SkyCoord`, in one step.
 
     Parameters
     ----------
     target : `~astropy.coordinates.SkyCoord` or coordinate frame with data
-        The observed direction, in any celestial frame.
+        The observed direction (or position), in any frame.
+    obstime : `~astropy.time.Time`, optional
+        The epochs of observation, if known: an `~astropy.coordinates.AltAz`
+        or `~astropy.coordinates.HADec` target must be at these epochs.
 
     Returns
     -------
     `~astropy.coordinates.SkyCoord`
+        The target; one with a proper motion or radial velocity in a frame
+        that depends on time (FK4, GCRS...) is returned in ICRS, with its
+        motion and catalogue epoch, since astropy moves positions in time
+        only in frames that do not.
 
     Raises
     ------
     TypeError
         If ``target`` is not a coordinate.
     ValueError
-        If ``target`` is a frame without coordinate data.
+        If ``target`` is a frame without coordinate data; an AltAz or HADec
+        target without an ``obstime``, or with one other than the epochs of
+        observation; a position closer to the geocentre than
+        `MIN_GEOCENTRIC_DISTANCE` (inside the Earth) in a geocentric frame.
+
+    Notes
+    -----
+    One rule for targets in Earth-bound frames: an `~astropy.coordinates.ITRS`
+    target is fixed on the Earth (a position, or a direction, that turns with
+    it); an AltAz or HADec target is where astropy puts it at its own
+    ``obstime``, which must therefore be the epochs of observation, where
+    both readings agree. Anything else is ambiguous and refused: give a
+    direction fixed in the sky as ICRS (``target.icrs``), one fixed on the
+    Earth as ITRS (``target.itrs``).
 
     Examples
     --------
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import AltAz, EarthLocation
     >>> from astropy_feedrot.inputs import as_skycoord
     >>> as_skycoord(SkyCoord("03h19m48.16s +41d30m42.1s")).shape
     ()
+    >>> site = EarthLocation.from_geodetic(6.88 * u.deg, 50.52 * u.deg, 416 * u.m)
+    >>> as_skycoord(SkyCoord(AltAz(az=30 * u.deg, alt=40 * u.deg, location=site)))
+    Traceback (most recent call last):
+    ...
+    ValueError: target is in AltAz without an obstime: ...
     """
     if isinstance(target, SkyCoord):
-        return target
-    if isinstance(target, BaseCoordinateFrame):
+        coord = target
+    elif isinstance(target, BaseCoordinateFrame):
         if not target.has_data:
             raise ValueError(
                 f"target is a {type(target).__name__} frame without a direction; "
                 "give coordinates, e.g. SkyCoord(ra=..., dec=..., frame='icrs')"
             )
-        return SkyCoord(target)
-    raise TypeError(
-        f"target must be an astropy SkyCoord (or a coordinate frame with data), got "
-        f"{type(target).__name__}; e.g. SkyCoord('03h19m48.16s +41d30m42.1s')"
-    )
+        coord = SkyCoord(target)
+    else:
+        raise TypeError(
+            f"target must be an astropy SkyCoord (or a coordinate frame with data), got "
+            f"{type(target).__name__}; e.g. SkyCoord('03h19m48.16s +41d30m42.1s')"
+        )
+    frame = coord.frame
+    name = type(frame).__name__
+    if isinstance(frame, _OBSERVED):
+        if frame.obstime is None:
+            raise ValueError(
+                f"target is in {name} without an obstime: the {name} of a direction changes "
+                f"with time (astropy refuses to transform it too); give {name}(..., "
+                "obstime=<the epochs of observation>), or the direction as ICRS (fixed in "
+                "the sky) or ITRS (fixed on the Earth)")
+        if obstime is not None and not _same_epochs(frame.obstime, obstime):
+            raise ValueError(
+                f"target is in {name} at obstime {_describe(frame.obstime)}, not at the "
+                f"epochs of observation ({_describe(obstime)}): whether its {name} "
+                "direction should stay fixed on the Earth or follow the sky is ambiguous; "
+                "give target.icrs for a direction fixed in the sky, target.itrs for one "
+                "fixed on the Earth")
+    if isinstance(frame, _GEOCENTRIC) and not _topocentric(frame):
+        _check_outside_the_earth(coord, name)
+    if coord.data.differentials and not isinstance(frame, (ITRS,) + _OBSERVED) \
+            and "obstime" in frame.frame_attributes and name != "ICRS":
+        try:
+            coord = coord.icrs
+        except Exception as error:  # astropy's reason, on one line
+            raise ValueError(
+                f"target in {name} has a proper motion or radial velocity that astropy "
+                f"cannot carry to ICRS ({type(error).__name__}: {str(error).splitlines()[0]}"
+                "); give it in ICRS, or drop the motion") from None
+    return coord
+
+
+def _topocentric(frame):
+    """Whether an ITRS frame has its origin at a site rather than the geocentre."""
+    location = getattr(frame, "location", None)
+    if location is None:
+        return False
+    return bool(np.any(u.Quantity([location.x, location.y, location.z]) != 0))
+
+
+def _same_epochs(epochs, obstime):
+    """Whether two Time arrays broadcast and agree element-wise within _SAME_EPOCH."""
+    try:
+        difference = np.abs((epochs - as_time(obstime)).to(u.s))
+    except ValueError:  # shapes that do not broadcast
+        return False
+    return bool(np.all(difference < _SAME_EPOCH))
+
+
+def _describe(epochs):
+    """The epochs, or their first and last, in ISO format."""
+    if epochs.isscalar:
+        return epochs.isot
+    if epochs.size == 0:
+        return "no epochs"
+    flat = epochs.ravel()
+    return f"{flat[0].isot} ... {flat[-1].isot}, shape {epochs.shape}"
+
+
+def _check_outside_the_earth(coord, name):
+    data = coord.data
+    if isinstance(data, UnitSphericalRepresentation) or data.to_cartesian().x.unit == u.one:
+        return  # a direction
+    cartesian = data.to_cartesian()
+    if cartesian.x.unit.physical_type != "length":
+        return
+    with np.errstate(invalid="ignore"):
+        radius = cartesian.norm().to(u.m)
+        inside = radius < MIN_GEOCENTRIC_DISTANCE  # False for NaN
+    if np.any(inside):
+        where = np.argwhere(np.atleast_1d(inside))[0]
+        value = np.atleast_1d(radius)[tuple(where)]
+        at = "" if coord.isscalar else f"[{', '.join(str(int(i)) for i in where)}]"
+        raise ValueError(
+            f"target{at} in {name} is {value.to_value(u.km):.0f} km from the geocentre, inside "
+            "the Earth; a position needs its distance from the geocentre (kilometres given "
+            "as metres?), a direction no distance at all")
 
 
 def broadcast_shape(**shapes):

@@ -28,7 +28,7 @@ from .exceptions import OrbitWarning, warn_caller
 from .frames import as_time, location_xyz
 from .io import SP3Data, read_sp3
 from .io.tle import check_tle_pair
-from .propagation import propagate
+from .propagation import SGP4_MISSING, propagate
 
 __all__ = ["Orbit", "TLEOrbit", "SP3Orbit", "CoordinateOrbit", "as_orbit", "propagate_tles",
            "check_orientation"]
@@ -265,11 +265,8 @@ def _sgp4():
     """The sgp4 package's ``api`` module (an optional dependency, imported when first needed)."""
     try:
         from sgp4 import api
-    except ImportError:  # pragma: no cover - exercised only without sgp4
-        raise ImportError(
-            "TLE orbits need the sgp4 package: python -m pip install sgp4 "
-            "(or astropy_feedrot[all])"
-        ) from None
+    except ImportError:  # exercised by tests/test_cli_extras.py, without sgp4
+        raise ImportError(SGP4_MISSING) from None
     return api
 
 
@@ -313,6 +310,8 @@ def teme_to_itrs(position, obstime, orientation=None):
     if orientation is not None:
         flat = position.reshape(position.shape[:-1 - obstime.ndim] + (obstime.size, 3))
         return orientation.teme_to_itrs(flat).reshape(position.shape)
+    if position.size == 0:  # nothing to rotate (astropy 6.0 fails on empty epochs)
+        return position.copy()
     rep = CartesianRepresentation(np.moveaxis(position, -1, 0) * u.m)
     with iers_context(obstime), np.errstate(invalid="ignore"):
         itrs = TEME(rep, obstime=obstime).transform_to(ITRS(obstime=obstime))
@@ -711,6 +710,8 @@ class SP3Orbit(Orbit):
     ------
     astropy_feedrot.io.FileFormatError
         If the file is malformed (naming the line and what was expected).
+    TypeError
+        If ``points`` is not an integer (2.5 would be cut to 2 otherwise).
     ValueError
         If ``satellite`` is not in the file (listing those that are), the
         file has fewer epochs than ``points``, or the satellite has nowhere
@@ -763,6 +764,8 @@ class SP3Orbit(Orbit):
                 f"satellite {satellite!r} is not in the SP3 file; it has "
                 f"{', '.join(data.satellites)}"
             )
+        if isinstance(points, bool) or not isinstance(points, (int, np.integer)):
+            raise TypeError(f"points must be a whole number of epochs (int), got {points!r}")
         points = int(points)
         if points < 2:
             raise ValueError(f"points must be at least 2, got {points}")

@@ -4,14 +4,19 @@
 Every output of a command is checked before any work is done (its format,
 its directory, an existing file needs permission to be replaced, never one of
 the inputs, never two outputs in one file), then written to a temporary file
-beside its target and renamed into place once everything has been written:
-a failure anywhere leaves every existing file as it was and no temporary file
-behind. Used by the ``feedrot`` command line (`astropy_feedrot.cli`).
+beside its target and moved into place once everything has been written
+(`publish`): a failure anywhere leaves every existing file as it was and no
+temporary file behind. Unless replacing was asked for, the move is an
+exclusive create: of two runs writing the same new file at once, one wins and
+the other fails, instead of both succeeding and one result silently
+replacing the other. Used by the ``feedrot`` command line
+(`astropy_feedrot.cli`).
 """
 
 import contextlib
 import importlib.util
 import os
+import shutil
 import stat
 import tempfile
 import warnings
@@ -20,7 +25,7 @@ from pathlib import Path
 from astropy.io.fits.verify import VerifyWarning
 
 __all__ = ["CommandError", "TABLE_FORMATS", "same_file", "check_outputs", "table_format",
-           "table_writer", "new_file_mode", "write_files"]
+           "table_writer", "new_file_mode", "publish", "write_files"]
 
 
 class CommandError(Exception):
@@ -250,15 +255,122 @@ def new_file_mode(path):
     return 0o666 & ~umask
 
 
-def write_files(files, then=None):
-    """Write files safely: each to a temporary file beside it, all renamed at the end.
+def publish(temporary, target, overwrite=False):
+    """Move a finished temporary file or directory onto its target in one step.
+
+    Parameters
+    ----------
+    temporary : str or path-like
+        The finished output, a file or a directory (a Measurement Set), in
+        the directory of ``target`` (a move within one file system).
+    target : str or path-like
+        Where it goes.
+    overwrite : bool, optional
+        Whether an existing ``target`` may be replaced. If False (the
+        default), ``target`` is created exclusively: if anything exists
+        there, even made by another program since the outputs were checked,
+        nothing is replaced.
+
+    Raises
+    ------
+    FileExistsError
+        If ``target`` exists and ``overwrite`` is False; ``temporary`` is
+        then left for the caller to remove.
+
+    Notes
+    -----
+    A file is published with a hard link (`os.link`, which refuses an
+    existing name), or, on file systems without hard links, by creating the
+    name with ``O_CREAT | O_EXCL`` and renaming onto it; a directory by
+    creating the name with `os.mkdir` (which refuses an existing name) and
+    renaming onto the empty directory. With ``overwrite``, a file is renamed
+    over the target (`os.replace`) and an existing directory is moved aside
+    first and removed once the new one is in place.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from astropy_feedrot.outputs import publish
+    >>> here = Path(tempfile.mkdtemp())
+    >>> (here / "a.tmp").write_text("first")
+    5
+    >>> publish(here / "a.tmp", here / "out.txt")
+    >>> (here / "b.tmp").write_text("second")
+    6
+    >>> publish(here / "b.tmp", here / "out.txt")
+    Traceback (most recent call last):
+    ...
+    FileExistsError: ... exists (made by another program while this one ran?); nothing was replaced
+    >>> (here / "out.txt").read_text()
+    'first'
+    """
+    temporary, target = Path(temporary), Path(target)
+    exists = (f"{str(target)!r} exists (made by another program while this one ran?); "
+              "nothing was replaced")
+    if temporary.is_dir() and not temporary.is_symlink():
+        if not overwrite:
+            try:
+                os.mkdir(target)
+            except FileExistsError:
+                raise FileExistsError(exists) from None
+            try:
+                os.replace(temporary, target)
+            except BaseException:
+                os.rmdir(target)
+                raise
+        elif target.is_dir() and not target.is_symlink():
+            old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.old."))
+            os.replace(target, old / target.name)
+            try:
+                os.replace(temporary, target)
+            except BaseException:
+                os.replace(old / target.name, target)
+                raise
+            finally:
+                shutil.rmtree(old, ignore_errors=True)
+        else:
+            with contextlib.suppress(FileNotFoundError):
+                os.remove(target)
+            os.replace(temporary, target)
+        return
+    if overwrite:
+        os.replace(temporary, target)
+        return
+    try:
+        os.link(temporary, target)
+    except FileExistsError:
+        raise FileExistsError(exists) from None
+    except OSError:
+        # No hard links on this file system: reserve the name exclusively, then rename.
+        try:
+            handle = os.open(target, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600)
+        except FileExistsError:
+            raise FileExistsError(exists) from None
+        os.close(handle)
+        os.replace(temporary, target)
+    else:
+        os.remove(temporary)
+
+
+def write_files(files, then=None, overwrite=False):
+    """Write files safely: each to a temporary file beside it, all published at the end.
 
     Parameters
     ----------
     files : list of (Path, callable)
         Each target and a function writing its content to a given file name.
     then : callable, optional
-        Called once every file is written, before any is renamed.
+        Called once every file is written, before any is published.
+    overwrite : bool, optional
+        Whether existing targets may be replaced; if False (the default), each
+        target is created exclusively (`publish`).
+
+    Raises
+    ------
+    CommandError
+        If a target exists and ``overwrite`` is False (another program made
+        it while this one ran): no target is then written.
 
     Notes
     -----
@@ -276,6 +388,7 @@ def write_files(files, then=None):
     ('done', ['out.txt'])
     """
     temporaries = []
+    published = []
     try:
         for path, write in files:
             handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem[:64]}.",
@@ -287,7 +400,15 @@ def write_files(files, then=None):
         if then is not None:
             then()
         for name, (path, _) in zip(temporaries, files):
-            os.replace(name, path)
+            try:
+                publish(name, path, overwrite=overwrite)
+            except FileExistsError as error:
+                # Take back the outputs of this run already in place: all or none.
+                for done in published:
+                    with contextlib.suppress(FileNotFoundError):
+                        os.remove(done)
+                raise CommandError(f"{error}; add --overwrite to replace it") from None
+            published.append(path)
     finally:
         for name in temporaries:
             with contextlib.suppress(FileNotFoundError):

@@ -81,7 +81,9 @@ def _targets(targets, names):
     repeated = sorted({name for name in names if names.count(name) > 1})
     if repeated:
         raise ValueError(f"target names must differ; repeated: {', '.join(repeated)}")
-    coords = np.concatenate([SkyCoord(coord).icrs.reshape((1,)) for _, coord in pairs])
+    # One SkyCoord from the list of them (numpy's concatenate gives an object array of
+    # SkyCoords on astropy 6.0, and astropy's fails on a list of one).
+    coords = SkyCoord([SkyCoord(coord).icrs.reshape(()) for _, coord in pairs])
     return names, coords
 
 

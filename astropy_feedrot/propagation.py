@@ -32,7 +32,7 @@ Error codes are therefore those of SGP4 at every epoch.
 
 import numpy as np
 
-__all__ = ["propagate", "TOLERANCE", "POINTS"]
+__all__ = ["propagate", "TOLERANCE", "POINTS", "SGP4_MISSING"]
 
 #: Interpolation error aimed at, in metres: a tenth of the 1 mm promised.
 TOLERANCE = 1e-4
@@ -65,10 +65,17 @@ _SHORTEST, _LONGEST = 1.0, 1024.0
 _DAY = 86400.0
 
 
+#: What to do when the optional sgp4 package is missing.
+SGP4_MISSING = ("TLE orbits need the sgp4 package, of the 'all' extra: python -m pip install "
+                "sgp4 (or, in a clone of astropy_feedrot, python -m pip install -e '.[all]')")
+
+
 def _sgp4_array():
     """sgp4's ``SatrecArray`` (an optional dependency, imported when first needed)."""
-    from sgp4.api import SatrecArray
-
+    try:
+        from sgp4.api import SatrecArray
+    except ImportError:  # exercised by tests/test_cli_extras.py, without sgp4
+        raise ImportError(SGP4_MISSING) from None
     return SatrecArray
 
 

@@ -170,6 +170,8 @@ def celestial_pole(obstime):
     obstime, masked = fill_masked(as_time(obstime))
     if masked is not None and masked.all():
         return np.full(obstime.shape + (3,), np.nan)
+    if obstime.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+        return np.empty(obstime.shape + (3,))
     with iers_context(obstime):
         xp, yp = get_polar_motion(obstime)
         tt = obstime.tt

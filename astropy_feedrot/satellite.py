@@ -11,10 +11,11 @@ from .earth import fast_path_applies, orientation_of
 from .eop import iers_context
 from .exceptions import warn_caller
 from .frames import as_location, fill_masked, location_xyz
+from .inputs import MIN_GEOCENTRIC_DISTANCE
 from .orbits import as_orbit, check_orientation
 from .polarization import polarization_sign
 
-__all__ = ["Satellite", "LineOfSight"]
+__all__ = ["Satellite", "LineOfSight", "check_transmitter_positions"]
 
 
 class LineOfSight:
@@ -189,7 +190,10 @@ class Satellite:
         """Positions at the filled epochs, NaN at the masked ones."""
         if masked is not None and masked.all():
             return np.full(filled.shape + (3,), np.nan)
+        if filled.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+            return np.empty(filled.shape + (3,))
         position = np.asarray(self.orbit.position(filled, orientation), dtype=float)
+        check_transmitter_positions(position, self.name or type(self.orbit).__name__)
         if masked is not None:
             position = np.where(masked[..., np.newaxis], np.nan, position)
         return position
@@ -235,6 +239,9 @@ class Satellite:
         if masked is not None and masked.all():
             s = np.full(filled.shape + (3,), np.nan)
             return LineOfSight(s, s, s)
+        if filled.size == 0:  # nothing to compute (astropy 6.0 fails on empty epochs)
+            s = np.empty(filled.shape + (3,))
+            return LineOfSight(s, s, s)
         orientation = None
         if self.orbit.uses_orientation or self.attitude.needs_sun:
             orientation = _earth_orientation(filled)
@@ -272,6 +279,45 @@ class Satellite:
         for message, category in kept[5]:
             warn_caller(message, category)
         return tuple(np.array(v) for v in kept[2:5])
+
+
+def check_transmitter_positions(xyz, label):
+    """Refuse orbit positions inside the Earth.
+
+    Parameters
+    ----------
+    xyz : ndarray, shape (..., 3)
+        Geocentric ITRS positions in metres; NaN (missing) passes.
+    label : str
+        How to name the transmitter in the message.
+
+    Raises
+    ------
+    ValueError
+        If a position is closer to the geocentre than
+        `~astropy_feedrot.inputs.MIN_GEOCENTRIC_DISTANCE` (6,300 km; the
+        Earth's polar radius is 6,357 km): kilometres read as metres, or an
+        orbit that is not one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.satellite import check_transmitter_positions
+    >>> check_transmitter_positions(np.array([2.6e7, 0, 0]), "G01")
+    >>> check_transmitter_positions(np.array([1.0e6, 0, 0]), "G01")
+    Traceback (most recent call last):
+    ...
+    ValueError: the orbit of G01 puts it 1000 km from the geocentre, inside the Earth, ...
+    """
+    with np.errstate(invalid="ignore"):
+        radius = np.sqrt(np.einsum("...i,...i->...", xyz, xyz))
+        inside = radius < MIN_GEOCENTRIC_DISTANCE.to_value("m")  # False for NaN
+    if np.any(inside):
+        closest = float(np.min(radius[inside]))
+        raise ValueError(
+            f"the orbit of {label} puts it {closest / 1e3:.0f} km from the geocentre, inside "
+            f"the Earth, at {np.count_nonzero(inside)} of {inside.size} epochs; orbit "
+            "positions are geocentric, in metres (kilometres given as metres?)")
 
 
 def _earth_orientation(obstime):

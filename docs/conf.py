@@ -28,6 +28,10 @@ automodapi_toctreedirnm = "api"
 automodsumm_inherited_members = False
 numpydoc_show_class_members = False
 
+# Equations render offline: MathJax is copied into the built pages
+# (_static/mathjax) by sphinx-mathjax-offline instead of loaded from a CDN.
+extensions = list(extensions) + ["sphinx-mathjax-offline"]
+
 # Offline builds: pass ``-D disable_intersphinx=1`` (the build_docs tox env
 # does) and cross-references to astropy, numpy and Python stay plain text.
 

@@ -13,7 +13,9 @@ from helpers import SOURCE_KINDS, SP3_DESCRIPTORS, read_as
 from astropy import units as u
 from astropy.time import Time
 
+from astropy_feedrot import OrbitWarning
 from astropy_feedrot.io import FileFormatError, SP3Data, read_sp3
+from astropy_feedrot.io.sp3 import implausible_positions
 
 DATA = pathlib.Path(__file__).parent / "data"
 SAMPLES = pathlib.Path(astropy_feedrot.data.__file__).parent
@@ -111,6 +113,50 @@ def test_zero_position_is_nan():
     # Line 36: G05 position 0.000000 0.000000 0.000000, clock valid.
     assert np.all(np.isnan(data.positions["G05"][3]))
     assert data.clock["G05"][3] == pytest.approx(412.120141e-6, rel=1e-12)
+
+
+def test_position_999999_is_nan():
+    # 999999.999999 is the format's bad/absent value; read as km it would put the
+    # satellite 1.7e9 m out. Line 24 is G01's first record.
+    lines = sample_lines()
+    lines[23] = "PG01 999999.999999 999999.999999 999999.999999    -89.426574"
+    data = read_sp3(io.StringIO("\n".join(lines) + "\n"))
+    assert np.all(np.isnan(data.positions["G01"][0]))
+    assert np.all(np.isfinite(data.positions["G01"][1:3]))
+
+
+def test_position_inside_the_earth_is_nan_with_a_warning():
+    # 3,000 km from the geocentre: no satellite orbits there (the radius check needs no
+    # neighbouring epochs, so it works on the four-epoch sample).
+    lines = sample_lines()
+    lines[23] = "PG01   3000.000000      0.000000      0.000000    -89.426574"
+    with pytest.warns(OrbitWarning, match=r"^sample\.sp3: 1 position record\(s\) no orbit can "
+                      r"have \(the first: G01 on line 24, 3000 km from the geocentre, .*treated "
+                      r"as missing \(NaN\), never interpolated$"):
+        data = read_sp3(write_lines(lines, "sample.sp3"))
+    assert np.all(np.isnan(data.positions["G01"][0]))
+
+
+def write_lines(lines, name):
+    stream = io.StringIO("\n".join(lines) + "\n")
+    stream.name = name
+    return stream
+
+
+@pytest.mark.parametrize("seconds, km", [(300.0, 1000.0), (900.0, 1000.0), (300.0, 10.0)])
+def test_single_record_jump_of_a_gnss_orbit(seconds, km):
+    # A 12-hour circular orbit sampled like IGS files (5 and 15 minutes), one record
+    # moved along x: the fourth difference of the neighbours gives it away (a 10 km jump
+    # too at 5 minutes, where the allowance for a smooth GPS orbit is 5 km).
+    t = np.arange(30) * seconds
+    angle = 2 * np.pi * t / 43082.0
+    xyz = 26.56e6 * np.stack([np.cos(angle), np.sin(angle), 0 * t], axis=-1)
+    assert not np.any(implausible_positions(["G01"], xyz[np.newaxis], t, seconds))
+    for k in (0, 1, 13, 28, 29):
+        moved = xyz.copy()
+        moved[k, 0] += km * 1e3
+        bad = implausible_positions(["G01"], moved[np.newaxis], t, seconds)
+        assert np.flatnonzero(bad[0]).tolist() == [k]
 
 
 def test_arrays_are_read_only():

@@ -7,9 +7,11 @@ comments, ERFA's GMST (``gmst82``) for the TEME rotation, Rodrigues' rotation
 formula for quaternions, and the published numbers of Sec. 4.
 """
 
+import re
 import warnings
 
 import erfa
+
 import numpy as np
 import pytest
 from astropy import units as u
@@ -589,6 +591,12 @@ def test_sp3_orbit_errors():
         SP3Orbit(sample_file("sample.sp3"), "G01")
     with pytest.raises(ValueError, match="points must be at least 2"):
         SP3Orbit(sample_file("sample.sp3"), "G01", points=1)
+    # 2.5 was cut to 2 (linear interpolation, km-level errors) without a word.
+    for points in (2.5, 4.0, "4", True):
+        with pytest.raises(TypeError, match=r"^points must be a whole number of epochs \(int\), "
+                                            rf"got {re.escape(repr(points))}$"):
+            SP3Orbit(sample_file("sample.sp3"), "G01", points=points)
+    assert SP3Orbit(sample_file("sample.sp3"), "G01", points=np.int64(4)).points == 4
     orbit = SP3Orbit(sample_file("sample.sp3"), "G01", points=4)
     with pytest.raises(ValueError, match="outside the coverage of the SP3 orbit of G01: "
                                          r"2023-01-25T00:00:19.000 to 2023-01-25T00:45:19.000 TAI"):

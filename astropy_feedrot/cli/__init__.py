@@ -33,11 +33,12 @@ import warnings
 
 from astropy import units as u
 
+from .. import __version__
 from ..eop import iers_context
 from ..io import FileFormatError
 from ..outputs import TABLE_FORMATS, CommandError
 from . import coverage, data, demo, rinex, stations, tables
-from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, one_line
+from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, examples, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
            "CELESTIAL_FRAMES"]
@@ -52,12 +53,14 @@ def build_parser():
         "angle, transmitter and receiver terms, total and continuous total (degrees), and "
         "the rate of the feed rotation (deg/s).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog="examples:\n  feedrot demo\n  feedrot stations\n"
-        + "\n".join(text.split("\n", 2)[1] for text in tables.EXAMPLES.values())
-        + "\n  feedrot antennas vla.uvfits\n  feedrot correct vla.uvfits -o corrected.uvfits"
-        + "\n  feedrot rinex obs.rnx --sp3 igs.sp3 -o corrected.rnx"
+        epilog=examples(["feedrot demo", "feedrot stations"]
+                        + [lines[0] for lines in tables.EXAMPLES.values()]
+                        + [coverage.EXAMPLES[1], data.EXAMPLES["antennas"][0],
+                           data.EXAMPLES["correct"][0], rinex.EXAMPLES[0]])
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
     )
+    parser.add_argument("--version", action="version", version=f"feedrot {__version__}",
+                        help="show the version of astropy_feedrot and exit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     for family in (tables, demo, stations, coverage, data, rinex):
@@ -72,8 +75,19 @@ def _protect_sites(argv):
             else arg for arg in argv]
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"feedrot: warning: {one_line(message)}", file=sys.stderr)
+def _warning_printer():
+    """A ``warnings.showwarning`` that prints each distinct warning once, on one line.
+
+    (pyuvdata gives its uvw warning once on reading and again on writing.)
+    """
+    shown = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = one_line(message)
+        if text not in shown:
+            shown.add(text)
+            print(f"feedrot: warning: {text}", file=sys.stderr)
+    return show
 
 
 def _run(args):
@@ -91,6 +105,10 @@ def _run(args):
             return 1
         message = error.args[0] if isinstance(error, KeyError) and error.args else error
         print(f"feedrot: error: {one_line(message)}", file=sys.stderr)
+        return 1
+    except ImportError as error:
+        # An optional dependency that is not installed: the message names the extra.
+        print(f"feedrot: error: {one_line(error)}", file=sys.stderr)
         return 1
     except MemoryError:
         print("feedrot: error: out of memory; use fewer epochs (a larger --step or a shorter "
@@ -146,6 +164,9 @@ def main(argv=None):
     # (one line) about stale tables, however many computations it makes.
     with warnings.catch_warnings():
         warnings.simplefilter("default")
-        warnings.showwarning = _show_warning
+        # Deprecations inside the libraries are for their developers, not for users.
+        for category in (DeprecationWarning, PendingDeprecationWarning, FutureWarning):
+            warnings.simplefilter("ignore", category)
+        warnings.showwarning = _warning_printer()
         with iers_context():
             return _run(args)

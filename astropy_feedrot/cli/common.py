@@ -36,7 +36,7 @@ __all__ = [
     "parse_antenna", "natural_target", "one_source", "read_path", "read_input",
     "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
     "write_table", "add_time_options", "add_natural_options", "add_common_options",
-    "PHASE_UNITS", "add_units_option", "in_units",
+    "examples", "PHASE_UNITS", "add_units_option", "in_units",
 ]
 
 #: Most epochs one command may compute (about 1.6 GB and half a minute for
@@ -58,6 +58,18 @@ ANTENNA_HELP = (
 
 
 SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
+
+
+def examples(commands):
+    """The ``--help`` epilog listing example commands, each whole on one line.
+
+    (A command continued with a trailing backslash cannot be copied from a
+    list of several: pasted, the lines join into one.)
+    """
+    for command in commands:
+        if "\n" in command or command.rstrip().endswith("\\"):
+            raise ValueError(f"an example must be one line: {command!r}")
+    return "examples:\n" + "\n".join(f"  {command}" for command in commands)
 
 
 class UsageError(Exception):
@@ -336,7 +348,7 @@ def table_outputs(args):
     return paths
 
 
-def write_table(table, paths, kind):
+def write_table(table, paths, kind, overwrite=False):
     output, figure = paths
     files = []
     if output is not None:
@@ -344,7 +356,7 @@ def write_table(table, paths, kind):
     if figure is not None:
         files.append((figure, drawer(table, kind, figure)))
     then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    write_files(files, then)
+    write_files(files, then, overwrite=overwrite)
 
 
 #: Units of ``--units``: a phase in cycles, radians or degrees.

@@ -20,6 +20,7 @@ from ..outputs import (
 from .common import (
     add_time_options,
     elevation_limit,
+    examples,
     figure_types,
     input_files,
     one_line,
@@ -28,7 +29,16 @@ from .common import (
     time_span,
 )
 
-__all__ = ["register"]
+__all__ = ["EXAMPLES", "register"]
+
+#: Examples of ``feedrot coverage``, one command line each.
+EXAMPLES = [
+    "feedrot coverage --stations EFLSBERG YEBES40M WETTZ13S "
+    "--source '3C84=03h19m48.16s +41d30m42.1s' --source '3C286=13h31m08.29s +30d30m33.0s' "
+    "--start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png",
+    "feedrot coverage --stations VLBA --source '03h19m48.16s +41d30m42.1s' "
+    "--start 2024-03-01 --stop 2024-03-02",
+]
 
 
 def _run_coverage(args):
@@ -56,9 +66,11 @@ def _run_coverage(args):
     for text in args.source:
         name, equals, where = text.partition("=")
         name, where = name.strip(), where.strip()
-        if not equals or not name or not where:
-            raise CommandError(f"--source {text!r}: write NAME=COORDINATES, e.g. "
-                               "'3C84=03h19m48.16s +41d30m42.1s'; names are not looked up")
+        if not equals:  # bare coordinates, as every other command takes: their own name
+            name = where = text.strip()
+        if not name or not where:
+            raise CommandError(f"--source {text!r}: write COORDINATES or NAME=COORDINATES, "
+                               "e.g. '3C84=03h19m48.16s +41d30m42.1s'; names are not looked up")
         if name in sources:
             raise CommandError(f"--source: the name {name!r} is given twice")
         for kwargs in ({}, {"unit": (u.hourangle, u.deg)}):
@@ -72,7 +84,8 @@ def _run_coverage(args):
             break
         else:
             raise CommandError(f"--source {name}: cannot read {where!r} as coordinates "
-                               f"({reason}); write e.g. '03h19m48.16s +41d30m42.1s'")
+                               f"({reason}); write e.g. '03h19m48.16s +41d30m42.1s' or "
+                               "'3C84=03h19m48.16s +41d30m42.1s' (names are not looked up)")
     times = time_span(args)
     if times.size < 2:
         raise CommandError("--stop must be after --start by at least one --step")
@@ -100,7 +113,7 @@ def _run_coverage(args):
                 raise CommandError(f"--plot: cannot draw {str(paths[1])!r}: "
                                    f"{one_line(error)}") from None
         files.append((paths[1], draw))
-    write_files(files)
+    write_files(files, overwrite=args.overwrite)
     print(f"Feed rotation above {min_elevation} from {epochs[0].isot} to {epochs[-1].isot} "
           f"every {args.step}:")
     print("\n".join(table.pformat(max_lines=-1, max_width=-1)))
@@ -121,17 +134,15 @@ def register(commands):
         "ranked by their worst station (a polarization calibrator needs a wide range at "
         "every station). Names of networks expand to their stations where the catalogue "
         "knows them.",
-        epilog="examples:\n  feedrot coverage --stations EFLSBERG YEBES40M WETTZ13S \\\n"
-        "      --source '3C84=03h19m48.16s +41d30m42.1s' \\\n"
-        "      --source '3C286=13h31m08.29s +30d30m33.0s' \\\n"
-        "      --start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png",
+        epilog=examples(EXAMPLES),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     coverage.add_argument("--stations", nargs="+", required=True, metavar="NAME",
                           help="station names of the catalogue (or names of networks; "
                                "NAME@NETWORK for a name two stations share, e.g. KP@EHT)")
-    coverage.add_argument("--source", action="append", required=True, metavar="NAME=COORD",
-                          help="a source and its coordinates (ICRS), e.g. "
-                          "'3C84=03h19m48.16s +41d30m42.1s'; repeat for more")
+    coverage.add_argument("--source", action="append", required=True, metavar="[NAME=]COORD",
+                          help="a source's coordinates (ICRS), named or not, e.g. "
+                          "'3C84=03h19m48.16s +41d30m42.1s' or '03h19m48.16s +41d30m42.1s'; "
+                          "repeat for more")
     add_time_options(coverage)
     coverage.add_argument("--min-elevation", metavar="ANGLE",
                           help="elevation limit (degrees, or with a unit; default 10)")

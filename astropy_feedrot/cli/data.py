@@ -5,27 +5,49 @@ any file, or a Measurement Set corrected in place."""
 
 import argparse
 import contextlib
+import os
+import shutil
 import sys
+import tempfile
+from pathlib import Path
 
 from ..outputs import (
     TABLE_FORMATS,
     CommandError,
     check_outputs,
+    publish,
+    same_file,
     table_format,
     table_writer,
     write_files,
 )
 from ..visibilities import (
     antenna_table,
+    check_output_format,
     correct_file,
     correct_ms,
     file_kind,
     parse_feeds,
     read_antennas,
 )
-from .common import CELESTIAL_FRAMES, one_line
+from .common import CELESTIAL_FRAMES, examples, one_line
 
-__all__ = ["register"]
+__all__ = ["EXAMPLES", "check_correct_output", "register"]
+
+#: Examples of ``feedrot antennas`` and ``feedrot correct``, one command line each.
+EXAMPLES = {
+    "antennas": ["feedrot antennas experiment.idifits",
+                 "feedrot antennas vla.ms -o antennas.ecsv"],
+    "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
+                "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
+                "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric",
+                "feedrot correct obs.ms --in-place",
+                "feedrot correct sim.ms --in-place --data-column MODEL_DATA --column "
+                "MODEL_DATA --apply",
+                "feedrot correct atca.uv -o atca.uvfits --feeds X,Y",
+                "feedrot correct obs.ms --in-place --vertical geocentric --pole casa "
+                "--workers 2"],
+}
 
 
 def _run_antennas(args):
@@ -38,8 +60,39 @@ def _run_antennas(args):
     files = [] if paths[0] is None else [(paths[0], table_writer(table,
                                                                  table_format(paths[0])))]
     then = None if files else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
-    write_files(files, then)
+    write_files(files, then, overwrite=args.overwrite)
     return 0
+
+
+def check_correct_output(source, output, overwrite):
+    """The resolved output of ``feedrot correct``, checked against the input before any work.
+
+    The output's extension must name the format written
+    (`~astropy_feedrot.visibilities.check_output_format`).
+    """
+    try:
+        kind = file_kind(source)
+    except (OSError, ValueError) as error:
+        raise CommandError(f"INPUT: {one_line(error)}") from None
+    try:
+        check_output_format(kind, output)
+    except ValueError as error:
+        raise CommandError(f"-o/--output: {one_line(error)}") from None
+    given = Path(output).expanduser()
+    target = given.resolve()
+    if same_file(target, Path(source).expanduser().resolve()):
+        raise CommandError(f"-o/--output: {output!r} is the INPUT, which is never modified; "
+                           "choose another name")
+    if not target.parent.is_dir():
+        raise CommandError(f"-o/--output: cannot write {output!r}: directory "
+                           f"{str(target.parent)!r} does not exist")
+    if (target.exists() or target.is_symlink()) and not overwrite:
+        raise CommandError(f"-o/--output: {output!r} exists; add --overwrite to replace it, "
+                           "or choose another name")
+    if not os.access(target.parent, os.W_OK | os.X_OK):
+        raise CommandError(f"-o/--output: cannot write {output!r}: permission denied in "
+                           f"{str(target.parent)!r}")
+    return target
 
 
 def _feeds(args):
@@ -77,26 +130,32 @@ def _client(args):
         yield client
 
 
+def _run_in_place(args, options):
+    if args.output is not None:
+        raise CommandError("-o/--output and --in-place exclude each other: a Measurement "
+                           "Set is corrected in place, other files into a copy")
+    try:
+        kind = file_kind(args.input)
+    except (OSError, ValueError) as error:
+        raise CommandError(f"INPUT: {one_line(error)}") from None
+    if kind != "ms":
+        raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
+                           "files are corrected into a copy (-o OUTPUT)")
+    try:
+        with _client(args) as client:
+            correct_ms(args.input, data_column=args.data_column, corrected_column=args.column,
+                       client=client, **options)
+    except ImportError as error:
+        raise CommandError(one_line(error)) from None
+    return 0
+
+
 def _run_correct(args):
-    direction = "apply" if args.apply else "remove"
-    progress = not args.quiet and sys.stderr.isatty()
-    feeds = _feeds(args)
+    options = dict(direction="apply" if args.apply else "remove", frame=args.frame,
+                   vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
+                   feeds=_feeds(args), redo=args.redo, pole=args.pole)
     if args.in_place:
-        if args.output is not None:
-            raise CommandError("-o/--output and --in-place exclude each other: a Measurement "
-                               "Set is corrected in place, other files into a copy")
-        if file_kind(args.input) != "ms":
-            raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
-                               "files are corrected into a copy (-o OUTPUT)")
-        try:
-            with _client(args) as client:
-                correct_ms(args.input, data_column=args.data_column,
-                           corrected_column=args.column, direction=direction,
-                           frame=args.frame, vertical=args.vertical, progress=progress,
-                           feeds=feeds, redo=args.redo, pole=args.pole, client=client)
-        except ImportError as error:
-            raise CommandError(one_line(error)) from None
-        return 0
+        return _run_in_place(args, options)
     if args.output is None:
         raise CommandError("give -o/--output OUTPUT for the corrected copy, or --in-place "
                            "for a Measurement Set")
@@ -104,15 +163,25 @@ def _run_correct(args):
                           ("--column", args.column != "CORRECTED_DATA")):
         if value:
             raise CommandError(f"{option} is for a Measurement Set corrected --in-place")
+    target = check_correct_output(args.input, args.output, args.overwrite)
+    # Corrected into a directory of its own beside the target, then published in one
+    # step: exclusively unless --overwrite, so two runs into one name cannot both succeed.
+    work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
-        with _client(args) as client:
-            correct_file(args.input, args.output, frame=args.frame, vertical=args.vertical,
-                         overwrite=args.overwrite, progress=progress, direction=direction,
-                         feeds=feeds, redo=args.redo, pole=args.pole, client=client)
-    except FileExistsError as error:
-        raise CommandError(f"-o/--output: {one_line(error)}") from None
-    except ImportError as error:
-        raise CommandError(one_line(error)) from None
+        temporary = work / target.name
+        try:
+            with _client(args) as client:
+                correct_file(args.input, temporary, client=client, **options)
+        except ImportError as error:
+            raise CommandError(one_line(error)) from None
+        try:
+            publish(temporary, target, overwrite=args.overwrite)
+        except FileExistsError as error:
+            raise CommandError(f"-o/--output: {one_line(error)}; add --overwrite to replace "
+                               "it") from None
+    finally:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(work)
     return 0
 
 
@@ -123,8 +192,7 @@ def register(commands):
         description="The antennas of a visibility file (FITS-IDI, UVFITS, uvh5, Measurement "
         "Set, Miriad, SMA Mir) as read for the correction: number, name, ITRF position, "
         "mount label (in the file's convention), mount, focus, receptors and their angles.",
-        epilog="examples:\n  feedrot antennas experiment.idifits\n"
-        "  feedrot antennas vla.ms -o antennas.ecsv",
+        epilog=examples(EXAMPLES["antennas"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     antennas.add_argument("file", metavar="FILE", help="a visibility file or directory")
     antennas.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
@@ -143,12 +211,7 @@ def register(commands):
         "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
         ".ms), the input never modified; or a Measurement Set in place (--in-place), from "
         "one column into another (python-casacore), every other column left as it was.",
-        epilog="examples:\n  feedrot correct vla.uvfits -o vla_corrected.uvfits\n"
-        "  feedrot correct experiment.idifits -o corrected.idifits --frame icrs\n"
-        "  feedrot correct obs.ms --in-place\n"
-        "  feedrot correct obs.ms --in-place --data-column MODEL_DATA --column MODEL_DATA "
-        "--apply\n"
-        "  feedrot correct atca.uv -o atca.uvfits --feeds X,Y",
+        epilog=examples(EXAMPLES["correct"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
     correct.add_argument("-o", "--output", metavar="OUTPUT",
@@ -172,8 +235,9 @@ def register(commands):
                          help="correct data whose history says they were corrected in the "
                          "same direction already")
     correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
-                         help="north of the corrected polarization angles: the apparent pole "
-                         "of date (default) or a catalogue frame such as icrs")
+                         help="north of the corrected polarization angles: the pole of date "
+                         "(default, as in Python, CASA and AIPS) or a catalogue frame such "
+                         "as icrs")
     correct.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
                          help="the local vertical (geocentric reproduces CASA)")
     correct.add_argument("--pole", choices=("itrs", "casa"), default="itrs",

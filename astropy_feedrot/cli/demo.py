@@ -9,7 +9,7 @@ from astropy import units as u
 from ..outputs import CommandError, check_outputs, table_writer, write_files
 from ..simulations import gps_short_baseline
 from ..tables import baseline_summary
-from .common import MAX_EPOCHS, drawer, figure_types, parse_quantity
+from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
 
 __all__ = ["register"]
 
@@ -38,7 +38,7 @@ def _run_demo(args):
     files = [(paths[0], table_writer(table, "ascii.ecsv"))]
     if types is not None:
         files.append((paths[1], drawer(table, "baseline", paths[1])))
-    write_files(files)
+    write_files(files, overwrite=args.overwrite)
     print("Section 4.1 of the paper: GPS SVN 76 over the GNSS antenna DBR205 and the")
     print("alt-az telescope FD-VLBA, 73 m apart, on 2023-01-25 (embedded element set, Table 2).")
     print(summary)
@@ -57,7 +57,7 @@ def register(commands):
         description="GPS SVN 76 over the GNSS antenna DBR205 and the telescope FD-VLBA "
         "(Sec. 4.1 of the paper): prints a summary and writes feedrot_demo.ecsv and "
         "feedrot_demo.png (like Figs 10-11).",
-        epilog="example:\n  feedrot demo --output-dir results --step 30s",
+        epilog=examples(["feedrot demo", "feedrot demo --step 30s --overwrite"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     demo.add_argument("--output-dir", default=".", metavar="DIR",
                       help="where to write the table and figure (default: here)")

@@ -12,9 +12,16 @@ from astropy import units as u
 from ..gnss import correct_rinex
 from ..outputs import TABLE_FORMATS, CommandError, check_outputs, table_format, table_writer
 from ..outputs import write_files
-from .common import add_units_option, in_units, one_line, parse_quantity, read_path
+from .common import add_units_option, examples, in_units, one_line, parse_quantity, read_path
 
-__all__ = ["register"]
+__all__ = ["EXAMPLES", "register"]
+
+#: Examples of ``feedrot rinex``, one command line each (the tests run them with the
+#: package's GNSS samples under these names).
+EXAMPLES = [
+    "feedrot rinex obs.rnx --sp3 gnss.sp3 -o corrected.rnx",
+    "feedrot rinex obs.rnx --sp3 gnss.sp3 -o out.rnx --table windup.ecsv --units deg",
+]
 
 # Compact RINEX names: written only as plain or gzip-compressed RINEX.
 _COMPACT = re.compile(r"(\.crx|\.\d\dd)(\.gz)?$", re.IGNORECASE)
@@ -64,7 +71,8 @@ def _run_rinex(args):
         raise CommandError(one_line(error)) from None
     if table is not None:
         windup = in_units(report.windup, args.units, ["windup"])
-        write_files([(table, table_writer(windup, table_format(table)))])
+        write_files([(table, table_writer(windup, table_format(table)))],
+                    overwrite=args.overwrite)
     satellites = f", {len(report.untouched)} satellites untouched" if report.untouched else ""
     print(f"feedrot: {report.output}: {report.phases} carrier phases of {report.observations} "
           f"observations at {report.epochs} epochs corrected, {report.arcs} arcs{satellites}",
@@ -84,10 +92,7 @@ def register(commands):
         "a gap or a loss-of-lock flag), the receiver turned by the header's ANTENNA: ZERODIR "
         "AZI. Every other byte of the file is kept; one COMMENT line says what was applied. "
         "Satellites without an orbit or attitude are left untouched and listed once.",
-        epilog="examples:\n  feedrot rinex GGAO00USA_R_20230250000_01D_30S_MO.rnx "
-        "--sp3 day1.sp3 day2.sp3 -o corrected.rnx\n"
-        "  feedrot rinex site0250.23d.gz --sp3 igs.sp3 --orbex cod.obx -o site0250.23o\n"
-        "  feedrot rinex obs.rnx --sp3 igs.sp3 -o out.rnx --table windup.ecsv --units deg",
+        epilog=examples(EXAMPLES),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     rinex.add_argument("obs", metavar="OBS", help="the RINEX observation file")
     rinex.add_argument("--sp3", nargs="+", required=True, metavar="SP3",

@@ -7,7 +7,7 @@ import sys
 import numpy as np
 
 from ..outputs import CommandError
-from .common import one_line, station_catalogue
+from .common import examples, one_line, station_catalogue
 
 __all__ = ["register"]
 
@@ -43,8 +43,8 @@ def register(commands):
         "stations", help="list the station catalogue",
         description="Print the station catalogue (names, ITRF positions, mounts, focus types, "
         "sources) as ECSV, all of it or the stations of one network or mount.",
-        epilog="examples:\n  feedrot stations --network VLBA\n  feedrot stations --mount NASR\n"
-        "  feedrot stations --catalogue mine.ecsv",
+        epilog=examples(["feedrot stations --network VLBA", "feedrot stations --mount NASR",
+                         "feedrot stations --catalogue mine.ecsv"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     stations.add_argument("--catalogue", metavar="FILE", help="an ECSV catalogue of one's own")
     stations.add_argument("--network", metavar="NAME",

@@ -24,6 +24,7 @@ from .common import (
     add_natural_options,
     add_time_options,
     elevation_limit,
+    examples,
     in_units,
     natural_target,
     one_line,
@@ -38,24 +39,30 @@ from .common import (
 
 __all__ = ["EXAMPLES", "register"]
 
+#: Examples of each command, one command line each (``--help`` prints them as they are;
+#: the tests run each of them, with the sample files under the names they use).
 EXAMPLES = {
-    "natural": """examples:
-  feedrot natural YEBES40M --source "03h19m48.16s +41d30m42.1s" \\
-      --start 2023-01-25T18:00 --stop 2023-01-26T06:00 --step 10min
-  feedrot natural EFLSBERG --ra 12:29:06.7 --dec +02:03:09 --start 2024-03-01 \\
-      --stop 2024-03-02 -o 3c273.ecsv --plot 3c273.png
-  feedrot natural 40.5247,-3.0869,988 --mount NASR --source "187.27d 2.05d" \\
-      --start 2024-03-01T20:00 --stop 2024-03-01T22:00 --step 1min""",
-    "satellite": """examples:
-  feedrot satellite DBR205 --tle gps.tle --sat 41328 \\
-      --start 2023-01-25T06:00 --stop 2023-01-25T17:00 --step 30s --min-elevation 10
-  feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G05 --orbex igs.obx -o g05.fits
-  feedrot satellite GGAO12M --sp3 igs.sp3 --step 30s --units cycles -o all.ecsv""",
-    "baseline": """examples:
-  feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 \\
-      --stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10
-  feedrot baseline EFLSBERG YEBES40M --source "03h19m48.16s +41d30m42.1s" \\
-      --start 2023-01-25T18:00 --stop 2023-01-26T06:00 --frequency 8.4GHz""",
+    "natural": [
+        'feedrot natural YEBES40M --source "03h19m48.16s +41d30m42.1s" '
+        "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --step 10min",
+        "feedrot natural EFLSBERG --ra 12:29:06.7 --dec +02:03:09 --start 2024-03-01 "
+        "--stop 2024-03-02 -o 3c273.ecsv --plot 3c273.png",
+        'feedrot natural 40.5247,-3.0869,988 --mount NASR --source "187.27d 2.05d" '
+        "--start 2024-03-01T20:00 --stop 2024-03-01T22:00 --step 1min",
+    ],
+    "satellite": [
+        "feedrot satellite DBR205 --tle gps.tle --sat 41328 --start 2023-01-25T06:00 "
+        "--stop 2023-01-25T17:00 --step 30s --min-elevation 10",
+        "feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G01 --points 4 -o g01.fits",
+        "feedrot satellite GGAO12M --sp3 igs.sp3 --points 4 --step 30s --units cycles "
+        "-o all.ecsv",
+    ],
+    "baseline": [
+        "feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 "
+        "--stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10",
+        'feedrot baseline EFLSBERG YEBES40M --source "03h19m48.16s +41d30m42.1s" '
+        "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --frequency 8.4GHz",
+    ],
 }
 
 
@@ -185,7 +192,7 @@ def _run_single(args):
                          index=table.colnames.index("continuous") + 1)
     if getattr(args, "units", None) is not None:
         in_units(table, args.units, _PHASE_COLUMNS)
-    write_table(table, paths, "feed_rotation")
+    write_table(table, paths, "feed_rotation", overwrite=args.overwrite)
     return 0
 
 
@@ -211,7 +218,7 @@ def _run_baseline(args):
                            polarization=args.polarization, min_elevation=min_elevation)
     in_units(table, args.units, [f"{antenna}_{name}" for antenna in table.meta["antennas"]
                                  for name in _PHASE_COLUMNS])
-    write_table(table, paths, "baseline")
+    write_table(table, paths, "baseline", overwrite=args.overwrite)
     return 0
 
 
@@ -236,7 +243,7 @@ def register(commands):
     natural = commands.add_parser(
         "natural", help="a natural radio source seen by one antenna",
         description="Feed rotation of one antenna observing a natural radio source.",
-        epilog=EXAMPLES["natural"], formatter_class=argparse.RawDescriptionHelpFormatter)
+        epilog=examples(EXAMPLES["natural"]), formatter_class=argparse.RawDescriptionHelpFormatter)
     natural.add_argument("antenna", metavar="ANTENNA", help=ANTENNA_HELP)
     add_natural_options(natural)
     add_time_options(natural)
@@ -247,7 +254,8 @@ def register(commands):
         "satellite", help="a satellite seen by one antenna",
         description="Feed rotation (wind-up) of one antenna observing a satellite, split into "
         "transmitter and receiver terms.",
-        epilog=EXAMPLES["satellite"], formatter_class=argparse.RawDescriptionHelpFormatter)
+        epilog=examples(EXAMPLES["satellite"]),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     satellite.add_argument("antenna", metavar="ANTENNA", help=ANTENNA_HELP)
     _add_satellite_options(satellite)
     add_units_option(satellite, "deg")
@@ -260,7 +268,7 @@ def register(commands):
         description="Feed rotation at both ends of a baseline and the rotation delay "
         "(antenna 2 minus antenna 1) at a frequency. The target is a natural source "
         "(--source or --ra/--dec) or a satellite (--tle or --sp3).",
-        epilog=EXAMPLES["baseline"], formatter_class=argparse.RawDescriptionHelpFormatter)
+        epilog=examples(EXAMPLES["baseline"]), formatter_class=argparse.RawDescriptionHelpFormatter)
     baseline.add_argument("antennas", metavar="ANTENNA", nargs=2, help=ANTENNA_HELP)
     baseline.add_argument("--frequency", required=True, metavar="FREQ",
                           help="observing frequency with a unit (1575.42MHz; plain: MHz)")

@@ -490,7 +490,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", OrbitWarning)
         warnings.simplefilter("ignore", DegenerateGeometryWarning)
-        write_files([(path, write)])
+        write_files([(path, write)], overwrite=overwrite)
     untouched = dict(satellites.why)
     for prn, count in report["gaps"].items():
         untouched.setdefault(prn, f"{count} epochs in holes of the orbit, outside the attitude "

@@ -19,9 +19,10 @@ Format (SP3-c)" (NGS, 2010) and "(SP3-d)" (NGS, 2016). The reader relies on:
   `SP3Data.gaps`);
 * position records ``P<sat>`` with x, y, z in km in columns 5-46 and the
   clock in microseconds in columns 47-60, fixed-point numbers (F14.6). A bad
-  or absent position is written as 0.000000 for all three coordinates, a bad
-  or absent clock as 999999.999999; both become NaN here. Velocity (``V``)
-  and correlation (``EP``, ``EV``) records are skipped;
+  or absent position is written as 0.000000 for all three coordinates (or,
+  by some writers, 999999.999999 as for the clock), a bad or absent clock as
+  999999.999999; all become NaN here. Velocity (``V``) and correlation
+  (``EP``, ``EV``) records are skipped;
 * the last line ``EOF``.
 
 What the reader refuses, with a `FileFormatError` naming the line: an epoch
@@ -30,6 +31,21 @@ interval; a number of epochs that disagrees with line 1 (a truncated file
 closed by ``EOF``); a number that is not a fixed-point number, including
 ``nan`` and ``inf``; a record cut short inside a number; besides the breaks
 of the layout above.
+
+What the reader does not interpolate, with one `~astropy_feedrot.OrbitWarning`
+per file: positions that no orbit around the Earth can have, which become
+NaN (holes). A position is implausible when its distance from the geocentre
+lies outside the band of its system (`RADIUS_LIMITS`; inside the Earth for
+any satellite), or when it breaks the smoothness of the orbit: over five
+consecutive epochs at the file's interval ``h``, the fourth difference of a
+satellite's positions is at most about ``r (omega h)**4``, with ``omega``
+the fastest angular rate of an orbit at radius ``r`` seen from the rotating
+Earth (mean motion plus the Earth's rotation); the reader allows ten times
+that, plus a metre: 400 km for GPS at 15-minute epochs, 5 km at 5-minute
+epochs, which a single record 1,000 km (or 10 km) off exceeds. The record
+that best explains the excess (least squares over the windows holding it)
+is dropped, and the check repeats until every window is smooth. Files with fewer than five
+consecutive epochs get the radius check only.
 
 SP3-a files (satellite IDs as I3 numbers) and SP3-b files are read too; their
 satellite IDs ``'  5'`` or ``'G 5'`` become ``'G05'`` and, when the ``%c`` line
@@ -44,6 +60,7 @@ import numpy as np
 from astropy import units as u
 from astropy.time import Time
 
+from ..exceptions import OrbitWarning, warn_caller
 from ._common import (
     TIME_SYSTEMS,
     FileFormatError,
@@ -55,10 +72,33 @@ from ._common import (
     readonly,
 )
 
-__all__ = ["SP3Data", "read_sp3", "join_sp3"]
+__all__ = ["SP3Data", "implausible_positions", "read_sp3", "join_sp3"]
 
-#: Clock values at or above this (the format writes 999999.999999) are bad or absent.
+#: Clock values at or above this (the format writes 999999.999999) are bad or absent;
+#: so are positions with a coordinate of this size (km) or more.
 BAD_CLOCK = 999999.0
+
+#: Geocentric gravitational constant (m3/s2, IERS Conventions 2010, Table 1.1).
+GM_EARTH = 3.986004418e14
+
+#: The Earth's rotation rate (rad/s, IERS Conventions 2010, Table 1.1).
+OMEGA_EARTH = 7.292115e-5
+
+#: Plausible distance from the geocentre (m) by the system letter of the satellite ID.
+#: GNSS orbits lie between 23,200 km (perigee of Galileo E14 and E18, the most eccentric)
+#: and 45,300 km (apogee of the QZSS inclined orbits); any other satellite lies above
+#: the Earth's equatorial radius plus 100 km and within 400,000 km (the Moon's distance).
+RADIUS_LIMITS = {
+    "G": (20e6, 35e6), "R": (20e6, 35e6), "E": (20e6, 35e6), "C": (20e6, 48e6),
+    "J": (20e6, 48e6), "I": (20e6, 48e6), "S": (20e6, 48e6),
+}
+OTHER_RADIUS_LIMITS = (6.478e6, 4e8)
+
+# Fourth differences over five consecutive epochs: the weights, and the margin (factor,
+# metres) allowed above the bound r (omega h)**4 of a smooth orbit.
+_D4 = np.array([1.0, -4.0, 6.0, -4.0, 1.0])
+_D4_FACTOR = 10.0
+_D4_FLOOR = 1.0
 
 #: Two epochs closer than this (seconds) are the same; an epoch further than
 #: this from a whole number of intervals after the previous one is off the grid.
@@ -383,10 +423,14 @@ class _Reader:
             vals = np.array(values, dtype=float)
             xyz = vals[:, :3] * 1e3
             xyz[np.all(vals[:, :3] == 0.0, axis=1)] = np.nan
+            xyz[np.any(np.abs(vals[:, :3]) >= BAD_CLOCK, axis=1)] = np.nan
             c = vals[:, 3]
             c = np.where(c >= BAD_CLOCK, np.nan, c * 1e-6)
             pos[sat_idx, ep_idx] = xyz
             clk[sat_idx, ep_idx] = c
+            lines = np.zeros((nsat, nep), dtype=int)
+            lines[sat_idx, ep_idx] = linenos
+            self.drop_implausible(satellites, pos, offsets, nominal["interval"], lines)
         return SP3Data(
             version=version,
             time_system=time_system,
@@ -398,6 +442,97 @@ class _Reader:
             interval=nominal["interval"],
             gaps=gaps,
         )
+
+    def drop_implausible(self, satellites, pos, offsets, interval, lines):
+        """Set implausible positions to NaN (in place), warning once."""
+        bad = implausible_positions(satellites, pos, offsets, interval)
+        if not np.any(bad):
+            return
+        k, e = np.argwhere(bad)[0]
+        r = np.linalg.norm(pos[k, e])
+        pos[bad] = np.nan
+        warn_caller(
+            f"{self.name}: {np.count_nonzero(bad)} position record(s) no orbit can have (the "
+            f"first: {satellites[k]} on line {lines[k, e]}, {r / 1e3:.0f} km from the "
+            "geocentre, off the radius of its system or off the smooth path through its "
+            "neighbours); they are treated as missing (NaN), never interpolated", OrbitWarning)
+
+
+def implausible_positions(satellites, positions, seconds, interval):
+    """Which positions of an SP3 file no orbit around the Earth can have.
+
+    Parameters
+    ----------
+    satellites : sequence of str
+        SP3 satellite IDs (``'G01'``...), whose letters choose the radius
+        band of `RADIUS_LIMITS`.
+    positions : ndarray, shape (len(satellites), N, 3)
+        Earth-fixed positions in metres, NaN where missing.
+    seconds : ndarray, shape (N,)
+        Times of the epochs in seconds.
+    interval : float
+        The file's epoch interval in seconds.
+
+    Returns
+    -------
+    ndarray of bool, shape (len(satellites), N)
+        True where a position lies outside the radius band of its system, or
+        is the record that breaks the smoothness of the orbit through five
+        consecutive epochs (see the module's description).
+
+    Examples
+    --------
+    A circular 12-hour orbit at 5-minute epochs, one record moved by 1,000 km:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.io.sp3 import implausible_positions
+    >>> t = np.arange(20) * 300.0
+    >>> angle = 2 * np.pi * t / 43082.0
+    >>> xyz = 26.56e6 * np.stack([np.cos(angle), np.sin(angle), 0 * t], axis=-1)
+    >>> xyz[7, 2] += 1e6
+    >>> np.flatnonzero(implausible_positions(["G01"], xyz[np.newaxis], t, 300.0))
+    array([7])
+    """
+    pos = np.asarray(positions, dtype=float)
+    r = np.linalg.norm(pos, axis=-1)
+    low = np.array([RADIUS_LIMITS.get(s[:1], OTHER_RADIUS_LIMITS)[0] for s in satellites])
+    high = np.array([RADIUS_LIMITS.get(s[:1], OTHER_RADIUS_LIMITS)[1] for s in satellites])
+    with np.errstate(invalid="ignore"):
+        bad = (r < low[:, np.newaxis]) | (r > high[:, np.newaxis])
+    nep = pos.shape[1]
+    if nep < len(_D4):
+        return bad
+    steps = np.abs(np.diff(seconds) - interval) < EPOCH_TOLERANCE
+    nwin = nep - len(_D4) + 1
+    # Windows of five epochs one interval apart.
+    on_grid = np.all([steps[k:k + nwin] for k in range(len(_D4) - 1)], axis=0)
+    while True:
+        valid = np.isfinite(r) & ~bad
+        usable = on_grid & np.all([valid[:, k:k + nwin] for k in range(len(_D4))], axis=0)
+        d4 = sum(c * np.where(valid[:, k:k + nwin, np.newaxis], pos[:, k:k + nwin], 0.0)
+                 for k, c in enumerate(_D4))
+        if not np.any(usable):
+            return bad
+        radii = np.stack([r[:, k:k + nwin] for k in range(len(_D4))])
+        with np.errstate(invalid="ignore"):
+            rmin = np.min(radii, axis=0)
+            rmax = np.max(radii, axis=0)
+        with np.errstate(invalid="ignore"):
+            omega = np.sqrt(GM_EARTH / rmin**3) + OMEGA_EARTH
+            limit = _D4_FACTOR * rmax * (omega * interval) ** 4 + _D4_FLOOR
+            rough = usable & (np.linalg.norm(d4, axis=-1) > limit)
+        if not np.any(rough):
+            return bad
+        # The record that best explains the rough windows, per satellite (least squares).
+        score = np.zeros(pos.shape)
+        weight = np.zeros(r.shape)
+        for k, c in enumerate(_D4):
+            score[:, k:k + nwin] += np.where(usable[..., np.newaxis], c * d4, 0.0)
+            weight[:, k:k + nwin] += np.where(usable, c * c, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gain = np.where(weight > 0, np.sum(score**2, axis=-1) / weight, -1.0)
+        sats = np.flatnonzero(np.any(rough, axis=1))
+        bad[sats, np.argmax(gain[sats], axis=1)] = True
 
 
 def _is_overflow(field):

@@ -28,7 +28,13 @@ pyuvdata and python-casacore are optional and imported on first use.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
-from .files import antenna_table, correct_file, read_antennas
+from .files import (
+    FITSIDI_EXTENSIONS,
+    antenna_table,
+    check_output_format,
+    correct_file,
+    read_antennas,
+)
 from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
 from .history import APPLY_MARK, HISTORY_MARK
 from .kinds import FILE_KINDS, existing_path, file_kind
@@ -59,6 +65,8 @@ __all__ = [
     "read_antennas",
     "antenna_table",
     "correct_file",
+    "check_output_format",
+    "FITSIDI_EXTENSIONS",
     "feed_rotation_rows",
     "frame_position_angle",
     "distinct_epochs",

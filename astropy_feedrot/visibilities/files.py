@@ -25,15 +25,26 @@ from pathlib import Path
 from astropy.table import Table
 
 from ..labels import label_from_mount
-from ..outputs import same_file
+from ..outputs import publish, same_file
 from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .kinds import existing_path, file_kind
 from .ms import ms_antennas
 from .poles import pole_context
+from .uvdata import (
+    WRITERS,
+    antennas_from_uvdata,
+    correct_uvdata,
+    read_uvdata,
+    write_uvdata,
+)
 from .uvfits import uvfits_antennas
 
-__all__ = ["read_antennas", "antenna_table", "correct_file"]
+__all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
+           "check_output_format"]
+
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
+FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
 
 
 def read_antennas(path, *, vertical="geodetic"):
@@ -77,7 +88,6 @@ def read_antennas(path, *, vertical="geodetic"):
         return uvfits_antennas(path, vertical=vertical), writing_program(path)[1]
     if kind == "ms":
         return ms_antennas(path, vertical=vertical), "casacore"
-    from .uvdata import antennas_from_uvdata, read_uvdata  # pyuvdata is optional
 
     uv = read_uvdata(path, read_data=False)
     return antennas_from_uvdata(uv, vertical=vertical), "pyuvdata"
@@ -158,20 +168,42 @@ def _check_output(source, output, overwrite):
     return resolved
 
 
-def _replace(temporary, target):
-    """Move ``temporary`` (file or directory) onto ``target``, replacing it."""
-    if target.is_dir() and not target.is_symlink():
-        old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.old."))
-        os.replace(target, old / target.name)
-        try:
-            os.replace(temporary, target)
-        except OSError:
-            os.replace(old / target.name, target)
-            raise
-        finally:
-            shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(temporary, target)
+def check_output_format(kind, output):
+    """Refuse an output whose extension does not name what `correct_file` writes.
+
+    Parameters
+    ----------
+    kind : str
+        The input's kind, one of `~astropy_feedrot.visibilities.FILE_KINDS`.
+    output : str or path-like
+        The output's name.
+
+    Raises
+    ------
+    ValueError
+        A FITS-IDI input is corrected into FITS-IDI (`FITSIDI_EXTENSIONS`;
+        there is no conversion); any other input into a format pyuvdata
+        writes, named by the extension (`~astropy_feedrot.visibilities.WRITERS`).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import check_output_format
+    >>> check_output_format("uvfits", "out.uvh5")
+    >>> check_output_format("fits-idi", "out.uvfits")
+    Traceback (most recent call last):
+    ...
+    ValueError: 'out.uvfits': a FITS-IDI input is corrected into a FITS-IDI copy ...
+    """
+    text = os.fspath(output)
+    extension = Path(text.rstrip("/" + os.sep)).suffix.lower()
+    if kind == "fits-idi":
+        if extension not in FITSIDI_EXTENSIONS:
+            raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
+                             "(there is no conversion to other formats); give the output one "
+                             f"of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
+    elif extension not in WRITERS:
+        raise ValueError(f"cannot tell a format from the extension of {text!r}; use one of "
+                         f"{', '.join(WRITERS)}")
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
@@ -240,13 +272,13 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     """
     source = existing_path(path)
     kind = file_kind(source)
+    check_output_format(kind, output)  # before any work
     target = _check_output(source, output, overwrite)
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
                         vertical=vertical, direction=direction, feeds=feeds, redo=redo,
                         pole=pole, client=client)
         return target
-    from .uvdata import correct_uvdata, read_uvdata, write_uvdata  # pyuvdata is optional
 
     uv = read_uvdata(source)
     with pole_context(pole):
@@ -256,7 +288,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     try:
         temporary = work / target.name
         write_uvdata(uv, temporary)
-        _replace(temporary, target)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     finally:
         with contextlib.suppress(OSError):
             shutil.rmtree(work)

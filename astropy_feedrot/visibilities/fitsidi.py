@@ -23,7 +23,7 @@ from astropy.time import Time
 
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..outputs import same_file
+from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
@@ -630,7 +630,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                                  direction):
                 nan_rows += count
                 step()
-        os.replace(temporary, target)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     except BaseException:
         if os.path.exists(temporary):
             os.remove(temporary)

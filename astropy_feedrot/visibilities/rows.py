@@ -154,7 +154,11 @@ def distinct_epochs(obstime):
     obstime = as_time(obstime)
     if obstime.ndim != 1:
         raise ValueError(f"obstime must be 1-d (one epoch per row), got shape {obstime.shape}")
-    pairs = np.column_stack([obstime.jd1, obstime.jd2])
+    # Masked epochs by their hidden values (they give NaN later); plain arrays, as
+    # numpy.unique takes no masked array on astropy 6.0.
+    plain = obstime.unmasked if obstime.masked else obstime
+    pairs = np.column_stack([np.asarray(plain.jd1, dtype=float),
+                             np.asarray(plain.jd2, dtype=float)])
     # Normalize so that equal epochs have equal pairs.
     day = np.floor(pairs[:, 0] + pairs[:, 1])
     pairs = np.column_stack([day, (pairs[:, 0] - day) + pairs[:, 1]])

@@ -18,6 +18,9 @@ conjugation, feed angles, the vertical of CASA) are in ``docs/uvdata.rst``.
 
 import contextlib
 import os
+import shutil
+import tempfile
+import warnings
 
 import numpy as np
 from astropy import units as u
@@ -31,6 +34,7 @@ from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..frames import VERTICALS
 from ..labels import mount_from_label
 from ..mounts import AltAzMount
+from ..outputs import publish
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .history import check_direction, check_history, history_entry
@@ -582,7 +586,10 @@ def _offline():
 
     with data_conf.set_temp("allow_internet", False), iers_context():
         try:
-            EarthLocation.get_site_names()
+            with warnings.catch_warnings():
+                # astropy 6.0 falls back on its built-in list, with this warning.
+                warnings.filterwarnings("ignore", "Could not access the main site list")
+                EarthLocation.get_site_names()
         except OSError:  # URLError: not cached and no internet
             previous = EarthLocation._site_registry
             registry = SiteRegistry()
@@ -704,10 +711,17 @@ def write_uvdata(uv, path, overwrite=False):
     if os.path.exists(path) and not overwrite:
         raise FileExistsError(f"{path!r} exists; pass overwrite=True to replace it")
     writer = getattr(uv, WRITERS[extension])
-    with _offline():
-        if WRITERS[extension] == "write_uvfits":
-            if os.path.exists(path):
-                os.remove(path)
-            writer(path)
-        else:
-            writer(path, clobber=overwrite)
+    # Written beside the target and published in one step: exclusively unless overwrite,
+    # so that a file made meanwhile by another program is never replaced.
+    name = os.path.basename(path.rstrip("/" + os.sep))
+    work = tempfile.mkdtemp(dir=os.path.dirname(os.path.abspath(path)), prefix=f".{name}.")
+    try:
+        temporary = os.path.join(work, name)
+        with _offline():
+            if WRITERS[extension] == "write_uvfits":
+                writer(temporary)
+            else:
+                writer(temporary, clobber=True)
+        publish(temporary, path, overwrite=overwrite)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)

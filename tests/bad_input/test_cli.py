@@ -12,16 +12,16 @@ throw arbitrary text and combinations of bad values at every option.
 
 import os
 import re
-import signal
 import subprocess
 import sys
-import threading
 
 import pytest
 from astropy.table import Table
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+import astropy_feedrot.cli.common
+import astropy_feedrot.cli.tables
 from astropy_feedrot.cli import CELESTIAL_FRAMES, main
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.simulations import GPS_SVN76_TLE
@@ -503,28 +503,32 @@ def test_closed_standard_output_is_quiet():
     assert err == b""
 
 
-def test_interrupted_run_leaves_files_as_they_were(capsys, tmp_path):
-    # A run of a million epochs, interrupted (Ctrl-C) after half a second.
+@pytest.mark.parametrize("when", ["computing", "writing"])
+def test_interrupted_run_leaves_files_as_they_were(capsys, tmp_path, monkeypatch, when):
+    # Ctrl-C (KeyboardInterrupt) while the table is computed, or after half of the new
+    # table is in its temporary file: raised at that point, not sent after a delay, so
+    # the test does not depend on how fast the machine is.
     output = tmp_path / "out.ecsv"
     output.write_bytes(b"old table")
     argv = ["natural", "EFLSBERG", "--source", SOURCE, "--start", "2023-01-01", "--stop",
-            "2023-01-12T13:46:39", "--step", "1s", "-o", str(output), "--overwrite"]
-    # Ctrl-C every half second until the run stops: Python drops a
-    # KeyboardInterrupt that arrives while a destructor runs, as a user's
-    # first Ctrl-C can be lost, so one signal alone can go unseen.
-    stop = threading.Event()
+            "2023-01-01T02:00", "--step", "10min", "-o", str(output), "--overwrite"]
 
-    def interrupt():
-        while not stop.wait(0.5):
-            os.kill(os.getpid(), signal.SIGINT)
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
 
-    sender = threading.Thread(target=interrupt, daemon=True)
-    sender.start()
-    try:
-        status = main(argv)
-    finally:
-        stop.set()
-        sender.join()
+    def half_written(table, fmt):
+        def write(name):
+            with open(name, "wb") as handle:
+                handle.write(b"# %ECSV 1.0\n# ---\n")
+            assert os.path.exists(name)
+            raise KeyboardInterrupt
+        return write
+
+    if when == "computing":
+        monkeypatch.setattr(astropy_feedrot.cli.tables, "feed_rotation_table", interrupted)
+    else:
+        monkeypatch.setattr(astropy_feedrot.cli.common, "table_writer", half_written)
+    status = main(argv)
     _, err = capsys.readouterr()
     assert status == 130 and err == "feedrot: interrupted\n"
     assert [p.name for p in tmp_path.iterdir()] == ["out.ecsv"]

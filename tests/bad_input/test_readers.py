@@ -308,6 +308,67 @@ def test_sp3_digit_replaced_by_a_non_digit(path, data):
     assert sp3_outcome(joined(lines), read_sp3(path)) == "error"
 
 
+@SP3_SAMPLES
+@FAST
+@given(data=st.data())
+def test_sp3_bad_or_absent_position_999999_is_missing(path, data):
+    # The format's bad/absent value 999999.999999 in any coordinate of any record: that
+    # position is NaN (never a position 1e9 m out), everything else as read before.
+    lines = lines_of(path)
+    reference = read_sp3(path)
+    rows = [i for i, line in enumerate(lines) if line.startswith("P")]
+    row = data.draw(st.sampled_from(rows), label="row")
+    fields = data.draw(st.lists(st.integers(0, 2), min_size=1, max_size=3, unique=True),
+                       label="fields")
+    line = lines[row].ljust(60)
+    for field in fields:
+        start = 4 + 14 * field
+        line = line[:start] + f"{'999999.999999':>14}" + line[start + 14:]
+    lines[row] = line
+    epoch = sum(1 for text in lines[:row] if text.startswith("*")) - 1
+    sat = lines[row][1:4]
+    mutated = read_sp3_text(joined(lines))
+    assert np.all(np.isnan(mutated.positions[sat][epoch]))
+    for name in reference.satellites:
+        expected = np.array(reference.positions[name])
+        if name == sat:
+            expected[epoch] = np.nan
+        np.testing.assert_array_equal(mutated.positions[name], expected)
+        np.testing.assert_array_equal(mutated.clock[name], reference.clock[name])
+
+
+@FAST
+@given(data=st.data())
+def test_sp3_single_record_off_by_1000_km_or_more_is_dropped(data):
+    # One record of G01 moved by 1,000 to 20,000 km in any direction, at any epoch
+    # (the ends included): one OrbitWarning, that position NaN, the others untouched,
+    # and SP3Orbit interpolates nothing through it (the closed-form circle to 1 mm).
+    text = sp3_with_holes({})
+    reference = read_sp3_text(text)
+    epoch = data.draw(st.integers(0, N_EPOCHS - 1), label="epoch")
+    size = data.draw(st.floats(1000.0, 20000.0), label="km")
+    direction = np.array(data.draw(st.tuples(*[st.floats(-1, 1)] * 3).filter(
+        lambda v: np.linalg.norm(v) > 0.1), label="direction"))
+    shift = size * direction / np.linalg.norm(direction)
+    lines = lines_of_text(text)
+    row = [i for i, line in enumerate(lines) if line.startswith("PG01")][epoch]
+    x, y, z = circle_km(epoch * INTERVAL, 0) + shift
+    lines[row] = f"PG01{x:14.6f}{y:14.6f}{z:14.6f}{1.0:14.6f}"
+    with pytest.warns(OrbitWarning) as caught:
+        mutated = read_sp3_text(joined(lines))
+    assert len(caught) == 1
+    assert re.match(rf"sample\.sp3: 1 position record\(s\) no orbit can have \(the first: G01 "
+                    rf"on line {row + 1}, ", str(caught[0].message))
+    expected = np.array(reference.positions["G01"])
+    expected[epoch] = np.nan
+    np.testing.assert_array_equal(mutated.positions["G01"], expected)
+    np.testing.assert_array_equal(mutated.positions["G02"], reference.positions["G02"])
+
+
+def lines_of_text(text):
+    return text.splitlines()
+
+
 # --- SP3Orbit: holes ---------------------------------------------------------------------
 
 INTERVAL = 300.0
