@@ -41,11 +41,10 @@ EXAMPLES = {
     "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
                 "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
                 "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric",
-                "feedrot correct obs.ms --in-place",
-                "feedrot correct sim.ms --in-place --data-column MODEL_DATA --column "
-                "MODEL_DATA --apply",
-                "feedrot correct atca.uv -o atca.uvfits --feeds X,Y",
-                "feedrot correct obs.ms --in-place --vertical geocentric --pole casa "
+                "feedrot correct vla.ms --in-place",
+                "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
+                "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
+                "feedrot correct vla.ms --in-place --vertical geocentric --pole casa "
                 "--workers 2"],
 }
 
