@@ -6,11 +6,14 @@
 U = 0.08) for 8 hours with four antennas of the VLA (circular feeds) or ALMA
 (linear feeds), and predicts the data from a component list.
 
+``python casa_sim.py check``: CASA starts (imports) here.
+
 ``python casa_sim.py applycal MS``: CASA's ``applycal(parang=True)``, no
 calibration table: DATA with the parallactic angle removed into
 CORRECTED_DATA.
 """
 
+import importlib
 import sys
 
 import numpy as np
@@ -64,7 +67,10 @@ def applycal(ms):
 
 
 if __name__ == "__main__":
-    if sys.argv[1] == "simulate":
+    if sys.argv[1] == "check":
+        for name in ("casatools", "casatasks"):
+            importlib.import_module(name)
+    elif sys.argv[1] == "simulate":
         simulate(sys.argv[2], sys.argv[3])
     else:
         applycal(sys.argv[2])

@@ -62,8 +62,19 @@ def _casa(home, *args):
     assert result.returncode == 0 and "done" in result.stdout, result.stderr[-2000:]
 
 
+@pytest.fixture(scope="module")
+def casa_works(tmp_path_factory):
+    """Skip, saying why, if the installed CASA does not start (e.g. built for another numpy)."""
+    home = tmp_path_factory.mktemp("casa_check")
+    try:
+        _casa(home, "check")
+    except AssertionError as error:
+        lines = [line for line in str(error).splitlines() if line.strip()]
+        pytest.skip(f"CASA is installed but does not start here: {lines[-1] if lines else ''}")
+
+
 @pytest.fixture(scope="module", params=["vla", "alma"])
-def simulated(request, tmp_path_factory):
+def simulated(request, tmp_path_factory, casa_works):
     """(data, CASA's CORRECTED_DATA, a pristine copy, kind) of a simulated set."""
     home = tmp_path_factory.mktemp(f"casa_{request.param}")
     ms = home / f"{request.param}.ms"
