@@ -89,7 +89,8 @@ def check_outputs(outputs, inputs, overwrite, hint="choose another name"):
     Parameters
     ----------
     outputs : list of (option, path, extensions)
-        The files to write (path None: not written) and the extensions each may have.
+        The files to write (path None: not written) and the extensions each may have
+        (None: any, for a file whose format the command decides, such as RINEX).
     inputs : list of (option, path)
         Files the command reads: never overwritten.
     overwrite : bool
@@ -130,7 +131,7 @@ def check_outputs(outputs, inputs, overwrite, hint="choose another name"):
         given = Path(text).expanduser()
         if given.is_dir():
             raise CommandError(f"{what}: {text!r} is a directory")
-        if given.suffix.lower() not in extensions:
+        if extensions is not None and given.suffix.lower() not in extensions:
             raise CommandError(f"{what}: cannot tell a format from the extension of {text!r}; "
                                f"use one of {', '.join(extensions)}")
         # Through symbolic links: the file that would change.

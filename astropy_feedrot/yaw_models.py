@@ -15,13 +15,17 @@ law               behaviour (source)
                   starting where the nominal rate would exceed it (Kouba 2009,
                   GPS Solutions 13:1-12); nominal in the shadow.
 ``gps-iif``       noon turns at 0.11 deg/s, in the wrong direction for a beta
-                  between the yaw bias (-0.7 deg) and 0; through the shadow a
+                  between the yaw bias (-0.7 deg) and 0; through the shadow
+                  (within 13.25 deg of the anti-Sun direction, Kouba's limit) a
                   constant yaw rate that takes the nominal yaw at shadow entry to
                   the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
                   values of Kouba's eclips.f, May 2017). Also used for GPS III,
                   an assumption (no law was published when this was written).
-``glonass-m``     noon turns at 0.25 deg/s; in the shadow, a turn at the maximum
-                  rate towards the nominal yaw at shadow exit, then a stop
+``glonass-m``     noon turns at 0.25 deg/s, symmetric about noon (from the
+                  nominal yaw at ``-a`` to that at ``+a``,
+                  `symmetric_half_width`); in the shadow (14.2 deg), a turn at
+                  the maximum rate towards the nominal yaw at shadow exit, then
+                  a stop
                   (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
                   Adv. Space Res. 56:1015-1029).
 ``galileo``       the smoothed yaw steering of the Galileo satellite metadata
@@ -39,6 +43,13 @@ law               behaviour (source)
 
 
 Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
+
+A turn keeps the direction, and the start and aim, set by the beta angle when
+the turn started (`turn_age`), when the beta
+angle changes sign during it (Kouba's ``BETAINI``). Against samples of
+Kouba's ``eclips`` routine with the same inputs the yaw agrees to 1e-11 deg
+outside turns and to 0.1-3 deg in them; the differences that remain are
+explained in the GNSS page of the documentation.
 
 Angles follow Kouba (2009): the orbit angle ``mu`` is counted from orbit
 midnight in the direction of motion, the beta angle is the Sun's elevation
@@ -63,7 +74,8 @@ from .io import read_satellite_metadata
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
-           "model_yaw", "default_metadata"]
+           "model_yaw", "symmetric_half_width", "turn_age",
+           "default_metadata"]
 
 #: Earth's rotation rate (rad/s, IERS Conventions 2010), for inertial velocities.
 EARTH_ROTATION = 7.292115e-5
@@ -73,6 +85,10 @@ EARTH_RADIUS = 6378137.0
 
 #: Seconds of the finite difference that gives the velocity from the orbit.
 VELOCITY_STEP = 1.0
+
+#: Beta angle (deg) below which the beta angle at a turn's start is looked up (no turn
+#: law acts above it: GPS IIF turns below 4.3 deg, Galileo IOV smooths below 2 deg).
+BETA_START_LIMIT = 6.0
 
 #: Beta angle below which BeiDou-2 MEO and IGSO satellites switch to orbit normal.
 BEIDOU_BETA = np.radians(4.0)
@@ -93,6 +109,12 @@ class YawLaw(NamedTuple):
         go the wrong way).
     beta_y, beta_x : float or None
         The Galileo smoothing limits in deg.
+    shadow : float or None
+        Half-width of the Earth's shadow in deg, as the angle at the Earth's
+        centre between the satellite and the anti-Sun direction (shadow-crossing
+        laws): 13.25 deg for GPS and 14.2 deg for GLONASS, the values Kouba's
+        ``eclips`` routine is given (``ANIGHT - 180``). None: the geometric
+        cylinder, ``asin(EARTH_RADIUS / r)``.
 
     Examples
     --------
@@ -106,11 +128,12 @@ class YawLaw(NamedTuple):
     yaw_bias: float = 0.0
     beta_y: float = None
     beta_x: float = None
+    shadow: float = None
 
 
-_IIR = YawLaw("gps-iir", 0.20)
-_IIF = YawLaw("gps-iif", 0.11, -0.7)
-_GLONASS = YawLaw("glonass-m", 0.25)
+_IIR = YawLaw("gps-iir", 0.20, shadow=13.25)
+_IIF = YawLaw("gps-iif", 0.11, -0.7, shadow=13.25)
+_GLONASS = YawLaw("glonass-m", 0.25, shadow=14.2)
 _BEIDOU = YawLaw("beidou-on")
 _GEO = YawLaw("orbit-normal")
 
@@ -199,25 +222,115 @@ def nominal_yaw(beta, mu):
     return np.arctan2(-np.tan(beta), np.sin(mu))
 
 
-def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw):
+def symmetric_half_width(beta, rate_orbit, max_rate, iterations=30):
+    """Half-width (rad of orbit angle) of a noon turn symmetric about noon.
+
+    The orbit angle ``a`` at which a turn at ``max_rate`` that starts on the
+    nominal yaw at ``-a`` from noon ends on it at ``+a``:
+    ``max_rate * 2 a / rate_orbit = pi - 2 atan(tan|beta| / sin a)``, solved
+    by fixed-point iteration from Kouba's approximation (a contraction: the
+    nominal rate at the solution is below ``max_rate``). The GLONASS-M noon
+    turn (Dilssner et al. 2011, as in Kouba's ``eclips``).
+
+    Examples
+    --------
+    GLONASS-M (0.25 deg/s) at a beta of 1.5 deg: the turn starts 1.76 deg
+    of orbit angle before noon (0.89 deg where the nominal yaw rate reaches
+    the maximum, the start of Kouba's GPS turns):
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.yaw_models import symmetric_half_width
+    >>> a = symmetric_half_width(np.radians(1.5), 2 * np.pi / 40544, np.radians(0.25))
+    >>> round(float(np.degrees(a)), 2)
+    1.76
+    """
+    beta0 = np.arctan(rate_orbit / max_rate)
+    with np.errstate(invalid="ignore"):
+        half = np.sqrt(np.maximum(beta0 * np.abs(beta) - beta**2, 0.0))
+    for _ in range(iterations):
+        half = rate_orbit / (2 * max_rate) * (
+            np.pi - 2 * np.arctan2(np.tan(np.abs(beta)), np.sin(half)))
+    return half
+
+
+def turn_age(law, beta, mu, rate_orbit):
+    """Seconds since the current noon turn, midnight turn or shadow crossing started.
+
+    The start is that of the law's turn for the current beta angle: ``-half``
+    from noon (and, for GPS IIR, midnight) for a turn law whose maximum yaw
+    rate the nominal yaw would exceed, the shadow entry for GPS IIF and
+    GLONASS-M, ``beta_x`` before noon or midnight for Galileo. NaN where no
+    turn is under way (after the turn's nominal end, taken as the shadow's
+    half-width past noon or midnight, or ``beta_x`` for Galileo).
+
+    Examples
+    --------
+    A GPS IIF satellite in the shadow (13.25 deg) at a beta angle of 0,
+    3 deg of orbit angle past midnight, entered it 16.25 deg of orbit angle
+    ago:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.yaw_models import LAWS, turn_age
+    >>> rate = 2 * np.pi / 43082
+    >>> age = turn_age(LAWS["GPS-IIF"], 0.0, np.radians(3.0), rate)
+    >>> round(float(np.degrees(age * rate)), 2)
+    16.25
+    """
+    beta, mu, rate_orbit = np.broadcast_arrays(*(np.asarray(a, dtype=float)
+                                                 for a in (beta, mu, rate_orbit)))
+    noon = _wrap(mu - np.pi)
+    night = _wrap(mu)
+    age = np.full(beta.shape, np.nan)
+    with np.errstate(invalid="ignore"):
+        if law.kind == "galileo":
+            window = np.radians(law.beta_x)
+            delta = np.where(np.cos(noon) > 0, noon, night)
+            return np.where(np.abs(delta) <= window, (delta + window) / rate_orbit, np.nan)
+        if law.kind not in ("gps-iir", "gps-iif", "glonass-m"):
+            return age
+        end = np.radians(law.shadow)
+        rate = np.radians(law.max_yaw_rate)
+        beta0 = np.arctan(rate_orbit / rate)
+        if law.kind == "glonass-m":
+            half = symmetric_half_width(beta, rate_orbit, rate)
+        else:
+            half = np.sqrt(np.maximum(beta0 * np.abs(beta) - beta**2, 0.0))
+        turning = (np.abs(beta) < beta0) & (noon >= -half) & (noon <= end)
+        age = np.where(turning, (noon + half) / rate_orbit, age)
+        if law.kind == "gps-iir":
+            turning = (np.abs(beta) < beta0) & (night >= -half) & (night <= end)
+            return np.where(turning, (night + half) / rate_orbit, age)
+        shadow = np.arccos(np.clip(np.cos(end) / np.cos(beta), -1, 1))
+        inside = (np.abs(beta) < end) & (np.abs(night) <= shadow)
+        return np.where(inside, (night + shadow) / rate_orbit, age)
+
+
+def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw,
+          symmetric=False):
     """Yaw of a linear turn at ``sign * max_rate`` starting at ``delta = -half``.
 
     ``delta`` is the orbit angle from the turn centre; returns the yaw and
-    where the turn applies.
+    where the turn applies. ``half`` is Kouba's (2009) approximation, or with
+    ``symmetric`` the half-width of a turn symmetric about its centre.
     """
     beta0 = np.arctan(rate_orbit / max_rate)
     small = np.abs(beta) < beta0
     with np.errstate(invalid="ignore"):
         half = np.sqrt(np.where(small, beta0 * np.abs(beta) - beta**2, 0.0))
+    if symmetric:
+        half = np.where(small, symmetric_half_width(beta, rate_orbit, max_rate), 0.0)
     elapsed = (delta + half) / rate_orbit
     phi = start_yaw(half) + sign * max_rate * elapsed
     travel = np.mod(np.sign(sign) * (psi - start_yaw(half)), 2 * np.pi)
-    active = (active_region & small & (delta >= -half) & (max_rate * elapsed < travel)
-              & (elapsed < 2 * half / rate_orbit + 1800.0))
+    if symmetric:  # the linear yaw leads the nominal one until they meet at +half
+        active = active_region & small & (np.abs(delta) <= half)
+    else:
+        active = (active_region & small & (delta >= -half) & (max_rate * elapsed < travel)
+                  & (elapsed < 2 * half / rate_orbit + 1800.0))
     return phi, active
 
 
-def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
+def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_start=None):
     """The yaw (radians) of a law, and the nominal yaw, from the orbit angles.
 
     Parameters
@@ -230,6 +343,12 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
     beta_quadrature : ndarray, optional
         Beta angle at the last orbit quadrature (BeiDou's mode switch);
         ``beta`` if not given.
+    beta_start : ndarray, optional
+        Beta angle when the current turn started (see `turn_age`). Where its sign differs from ``beta``'s, the
+        direction of a turn, the yaw it starts from and, through a shadow,
+        the yaw it aims at follow it, so that a turn keeps its direction when
+        the beta angle changes sign during it (as Kouba's ``eclips`` keeps
+        ``BETAINI``); ``beta`` if not given.
 
     Returns
     -------
@@ -251,28 +370,34 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
     beta, mu, rate_orbit, radius = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in
                                                          (beta, mu, rate_orbit, radius)))
     psi = nominal_yaw(beta, mu)
+    start = beta
+    if beta_start is not None:  # only where the sign changed since the turn's start
+        beta_start = np.broadcast_to(beta_start, beta.shape)
+        start = np.where(np.sign(beta_start) == np.sign(beta), beta, beta_start)
     yaw = psi.copy()
     noon = _wrap(mu - np.pi)
     night = _wrap(mu)
     if law.kind in ("gps-iir", "gps-iif", "glonass-m"):
         rate = np.radians(law.max_yaw_rate)
-        sign = -np.sign(beta)
+        sign = -np.sign(start)
         if law.kind == "gps-iif":
-            wrong = (beta > np.radians(law.yaw_bias)) & (beta < 0)
-            sign = np.where(wrong, np.sign(beta), sign)
-        phi, active = _turn(psi, beta, noon, rate_orbit, rate, sign, np.cos(noon) > 0,
-                            lambda half: nominal_yaw(beta, np.pi - half))
+            wrong = (start > np.radians(law.yaw_bias)) & (start < 0)
+            sign = np.where(wrong, np.sign(start), sign)
+        phi, active = _turn(psi, start, noon, rate_orbit, rate, sign, np.cos(noon) > 0,
+                            lambda half: nominal_yaw(start, np.pi - half),
+                            symmetric=law.kind == "glonass-m")
         yaw = np.where(active, phi, yaw)
         if law.kind == "gps-iir":
-            phi, active = _turn(psi, beta, night, rate_orbit, rate, np.sign(beta),
-                                np.cos(night) > 0, lambda half: nominal_yaw(beta, -half))
+            phi, active = _turn(psi, start, night, rate_orbit, rate, np.sign(start),
+                                np.cos(night) > 0, lambda half: nominal_yaw(start, -half))
             yaw = np.where(active, phi, yaw)
         else:  # through the shadow
-            width = np.arcsin(EARTH_RADIUS / radius)
+            width = (np.arcsin(EARTH_RADIUS / radius) if law.shadow is None
+                     else np.radians(law.shadow))
             with np.errstate(invalid="ignore"):
                 half = np.arccos(np.clip(np.cos(width) / np.cos(beta), -1, 1))
             inside = (np.abs(beta) < width) & (np.abs(night) <= half)
-            entry, exit_ = nominal_yaw(beta, -half), nominal_yaw(beta, half)
+            entry, exit_ = nominal_yaw(start, -half), nominal_yaw(start, half)
             elapsed = (night + half) / rate_orbit
             if law.kind == "gps-iif":
                 fraction = (night + half) / np.where(half > 0, 2 * half, 1)
@@ -285,7 +410,7 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None):
         beta_y, beta_x = np.radians(law.beta_y), np.radians(law.beta_x)
         c = np.sin(mu) * np.cos(beta)
         inside = (np.abs(beta) < beta_y) & (np.abs(c) < np.sin(beta_x))
-        s = np.where(beta >= 0, 1.0, -1.0) * np.sin(beta_y)
+        s = np.where(start >= 0, 1.0, -1.0) * np.sin(beta_y)
         shy = 0.5 * ((-np.sin(beta) - s)
                      + (np.sin(beta) - s) * np.cos(np.pi * np.abs(c) / np.sin(beta_x)))
         yaw = np.where(inside, np.arctan2(shy, c), yaw)
@@ -405,9 +530,14 @@ class ModelAttitude(Attitude):
         rate = metadata.yaw_rate(prn, obstime)
         return cls(orbit, block, max_yaw_rate=None if rate is None else rate[1])
 
-    def _geometry(self, obstime, position, sun):
+    def _geometry(self, obstime, position, sun, velocity=None):
         obstime = as_time(obstime)
         position = np.asarray(position, dtype=float)
+        if velocity is not None:
+            velocity = np.asarray(velocity, dtype=float)
+            shape = np.broadcast_shapes(position.shape, velocity.shape, np.shape(sun))
+            return (np.broadcast_to(position, shape), np.broadcast_to(velocity, shape),
+                    np.broadcast_to(sun, shape), obstime)
         t = np.atleast_1d(obstime).ravel()
         coverage = getattr(self.orbit, "coverage", None)
         step = VELOCITY_STEP * u.s
@@ -431,19 +561,32 @@ class ModelAttitude(Attitude):
         return (position, np.broadcast_to(velocity, shape), np.broadcast_to(sun, shape),
                 obstime)
 
-    def _yaw(self, obstime, position, sun):
-        position, velocity, sun, obstime = self._geometry(obstime, position, sun)
+    def _yaw(self, obstime, position, sun, velocity=None):
+        position, velocity, sun, obstime = self._geometry(obstime, position, sun, velocity)
         beta, mu, rate, along, side, nadir = orbit_angles(position, velocity, sun)
-        quadrature = None
+        quadrature = start = None
         if self.law.kind == "beidou-on":
-            quadrature = self._beta_at_quadrature(obstime, mu, rate)
+            quadrature = self._beta_before(obstime, np.mod(mu - np.pi / 2, 2 * np.pi) / rate)
+        elif self.law.kind != "orbit-normal":
+            age = np.broadcast_to(turn_age(self.law, beta, mu, rate), beta.shape).ravel()
+            inside = np.isfinite(age) & (np.abs(beta.ravel()) < np.radians(BETA_START_LIMIT))
+            start = np.array(beta, dtype=float).ravel()
+            if np.any(inside):
+                # The epochs broadcast to the geometry's shape, as indices.
+                index = np.broadcast_to(np.arange(obstime.size).reshape(obstime.shape),
+                                        beta.shape).ravel()
+                start[inside] = self._beta_before(obstime.reshape(-1)[index[inside]],
+                                                  age[inside])
+            start = start.reshape(np.shape(beta))
         radius = np.linalg.norm(position, axis=-1)
-        yaw, nominal = model_yaw(self.law, beta, mu, rate, radius, quadrature)
+        yaw, nominal = model_yaw(self.law, beta, mu, rate, radius, quadrature, start)
         return yaw, nominal, along, side, nadir
 
-    def _beta_at_quadrature(self, obstime, mu, rate):
-        since = np.mod(mu - np.pi / 2, 2 * np.pi) / rate
-        when = obstime - since * u.s
+    def _beta_before(self, obstime, since):
+        """Beta angle ``since`` seconds before the epochs (the orbit's first epoch at most)."""
+        when = as_time(obstime) - np.asarray(since, dtype=float) * u.s
+        shape = when.shape
+        when = when.reshape(-1)
         coverage = getattr(self.orbit, "coverage", None)
         if coverage is not None:  # before the orbit: its first epoch
             early = (when - coverage[0]).sec < VELOCITY_STEP
@@ -452,9 +595,9 @@ class ModelAttitude(Attitude):
                 when[early] = coverage[0] + VELOCITY_STEP * u.s
         position, velocity, sun, _ = self._geometry(when, self.orbit.position(when),
                                                     sun_position(when))
-        return orbit_angles(position, velocity, sun)[0]
+        return orbit_angles(position, velocity, sun)[0].reshape(shape)
 
-    def yaw(self, obstime, position=None, sun=None):
+    def yaw(self, obstime, position=None, sun=None, *, velocity=None):
         """The modelled and the nominal yaw angles.
 
         Parameters
@@ -465,6 +608,12 @@ class ModelAttitude(Attitude):
         sun : ndarray, optional
             ITRS positions of the Sun (m); `~astropy_feedrot.attitude.sun_position`
             if not given.
+        velocity : ndarray, shape of ``position``, optional
+            Earth-fixed ITRS velocities (m/s), for instance those of an orbit
+            file; a central difference of the orbit if not given. (An inertial
+            velocity expressed on ITRS axes, as Kouba's ``eclips`` takes,
+            becomes Earth-fixed by subtracting ``EARTH_ROTATION`` about z
+            crossed with the position.)
 
         Returns
         -------
@@ -478,7 +627,7 @@ class ModelAttitude(Attitude):
         obstime = as_time(obstime)
         position = self.orbit.position(obstime) if position is None else position
         sun = sun_position(obstime) if sun is None else sun
-        yaw, nominal, *_ = self._yaw(obstime, position, sun)
+        yaw, nominal, *_ = self._yaw(obstime, position, sun, velocity)
         return Angle(np.degrees(yaw), u.deg), Angle(np.degrees(nominal), u.deg)
 
     def dipoles(self, obstime, position, orientation=None):
@@ -486,8 +635,11 @@ class ModelAttitude(Attitude):
         check_orientation(orientation, obstime)
         return self.sun_and_dipoles(obstime, position, sun_position(obstime))
 
-    def sun_and_dipoles(self, obstime, position, sun):
+    def sun_and_dipoles(self, obstime, position, sun, *, velocity=None):
         """`dipoles` given the Sun's ITRS positions (m) at the epochs.
+
+        ``velocity``, optional, as in `yaw`: Earth-fixed ITRS velocities (m/s)
+        instead of the orbit's central difference.
 
         Examples
         --------
@@ -503,7 +655,7 @@ class ModelAttitude(Attitude):
         >>> bool(abs(aligned @ transverse) < 1e-12)
         True
         """
-        yaw, _, along, side, nadir = self._yaw(obstime, position, sun)
+        yaw, _, along, side, nadir = self._yaw(obstime, position, sun, velocity)
         cos, sin = np.cos(yaw)[..., np.newaxis], np.sin(yaw)[..., np.newaxis]
         aligned = cos * along + sin * side
         transverse = np.cross(nadir, aligned)

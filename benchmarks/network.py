@@ -159,7 +159,7 @@ def run_mode(mode, args):
                     environ.update(WORKER_MALLOC)
                 with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}), \
                         LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=None) as cluster, Client(cluster):
+                                     dashboard_address=":0") as cluster, Client(cluster):
                     started = time.perf_counter()
                     result["cluster_start"] = started - graph
                     da.to_npy_stack(path, lazy.astype(np.float32), axis=0)

@@ -31,7 +31,7 @@ def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, match", [
     (["-o", "{tmp}/a.crx"], "names a Compact RINEX"),
-    (["-o", RNX], "is the input file, which is never overwritten"),
+    (["-o", RNX], "is the OBS input, which is never overwritten"),
     (["-o", "{tmp}/a.rnx", "--attitude", "orbex"], "--attitude orbex needs --orbex"),
     (["-o", "{tmp}/a.rnx", "--orbex", "x.obx", "--attitude", "nominal"],
      "--orbex goes with --attitude orbex"),
@@ -50,8 +50,13 @@ def test_rinex_errors(tmp_path, capsys, argv, match):
 def test_rinex_output_exists(tmp_path, capsys):
     (tmp_path / "a.rnx").write_text("keep")
     assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "a.rnx")]) == 1
-    assert "-o/--output: output" in capsys.readouterr().err
+    # Checked before any work, in the command line's words (not the API's overwrite=True).
+    assert "a.rnx' exists; add --overwrite to replace it" in capsys.readouterr().err
     assert (tmp_path / "a.rnx").read_text() == "keep"
+    assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "b.ecsv"),
+                 "--table", str(tmp_path / "b.ecsv")]) == 1
+    assert "name the same file" in capsys.readouterr().err
+    assert not (tmp_path / "b.ecsv").exists()
 
 
 # -- satellite commands: every satellite of an SP3 file, units, default interpolation ---------

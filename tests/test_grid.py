@@ -507,7 +507,7 @@ def test_dask_distributed_local_cluster(antennas, satellites):
     distributed = pytest.importorskip("distributed")
     eager = feed_rotation_grid(antennas, satellites, TIMES)
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
-                                  dashboard_address=None) as cluster:
+                                  dashboard_address=":0") as cluster:
         with distributed.Client(cluster) as client:
             lazy = feed_rotation_grid_dask(antennas, satellites, TIMES, chunks=25)
             values = client.compute(lazy).result()

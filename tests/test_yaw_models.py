@@ -83,15 +83,17 @@ def test_iir_midnight_turn():
 
 
 def test_iif_shadow_crossing_at_a_constant_rate():
-    beta = 5.0  # below the shadow's half-width (13.9 deg at GPS height)
+    beta = 5.0  # below the shadow's half-width (13.25 deg in Kouba's eclips)
     times, yaw, nominal = _turn(beta, GPS, "GPS-IIF", centre="midnight")
     rate = _rate(yaw)
     position = _orbit(beta, GPS).position(times)
     sun = sun_position(times)
-    # In the cylinder of the Earth's shadow (independent test of the geometry).
-    along = np.sum(position * sun, axis=-1) / np.linalg.norm(sun, axis=-1)
-    off = np.linalg.norm(np.cross(position, sun), axis=-1) / np.linalg.norm(sun, axis=-1)
-    shadow = (along < 0) & (off < 6378137.0)
+    # Kouba's shadow: the satellite within 13.25 deg of the anti-Sun direction, seen
+    # from the Earth's centre (eclips's ANIGHT = 180 + 13.25 deg; independent test of
+    # the geometry, from the positions alone).
+    cosine = -np.sum(position * sun, axis=-1) / (np.linalg.norm(position, axis=-1)
+                                                  * np.linalg.norm(sun, axis=-1))
+    shadow = cosine > np.cos(np.radians(13.25))
     inside = shadow[1:] & shadow[:-1]
     assert 1500 < np.count_nonzero(shadow) < 4000  # about 55 minutes at this beta
     # Constant rate from the nominal yaw at entry to the nominal yaw at exit.

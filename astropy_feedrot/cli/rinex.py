@@ -54,8 +54,9 @@ def _run_rinex(args):
         ("--metadata", p) for p in [args.metadata] if p is not None]
     for option, path in inputs:
         read_path(path, option)
-    table = check_outputs([("--table", args.table, tuple(TABLE_FORMATS))], inputs,
-                          args.overwrite)[0]
+    table = check_outputs([("-o/--output", args.output, None),
+                           ("--table", args.table, tuple(TABLE_FORMATS))], inputs,
+                          args.overwrite)[1]
     max_gap = parse_quantity(args.max_gap, u.s, "--max-gap")
     try:
         report = correct_rinex(args.obs, args.output, args.sp3, orbex=args.orbex,
