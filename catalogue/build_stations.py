@@ -38,6 +38,9 @@ from checks import (
     PYUVDATA,
     REFERENCE_POINTS,
     SCHED,
+    MEERKAT_DISHES,
+    MEERKAT_EXTENT,
+    SIMMS,
     SINGLE_SOURCE,
     SITES,
     SKED,
@@ -380,6 +383,16 @@ def build():
             frame="", sched_codes=codes, position_source=where, mount_source=mount_source,
             focus_source="", checks=[])
 
+    # 1e. The dishes of MeerKAT (simms's layout): alt-az, as the file says.
+    for name, entry in sources["simms"].items():
+        rows[name] = dict(
+            name=name, aliases=[], networks={"MeerKAT"}, xyz=entry["xyz"], vel=[0.0] * 3,
+            epoch=math.nan, mount=MOUNT_CODES.get(entry["mount"].replace("-", "")),
+            focus="cassegrain", frame="", sched_codes=set(),
+            position_source=f"{SIMMS} line {entry['line']} ({name})",
+            mount_source=f"{SIMMS} line {entry['line']} ({entry['mount']})",
+            focus_source="", checks=[])
+
     # 2. The EVN planner: networks for SCHED stations (same code, within 5 km),
     # and stations SCHED lacks.
     for station in planner:
@@ -541,6 +554,10 @@ def build():
         row["mount_checks"] = mount_checks(row, sources)
         if row["name"] in SINGLE_SOURCE:
             row["position_source"] += f"; single source: {SINGLE_SOURCE[row['name']]}"
+        if row["name"] in MEERKAT_DISHES:
+            row["array_distance"] = float(np.linalg.norm(
+                np.subtract(row["xyz"], rows["MEERKAT"]["xyz"])))
+            row["position_source"] += f" ({row['array_distance']:.0f} m from MEERKAT)"
 
     # A station is kept if another source confirms its position, or if its
     # position is the current GSFC VLBI solution (the best there is) and no
@@ -560,6 +577,17 @@ def build():
         "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched),
     }
     return kept, left_out, sorted(no_mount), axis_checks
+
+
+def array_failures(rows):
+    """The MeerKAT dishes against the array: its 64 dishes, each within its extent."""
+    dishes = {row["name"]: row["array_distance"] for row in rows if "array_distance" in row}
+    failed = [f"MeerKAT: {len(dishes)} dishes, the array has {len(MEERKAT_DISHES)} "
+              f"({', '.join(sorted(set(MEERKAT_DISHES) ^ set(dishes)))})"] \
+        if set(dishes) != set(MEERKAT_DISHES) else []
+    return failed + [f"{name}: {distance:.0f} m from MEERKAT, beyond the array's extent "
+                     f"({MEERKAT_EXTENT:g} m)" for name, distance in sorted(dishes.items())
+                     if distance > MEERKAT_EXTENT]
 
 
 def _clean_aliases(rows):
@@ -672,7 +700,12 @@ def report(rows, left_out, no_mount, axis_checks):
               + (", ".join(single) or "none")]
     lines += ["", "Kept with one source, each with its reason (no other source used holds "
               "the position; listed in checks.py SINGLE_SOURCE):"]
-    lines += [f"  {name:10s} {why}" for name, why in sorted(SINGLE_SOURCE.items())]
+    lines += [f"  {name:10s} {why}" for name, why in sorted(SINGLE_SOURCE.items())
+              if name not in MEERKAT_DISHES]
+    distances = [row["array_distance"] for row in rows if "array_distance" in row]
+    lines += [f"  M000-M063  {SINGLE_SOURCE[MEERKAT_DISHES[0]]}: {len(distances)} dishes, "
+              f"{min(distances):.0f} m to {max(distances):.0f} m from MEERKAT (the array's "
+              f"extent: {MEERKAT_EXTENT:g} m)"]
     lines += ["", "Left out (no other source confirms the position): "
               + (", ".join(left_out) or "none")]
     lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "
@@ -700,6 +733,7 @@ def main(argv=None):
     kept = {row["name"] for row in rows}
     failed += [f"{name}: left out, but the catalogue must hold it (REQUIRED)"
                for name in sorted(REQUIRED - kept)]
+    failed += array_failures(rows)
     if failed:
         print("Unexplained disagreements (fix the row, or list the reason in "
               "EXCEPTIONS, REFERENCE_POINTS or MOUNT_EXCEPTIONS):\n  " + "\n  ".join(failed),

@@ -19,6 +19,7 @@ from readers import (
     read_casa_sched,
     read_difx_antennas,
     read_eht,
+    read_itrf_layout,
     read_locations,
     read_observatories,
     read_planner,
@@ -51,6 +52,18 @@ DIFX = "DiFX libraries/difxio/difxio/antenna_db.c (commit ed8d571)"
 ANTINFO = "IVS antenna-info.txt (A. Nothnagel, commit 9ec66be)"
 
 SKED = "sked_catalogs (commit 5aa7e2a) "
+
+SIMMS = "simms simms/observatories/meerkat.itrf.txt (commit e715505)"
+
+#: The MeerKAT dishes of simms's layout: the array's 64 (M000-M063), each
+#: within the array's extent (its longest baseline, 8 km) of the catalogue's
+#: MEERKAT (SCHED's, a position in the array's core). The build checks both.
+MEERKAT_DISHES = [f"M{i:03d}" for i in range(64)]
+MEERKAT_EXTENT = 8000.0
+MEERKAT_TEXT = ("simms's MeerKAT layout (ratt-ru/simms, 'Update MeerKAT coordinates', 2018) is "
+                "the only source used that names the dishes (casadata's meerkat.cfg is the "
+                "80-dish design layout, without names); the build checks the array's 64 dishes "
+                "and each against the catalogue's MEERKAT (SCHED)")
 
 PAPER = "paper"
 
@@ -85,6 +98,7 @@ SOURCE_TAGS = {
     "antinfo": (ANTINFO, None),  # mounts and foci, no positions
     "sked": (f"{SKED}position.cat", None),
     "sked-ant": (f"{SKED}antenna.cat", None),  # mounts, no positions
+    "simms": (SIMMS, None),
 }
 
 #: sked position.cat origins that are VLBI solutions (geodetic positions):
@@ -114,6 +128,7 @@ SINGLE_SOURCE = {
     "ZELRT13V": "DiFX's antenna_db gives it (as ZELEN13M, 'to about 1 m, for "
                 "identification'); the GSFC solutions of SCHED 1.29.1 and sked's position.cat "
                 "lack it; it lies 120 m from the 32 m ZELENCHK (GSFC solution)",
+    **{name: MEERKAT_TEXT for name in MEERKAT_DISHES},
 }
 
 TOHOKU_TEXT = ("the 2011 Mar 11 Tohoku earthquake, whose jump and post-seismic motion the "
@@ -335,6 +350,8 @@ def load_sources():
         "antinfo": read_antenna_info(SOURCES / "antenna-info" / "antenna-info.txt"),
         "sked": read_sked_positions(SOURCES / "sked" / "position.cat"),
         "sked-ant": read_sked_antennas(SOURCES / "sked" / "antenna.cat"),
+        "simms": {e["name"]: e for e in
+                  read_itrf_layout(SOURCES / "simms" / "meerkat.itrf.txt")},
     }
 
 

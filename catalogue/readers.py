@@ -315,3 +315,18 @@ def read_sked_antennas(path):
         found.setdefault(words[1], dict(axis=words[2], diameter=float(words[12]),
                                         code=words[13], line=number))
     return found
+
+
+def read_itrf_layout(path):
+    """An array layout of simms (``*.itrf.txt``): entries in file order.
+
+    Each line: X, Y, Z (ITRF, m), dish diameter (m), antenna name and mount
+    (``ALT-AZ``); each entry: ``name``, ``xyz``, ``diameter``, ``mount``, ``line``.
+    """
+    entries = []
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        words = line.split()
+        if len(words) == 6 and not line.startswith("#"):
+            entries.append(dict(name=words[4], xyz=[float(w) for w in words[:3]],
+                                diameter=float(words[3]), mount=words[5], line=number))
+    return entries
