@@ -8,9 +8,9 @@ telescopes and GNSS antennas").
 
 Everything a user calls is importable from here; the modules (``grid``,
 ``stations``, ``tables``...) stay importable for those who want them.
-``astropy_feedrot.uvdata`` (pyuvdata's ``UVData`` objects: antennas, feed
-rotation, correction) is imported on its own, as it needs the optional
-pyuvdata.
+``astropy_feedrot.visibilities`` (visibility files: FITS-IDI, UVFITS,
+Measurement Sets, pyuvdata's ``UVData`` objects) is imported on its own, as
+its formats need the optional pyuvdata and python-casacore.
 """
 
 from .antenna import Antenna, AntennaAngles, FeedRotationTerms

@@ -56,6 +56,10 @@ CIRCULAR_PRODUCTS = ("RR", "RL", "LR", "LL")
 #: Names of the correlation products of linear feeds (all four, any order).
 LINEAR_PRODUCTS = ("XX", "XY", "YX", "YY")
 
+#: The two directions of `correct_receptor_visibilities`: remove the feed
+#: rotation (measured to sky-fixed receptors) or apply it (the inverse).
+DIRECTIONS = ("remove", "apply")
+
 
 # --- input checks ------------------------------------------------------------
 
@@ -472,6 +476,14 @@ def _product_names(products):
     return names, basis
 
 
+def _linear_rows(theta):
+    """The rows (..., 2, 2) of the linear feed at position angles (X, Y) ``theta``."""
+    rows = np.empty(theta.shape[:-1] + (2, 2))
+    rows[..., 0, 0], rows[..., 0, 1] = np.cos(theta[..., 0]), np.sin(theta[..., 0])
+    rows[..., 1, 0], rows[..., 1, 1] = np.cos(theta[..., 1]), np.sin(theta[..., 1])
+    return rows
+
+
 def _linear_inverse(theta):
     """Inverse (..., 2, 2) of the linear feed's rows at position angles (X, Y) ``theta``."""
     a, b = theta[..., 0], theta[..., 1]
@@ -486,8 +498,8 @@ def _linear_inverse(theta):
 
 
 def correct_receptor_visibilities(visibilities, position_angles1, position_angles2, products,
-                                  *, conjugate=False, out=None):
-    """Remove the feed rotation from visibilities, receptor by receptor.
+                                  *, conjugate=False, out=None, direction="remove"):
+    """Remove (or apply) the feed rotation of visibilities, receptor by receptor.
 
     The general form of `correct_visibilities` and
     `correct_linear_visibilities`: each receptor has its own position angle
@@ -519,15 +531,21 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     out : `~numpy.ndarray`, optional
         Where to write the result, of the shape of ``visibilities``; it may
         be ``visibilities`` itself, to correct in place.
+    direction : {'remove', 'apply'}, optional
+        ``'remove'`` (default): from the visibilities of the receptors as
+        they turn, those of receptors fixed on the sky. ``'apply'``: the
+        inverse, from sky-fixed receptors (e.g. a model) to the turning
+        ones, as the antennas would measure them.
 
     Returns
     -------
     `~numpy.ndarray` or `~astropy.units.Quantity`
-        The visibilities of receptors fixed on the sky, in the same
-        convention, dtype, unit and mask: circular R and L of the sky, or
-        linear X toward north and Y toward east (IAU; a sample is masked
-        wholly where any of its four products is). NaN where an angle is
-        NaN.
+        With ``'remove'``, the visibilities of receptors fixed on the sky,
+        in the same convention, dtype, unit and mask: circular R and L of
+        the sky, or linear X toward north and Y toward east (IAU; a sample
+        is masked wholly where any of its four products is); with
+        ``'apply'``, those of the receptors at ``position_angles``. NaN where
+        an angle is NaN.
 
     Raises
     ------
@@ -541,7 +559,8 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
         four (the correction mixes them, so parallel hands alone cannot be
         corrected per visibility: rotate Stokes Q and U by twice the feed
         rotation instead); angles whose last axis is not 2 or that do not
-        broadcast; parallel linear receptors; ``out`` of another shape.
+        broadcast; parallel linear receptors; ``out`` of another shape; a
+        ``direction`` other than ``'remove'`` or ``'apply'``.
 
     Notes
     -----
@@ -552,6 +571,8 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     (:math:`s_R = 1`, :math:`s_L = -1`), one product at a time; for linear
     receptors :math:`B = J_1^{-1} V J_2^{-T}`. Conjugated data take the
     conjugate factor (the linear rows are real, so they are unchanged).
+    ``'apply'`` computes :math:`V` from :math:`B`, so that applying then
+    removing gives the input back to rounding.
 
     Examples
     --------
@@ -576,7 +597,16 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     >>> out = correct_receptor_visibilities(rr.conj(), theta1, theta2, ["RR"], conjugate=True)
     >>> np.degrees(np.angle(out.conj()))  # doctest: +FLOAT_CMP
     array([10.])
+
+    Applying the rotation to that corrected value gives the data back:
+
+    >>> back = correct_receptor_visibilities(out, theta1, theta2, ["RR"], conjugate=True,
+    ...                                      direction="apply")
+    >>> bool(np.allclose(back, rr.conj()))
+    True
     """
+    if direction not in DIRECTIONS:
+        raise ValueError(f"direction must be one of {DIRECTIONS}, got {direction!r}")
     names, basis = _product_names(products)
     values, unit, mask = _visibilities(visibilities, names)
     theta1 = _radians(position_angles1, "position_angles1")
@@ -592,14 +622,23 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     elif out.shape != values.shape:
         raise ValueError(f"out has shape {out.shape}, visibilities {values.shape}")
     sign = -1.0 if conjugate else 1.0
+    if direction == "apply":
+        sign = -sign
     if basis == "circular":
         index = {letter: k for k, letter in enumerate(RECEPTOR_TYPES["circular"])}
-        for k, name in enumerate(names):
+        factors = []
+        for name in names:
             p, q = name
             angle = (polarization_sign(p) * theta1[..., index[p]]
                      - polarization_sign(q) * theta2[..., index[q]])
-            np.multiply(values[..., k], np.exp(1j * sign * angle), out=out[..., k],
-                        casting="same_kind")
+            factors.append(np.exp(1j * sign * angle))
+        # One factor per product, then one pass over the data; single-precision
+        # data (visibility files) take single-precision factors, so that the
+        # multiplication needs no wider copy.
+        factor = np.stack(np.broadcast_arrays(*factors), axis=-1)
+        if values.dtype == np.complex64:
+            factor = factor.astype(np.complex64)
+        np.multiply(values, factor, out=out, casting="same_kind")
         return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:
@@ -612,7 +651,10 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     if mask is not None:  # the correction mixes the four products of a sample
         mask = (mask[0], np.broadcast_to(np.any(mask[1], axis=-1, keepdims=True),
                                          values.shape).copy())
-    m1, m2 = _linear_inverse(theta1), _linear_inverse(theta2)
+    if direction == "apply":
+        m1, m2 = _linear_rows(theta1), _linear_rows(theta2)
+    else:
+        m1, m2 = _linear_inverse(theta1), _linear_inverse(theta2)
     order = [names.index(name) for name in LINEAR_PRODUCTS]
     v = [values[..., k] for k in order]  # XX, XY, YX, YY
     # M1 V: rows of V mixed.
