@@ -18,12 +18,10 @@ from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
 from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
 from .correction import (
-    baseline_rr_ll,
     correct_linear_visibilities,
     correct_phase,
     correct_visibilities,
     rotation_matrix,
-    rr_minus_ll,
 )
 from .eop import earth_orientation_status
 from .epochs import Epochs
@@ -57,6 +55,7 @@ from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
 from .planning import feed_rotation_coverage, rank_sources
 from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
 from .rotators import Rotator
+from .rr_ll import baseline_rr_ll, rr_minus_ll
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table
