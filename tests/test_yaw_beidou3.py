@@ -61,7 +61,7 @@ def _unwrap_diff(a, b):
 
 @pytest.mark.parametrize("system", [MEO, IGSO], ids=["MEO", "IGSO"])
 @pytest.mark.parametrize("beta, centre", [(1.5, "noon"), (-2.0, "midnight"),
-                                          (0.3, "midnight"), (-0.5, "noon")])
+                                          (0.3, "midnight")])
 def test_cast_smoothed_yaw_follows_the_published_law(system, beta, centre):
     block = "BDS-3M-CAST" if system == MEO else "BDS-3I"
     span = 2400 if system == MEO else 4000
@@ -129,9 +129,9 @@ def test_switch_at_the_published_beta_threshold(block, sign):
     assert yaw == pytest.approx(nominal, abs=1e-15)
 
 
-@pytest.mark.parametrize("beta", [1.0, -2.5, 0.2])
+@pytest.mark.parametrize("beta", [1.0, -2.5])
 def test_secm_yaw_of_a_three_degree_beta(beta):
-    times, yaw, nominal, betas, mu, rate_orbit = _pass(beta, MEO, "BDS-3M-SECM-A", span=3600)
+    times, yaw, nominal, betas, mu, rate_orbit = _pass(beta, MEO, "BDS-3M-SECM-A", span=1200)
     assert np.all(np.abs(betas) < np.radians(3.0))
     # The CSNO law (Yang et al. 2021): nominal yaw with beta = sign(beta) 3 deg.
     expected = np.arctan2(-np.tan(np.sign(betas) * np.radians(3.0)), np.sin(mu))
@@ -147,7 +147,7 @@ def test_secm_yaw_of_a_three_degree_beta(beta):
 
 
 def test_secm_nominal_above_three_degrees():
-    _, yaw, nominal, betas, *_ = _pass(3.4, MEO, "BDS-3M-SECM-B", span=3600)
+    _, yaw, nominal, betas, *_ = _pass(3.4, MEO, "BDS-3M-SECM-B", span=900)
     assert np.all(np.abs(betas) > np.radians(3.0))
     np.testing.assert_allclose(_unwrap_diff(yaw, nominal), 0, atol=1e-9)
 
