@@ -8,57 +8,57 @@ the satellite cannot see in the Earth's shadow. Real satellites follow
 published laws instead; `ModelAttitude` implements them from the satellite's
 orbit and the Sun, in the satellite's orbital frame:
 
-================  ==============================================================
-law               behaviour (source)
-================  ==============================================================
-``gps-iir``       noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
-                  starting where the nominal rate would exceed it (Kouba 2009,
-                  GPS Solutions 13:1-12); nominal in the shadow.
-``gps-iif``       noon turns at 0.11 deg/s, in the wrong direction for a beta
-                  between the yaw bias (-0.7 deg) and 0; through the shadow
-                  (within 13.25 deg of the anti-Sun direction, Kouba's limit) a
-                  constant yaw rate that takes the nominal yaw at shadow entry to
-                  the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
-                  values of Kouba's eclips.f, May 2017). Also used for GPS III,
-                  an assumption (no law was published when this was written).
-``glonass-m``     noon turns at 0.25 deg/s, symmetric about noon (from the
-                  nominal yaw at ``-a`` to that at ``+a``,
-                  `symmetric_half_width`); in the shadow (14.2 deg), a turn at
-                  the maximum rate towards the nominal yaw at shadow exit, then
-                  a stop
-                  (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
-                  Adv. Space Res. 56:1015-1029).
-``galileo``       the smoothed yaw steering of the Galileo satellite metadata
-                  (European GNSS Service Centre): within ``beta_x`` of noon and
-                  midnight for a beta below ``beta_y``, an auxiliary Sun
-                  direction whose out-of-plane component is smoothed;
-                  ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
-``beidou-on``     BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
-                  along the velocity) while the beta angle at the last orbit
-                  quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
-                  steering otherwise (Montenbruck et al. 2015).
-``orbit-normal``  BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
-                  2015).
-``beidou-3-cast`` BeiDou-3 MEO and IGSO built by CAST (``BDS-3M-CAST``,
-                  ``BDS-3I``): continuous yaw steering; within ``beta_x`` = 6 deg
-                  of orbit angle of noon and midnight for a beta below
-                  ``beta_y`` = 3 deg, the smoothed yaw ``s 90 deg + (psi_s -
-                  s 90 deg) cos(pi (delta + 6 deg) / 12 deg)`` from the nominal
-                  yaw ``psi_s`` at the window's entry, ``s`` the sign of the
-                  nominal yaw at noon and midnight (Wang et al. 2018, GPS
-                  Solutions 22:125, Eq 3, their period ``t_max`` being the time
-                  of 24 deg of orbit angle, 3090 s for a MEO, 5740 s for an IGSO;
-                  the law of the BDS-3 satellite metadata of the China Satellite
-                  Navigation Office, 2019).
-``beidou-3-secm`` BeiDou-3 MEO built by SECM (``BDS-3M-SECM-A``, ``-B``): for a
-                  beta below ``beta_y`` = 3 deg, the nominal yaw of a beta of
-                  ``+-3 deg`` (the China Satellite Navigation Office's law, as
-                  given by Yang, Guo and Zhao 2021, arXiv:2112.13252); the sign
-                  follows the beta angle's, changed only where that yaw is
-                  within 5 deg of 0 (Yang et al.'s observation: the switch waits
-                  for the yaw to be below 5 deg once the beta angle has crossed
-                  0; here instantaneous).
-================  ==============================================================
+=================  ==============================================================
+law                behaviour (source)
+=================  ==============================================================
+``gps-iir``        noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
+                   starting where the nominal rate would exceed it (Kouba 2009,
+                   GPS Solutions 13:1-12); nominal in the shadow.
+``gps-iif``        noon turns at 0.11 deg/s, in the wrong direction for a beta
+                   between the yaw bias (-0.7 deg) and 0; through the shadow
+                   (within 13.25 deg of the anti-Sun direction, Kouba's limit) a
+                   constant yaw rate that takes the nominal yaw at shadow entry to
+                   the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
+                   values of Kouba's eclips.f, May 2017). Also used for GPS III,
+                   an assumption (no law was published when this was written).
+``glonass-m``      noon turns at 0.25 deg/s, symmetric about noon (from the
+                   nominal yaw at ``-a`` to that at ``+a``,
+                   `symmetric_half_width`); in the shadow (14.2 deg), a turn at
+                   the maximum rate towards the nominal yaw at shadow exit, then
+                   a stop
+                   (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
+                   Adv. Space Res. 56:1015-1029).
+``galileo``        the smoothed yaw steering of the Galileo satellite metadata
+                   (European GNSS Service Centre): within ``beta_x`` of noon and
+                   midnight for a beta below ``beta_y``, an auxiliary Sun
+                   direction whose out-of-plane component is smoothed;
+                   ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
+``beidou-on``      BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
+                   along the velocity) while the beta angle at the last orbit
+                   quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
+                   steering otherwise (Montenbruck et al. 2015).
+``orbit-normal``   BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
+                   2015).
+``beidou-3-cast``  BeiDou-3 MEO and IGSO built by CAST (``BDS-3M-CAST``,
+                   ``BDS-3I``): continuous yaw steering; within ``beta_x`` = 6 deg
+                   of orbit angle of noon and midnight for a beta below
+                   ``beta_y`` = 3 deg, the smoothed yaw ``s 90 deg + (psi_s -
+                   s 90 deg) cos(pi (delta + 6 deg) / 12 deg)`` from the nominal
+                   yaw ``psi_s`` at the window's entry, ``s`` the sign of the
+                   nominal yaw at noon and midnight (Wang et al. 2018, GPS
+                   Solutions 22:125, their period ``t_max`` being the time
+                   of 24 deg of orbit angle, 3090 s for a MEO, 5740 s for an IGSO;
+                   continuous yaw steering, as the China Satellite Navigation
+                   Office's BDS-3 metadata of 2019 says, Yang et al. 2021).
+``beidou-3-secm``  BeiDou-3 MEO built by SECM (``BDS-3M-SECM-A``, ``-B``): for a
+                   beta below ``beta_y`` = 3 deg, the nominal yaw of a beta of
+                   ``+-3 deg`` (the China Satellite Navigation Office's law, as
+                   given by Yang, Guo and Zhao 2021, arXiv:2112.13252); the sign
+                   follows the beta angle's, changed only where that yaw is
+                   within 5 deg of 0 (Yang et al.'s observation: the switch waits
+                   for the yaw to be below 5 deg once the beta angle has crossed
+                   0; here instantaneous).
+=================  ==============================================================
 
 
 Other blocks (GPS IIA, the BeiDou-3 demonstration satellites ``BDS-3SI``,
