@@ -405,11 +405,12 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_star
         for BeiDou-3 SECM when the yaw was last within 5 deg of 0
         (`secm_switch_age`); ``beta`` if not given.
     beta_start : ndarray, optional
-        Beta angle when the current turn started (see `turn_age`). Where its sign differs from ``beta``'s, the
-        direction of a turn, the yaw it starts from and, through a shadow,
-        the yaw it aims at follow it, so that a turn keeps its direction when
-        the beta angle changes sign during it (as Kouba's ``eclips`` keeps
-        ``BETAINI``); ``beta`` if not given.
+        Beta angle when the current turn started (see `turn_age`). Where its
+        sign differs from ``beta``'s, the direction of a turn, the yaw it
+        starts from and, through a shadow, the yaw it aims at follow it, so
+        that a turn keeps its direction when the beta angle changes sign
+        during it (as Kouba's ``eclips`` keeps ``BETAINI``); ``beta`` if not
+        given.
 
     Returns
     -------
