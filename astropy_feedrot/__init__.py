@@ -8,9 +8,9 @@ telescopes and GNSS antennas").
 
 Everything a user calls is importable from here; the modules (``grid``,
 ``stations``, ``tables``...) stay importable for those who want them.
-``astropy_feedrot.uvdata`` (pyuvdata's ``UVData`` objects: antennas, feed
-rotation, correction) is imported on its own, as it needs the optional
-pyuvdata.
+``astropy_feedrot.visibilities`` (visibility files: FITS-IDI, UVFITS,
+Measurement Sets, pyuvdata's ``UVData`` objects) is imported on its own, as
+its formats need the optional pyuvdata and python-casacore.
 """
 
 from .antenna import Antenna, AntennaAngles, FeedRotationTerms
@@ -18,12 +18,10 @@ from .attitude import NominalAttitude, QuaternionAttitude
 from .config import conf
 from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
 from .correction import (
-    baseline_rr_ll,
     correct_linear_visibilities,
     correct_phase,
     correct_visibilities,
     rotation_matrix,
-    rr_minus_ll,
 )
 from .eop import earth_orientation_status
 from .epochs import Epochs
@@ -57,6 +55,7 @@ from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
 from .planning import feed_rotation_coverage, rank_sources
 from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
 from .rotators import Rotator
+from .rr_ll import baseline_rr_ll, rr_minus_ll
 from .satellite import LineOfSight, Satellite
 from .stations import StationCatalogue, get_antenna, read_catalogue
 from .tables import baseline_summary, baseline_table, feed_rotation_table

@@ -33,12 +33,11 @@ from astropy.coordinates import Angle
 from astropy.utils.masked import Masked
 
 from . import kernel
-from .antenna import Antenna
-from .continuity import unwrap
-from .frames import as_time, broadcast_shape, time_axis
+from .frames import broadcast_shape
+from .inputs import as_radians
 from .polarization import polarization_sign
 from .receptors import RECEPTOR_TYPES, basis_of
-from .satellite import Satellite
+from .rr_ll import baseline_rr_ll, rr_minus_ll  # noqa: F401 (their first home)
 
 __all__ = [
     "correct_phase",
@@ -46,8 +45,6 @@ __all__ = [
     "rotation_matrix",
     "correct_linear_visibilities",
     "correct_receptor_visibilities",
-    "rr_minus_ll",
-    "baseline_rr_ll",
 ]
 
 #: Names of the correlation products of circular feeds (any order, any subset).
@@ -56,30 +53,12 @@ CIRCULAR_PRODUCTS = ("RR", "RL", "LR", "LL")
 #: Names of the correlation products of linear feeds (all four, any order).
 LINEAR_PRODUCTS = ("XX", "XY", "YX", "YY")
 
+#: The two directions of `correct_receptor_visibilities`: remove the feed
+#: rotation (measured to sky-fixed receptors) or apply it (the inverse).
+DIRECTIONS = ("remove", "apply")
+
 
 # --- input checks ------------------------------------------------------------
-
-
-def _radians(value, name):
-    """An angle Quantity as a float ndarray in radians (NaN where masked); else refused."""
-    mask = None
-    if isinstance(value, Masked):
-        mask = np.array(value.mask, dtype=bool)
-        value = value.unmasked
-    if not isinstance(value, u.Quantity):
-        raise TypeError(
-            f"{name} must be an angle Quantity or Angle (e.g. 30 * u.deg), got "
-            f"{type(value).__name__}; plain numbers are refused because degrees and "
-            "radians cannot be told apart"
-        )
-    if value.unit.physical_type != "angle":
-        raise u.UnitsError(
-            f"{name} must be an angle (e.g. in deg or rad), got a quantity in "
-            f"{value.unit.to_string() or 'dimensionless units'}; attach an angle unit, "
-            "e.g. value * u.rad"
-        )
-    radians = np.asarray(value.to_value(u.rad), dtype=float)
-    return radians if mask is None else np.where(mask, np.nan, radians)
 
 
 def _to_angle(radians, unit=u.deg):
@@ -235,8 +214,8 @@ def correct_phase(phase, feed_rotation, polarization="RCP", wrap=False):
     <Angle [-160., -140.] deg>
     """
     sign = polarization_sign(polarization)
-    measured = _radians(phase, "phase")
-    rotation = _radians(feed_rotation, "feed_rotation")
+    measured = as_radians(phase, "phase")
+    rotation = as_radians(feed_rotation, "feed_rotation")
     broadcast_shape(phase=measured.shape, feed_rotation=rotation.shape)
     corrected = measured - sign * rotation
     if wrap:
@@ -307,8 +286,8 @@ def correct_visibilities(visibilities, feed_rotation1, feed_rotation2, products)
     """
     names = _products(products, CIRCULAR_PRODUCTS, all_required=False)
     values, unit, mask = _visibilities(visibilities, names)
-    phi1 = _radians(feed_rotation1, "feed_rotation1")
-    phi2 = _radians(feed_rotation2, "feed_rotation2")
+    phi1 = as_radians(feed_rotation1, "feed_rotation1")
+    phi2 = as_radians(feed_rotation2, "feed_rotation2")
     _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
     hand1 = np.array([polarization_sign(name[0]) for name in names], dtype=float)
     hand2 = np.array([polarization_sign(name[1]) for name in names], dtype=float)
@@ -364,7 +343,7 @@ def rotation_matrix(feed_rotation):
     >>> rotation_matrix([0, 90, 180] * u.deg).shape
     (3, 2, 2)
     """
-    return _rotation(_radians(feed_rotation, "feed_rotation"))
+    return _rotation(as_radians(feed_rotation, "feed_rotation"))
 
 
 def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
@@ -438,8 +417,8 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
     if mask is not None:  # R V R^T mixes the four products of a sample
         mask = (mask[0], np.broadcast_to(np.any(mask[1], axis=-1, keepdims=True),
                                          values.shape).copy())
-    phi1 = _radians(feed_rotation1, "feed_rotation1")
-    phi2 = _radians(feed_rotation2, "feed_rotation2")
+    phi1 = as_radians(feed_rotation1, "feed_rotation1")
+    phi2 = as_radians(feed_rotation2, "feed_rotation2")
     _fit(values.shape[:-1], feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
     order = [names.index(name) for name in LINEAR_PRODUCTS]
     matrix = values[..., order].reshape(values.shape[:-1] + (2, 2))
@@ -472,6 +451,14 @@ def _product_names(products):
     return names, basis
 
 
+def _linear_rows(theta):
+    """The rows (..., 2, 2) of the linear feed at position angles (X, Y) ``theta``."""
+    rows = np.empty(theta.shape[:-1] + (2, 2))
+    rows[..., 0, 0], rows[..., 0, 1] = np.cos(theta[..., 0]), np.sin(theta[..., 0])
+    rows[..., 1, 0], rows[..., 1, 1] = np.cos(theta[..., 1]), np.sin(theta[..., 1])
+    return rows
+
+
 def _linear_inverse(theta):
     """Inverse (..., 2, 2) of the linear feed's rows at position angles (X, Y) ``theta``."""
     a, b = theta[..., 0], theta[..., 1]
@@ -486,8 +473,8 @@ def _linear_inverse(theta):
 
 
 def correct_receptor_visibilities(visibilities, position_angles1, position_angles2, products,
-                                  *, conjugate=False, out=None):
-    """Remove the feed rotation from visibilities, receptor by receptor.
+                                  *, conjugate=False, out=None, direction="remove"):
+    """Remove (or apply) the feed rotation of visibilities, receptor by receptor.
 
     The general form of `correct_visibilities` and
     `correct_linear_visibilities`: each receptor has its own position angle
@@ -519,15 +506,21 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     out : `~numpy.ndarray`, optional
         Where to write the result, of the shape of ``visibilities``; it may
         be ``visibilities`` itself, to correct in place.
+    direction : {'remove', 'apply'}, optional
+        ``'remove'`` (default): from the visibilities of the receptors as
+        they turn, those of receptors fixed on the sky. ``'apply'``: the
+        inverse, from sky-fixed receptors (e.g. a model) to the turning
+        ones, as the antennas would measure them.
 
     Returns
     -------
     `~numpy.ndarray` or `~astropy.units.Quantity`
-        The visibilities of receptors fixed on the sky, in the same
-        convention, dtype, unit and mask: circular R and L of the sky, or
-        linear X toward north and Y toward east (IAU; a sample is masked
-        wholly where any of its four products is). NaN where an angle is
-        NaN.
+        With ``'remove'``, the visibilities of receptors fixed on the sky,
+        in the same convention, dtype, unit and mask: circular R and L of
+        the sky, or linear X toward north and Y toward east (IAU; a sample
+        is masked wholly where any of its four products is); with
+        ``'apply'``, those of the receptors at ``position_angles``. NaN where
+        an angle is NaN.
 
     Raises
     ------
@@ -541,7 +534,8 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
         four (the correction mixes them, so parallel hands alone cannot be
         corrected per visibility: rotate Stokes Q and U by twice the feed
         rotation instead); angles whose last axis is not 2 or that do not
-        broadcast; parallel linear receptors; ``out`` of another shape.
+        broadcast; parallel linear receptors; ``out`` of another shape; a
+        ``direction`` other than ``'remove'`` or ``'apply'``.
 
     Notes
     -----
@@ -552,6 +546,8 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     (:math:`s_R = 1`, :math:`s_L = -1`), one product at a time; for linear
     receptors :math:`B = J_1^{-1} V J_2^{-T}`. Conjugated data take the
     conjugate factor (the linear rows are real, so they are unchanged).
+    ``'apply'`` computes :math:`V` from :math:`B`, so that applying then
+    removing gives the input back to rounding.
 
     Examples
     --------
@@ -576,11 +572,20 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     >>> out = correct_receptor_visibilities(rr.conj(), theta1, theta2, ["RR"], conjugate=True)
     >>> np.degrees(np.angle(out.conj()))  # doctest: +FLOAT_CMP
     array([10.])
+
+    Applying the rotation to that corrected value gives the data back:
+
+    >>> back = correct_receptor_visibilities(out, theta1, theta2, ["RR"], conjugate=True,
+    ...                                      direction="apply")
+    >>> bool(np.allclose(back, rr.conj()))
+    True
     """
+    if direction not in DIRECTIONS:
+        raise ValueError(f"direction must be one of {DIRECTIONS}, got {direction!r}")
     names, basis = _product_names(products)
     values, unit, mask = _visibilities(visibilities, names)
-    theta1 = _radians(position_angles1, "position_angles1")
-    theta2 = _radians(position_angles2, "position_angles2")
+    theta1 = as_radians(position_angles1, "position_angles1")
+    theta2 = as_radians(position_angles2, "position_angles2")
     for name, theta in (("position_angles1", theta1), ("position_angles2", theta2)):
         if theta.ndim == 0 or theta.shape[-1] != 2:
             raise ValueError(f"{name} must have a last axis of 2 (the receptors "
@@ -592,14 +597,23 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     elif out.shape != values.shape:
         raise ValueError(f"out has shape {out.shape}, visibilities {values.shape}")
     sign = -1.0 if conjugate else 1.0
+    if direction == "apply":
+        sign = -sign
     if basis == "circular":
         index = {letter: k for k, letter in enumerate(RECEPTOR_TYPES["circular"])}
-        for k, name in enumerate(names):
+        factors = []
+        for name in names:
             p, q = name
             angle = (polarization_sign(p) * theta1[..., index[p]]
                      - polarization_sign(q) * theta2[..., index[q]])
-            np.multiply(values[..., k], np.exp(1j * sign * angle), out=out[..., k],
-                        casting="same_kind")
+            factors.append(np.exp(1j * sign * angle))
+        # One factor per product, then one pass over the data; single-precision
+        # data (visibility files) take single-precision factors, so that the
+        # multiplication needs no wider copy.
+        factor = np.stack(np.broadcast_arrays(*factors), axis=-1)
+        if values.dtype == np.complex64:
+            factor = factor.astype(np.complex64)
+        np.multiply(values, factor, out=out, casting="same_kind")
         return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:
@@ -612,7 +626,10 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
     if mask is not None:  # the correction mixes the four products of a sample
         mask = (mask[0], np.broadcast_to(np.any(mask[1], axis=-1, keepdims=True),
                                          values.shape).copy())
-    m1, m2 = _linear_inverse(theta1), _linear_inverse(theta2)
+    if direction == "apply":
+        m1, m2 = _linear_rows(theta1), _linear_rows(theta2)
+    else:
+        m1, m2 = _linear_inverse(theta1), _linear_inverse(theta2)
     order = [names.index(name) for name in LINEAR_PRODUCTS]
     v = [values[..., k] for k in order]  # XX, XY, YX, YY
     # M1 V: rows of V mixed.
@@ -631,152 +648,3 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
 
 
 # --- the dual-polarization check (Eq 46) ----------------------------------------
-
-
-def rr_minus_ll(feed_rotation1, feed_rotation2, wrap=True):
-    """The RR - LL phase difference that feed rotation causes on a baseline (Eq 46).
-
-    Parameters
-    ----------
-    feed_rotation1, feed_rotation2 : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
-        RCP feed rotations :math:`\\Phi_1`, :math:`\\Phi_2` of the two antennas
-        (antenna 2 is the conjugated one, :math:`V = \\langle v_1 v_2^*
-        \\rangle`).
-    wrap : bool, optional
-        Wrap the result to (-180, 180] deg (default). If False, return
-        :math:`2(\\Phi_2 - \\Phi_1)` as it comes, continuous when the inputs
-        are.
-
-    Returns
-    -------
-    `~astropy.coordinates.Angle`
-        :math:`\\phi^R - \\phi^L = 2(\\Phi_2 - \\Phi_1)` in degrees, broadcast
-        shape of the inputs (a scalar for scalars); NaN where either is NaN.
-
-    Raises
-    ------
-    TypeError
-        If an angle is not a Quantity.
-    astropy.units.UnitsError
-        If an angle has a unit that is not an angle.
-    ValueError
-        If the shapes do not broadcast.
-
-    Notes
-    -----
-    Eq 46 without the instrumental offset :math:`\\Phi_\\mathrm{instr}`,
-    which is constant (fit and remove it when comparing with fringe phases, as
-    for Fig. 7 of the paper). The prediction holds for a weakly polarized
-    natural source, whose RR and LL visibilities are equal before the feeds
-    rotate them.
-
-    Examples
-    --------
-    >>> import astropy.units as u
-    >>> from astropy_feedrot.correction import rr_minus_ll
-    >>> rr_minus_ll(10 * u.deg, 40 * u.deg)  # doctest: +FLOAT_CMP
-    <Angle 60. deg>
-    >>> rr_minus_ll(-60 * u.deg, [40, 60] * u.deg)  # doctest: +FLOAT_CMP
-    <Angle [-160., -120.] deg>
-    >>> rr_minus_ll(-60 * u.deg, [40, 60] * u.deg, wrap=False)  # doctest: +FLOAT_CMP
-    <Angle [200., 240.] deg>
-    """
-    phi1 = _radians(feed_rotation1, "feed_rotation1")
-    phi2 = _radians(feed_rotation2, "feed_rotation2")
-    broadcast_shape(feed_rotation1=phi1.shape, feed_rotation2=phi2.shape)
-    difference = 2 * (phi2 - phi1)
-    return _to_angle(kernel.wrap_phase(difference) if wrap else difference)
-
-
-def baseline_rr_ll(antenna1, antenna2, target, obstime, wrap=True, min_elevation=None,
-                   max_gap=None):
-    """The predicted RR - LL phase of a baseline observing a natural source (Eq 46).
-
-    Parameters
-    ----------
-    antenna1, antenna2 : `~astropy_feedrot.Antenna`
-        The baseline (antenna 2 is the conjugated one, :math:`V = \\langle v_1
-        v_2^* \\rangle`).
-    target : `~astropy.coordinates.SkyCoord`
-        Natural source(s), weakly polarized.
-    obstime : `~astropy.time.Time`
-        Epoch(s); masked epochs give NaN. With ``wrap=False`` the series runs
-        along the one axis of the broadcast shape along which the epochs run
-        (as for `~astropy_feedrot.rotation_delay`).
-    wrap : bool, optional
-        Wrap to (-180, 180] deg (default). If False, :math:`\\Phi_2 - \\Phi_1`
-        is made continuous along the time axis (Eq 9, see
-        `~astropy_feedrot.unwrap`), starting each segment in (-180, 180] deg,
-        and then doubled.
-    min_elevation : `~astropy.units.Quantity`, optional
-        NaN where the source is lower than this at either antenna.
-    max_gap : `~astropy.units.Quantity`, optional
-        With ``wrap=False``, restart the continuous series after longer gaps
-        (for example between scans).
-
-    Returns
-    -------
-    `~astropy.coordinates.Angle`
-        :math:`2(\\Phi_2 - \\Phi_1)` in degrees with the RCP feed rotations of
-        `~astropy_feedrot.Antenna.feed_rotation`, broadcast shape of ``target``
-        and ``obstime``.
-
-    Raises
-    ------
-    TypeError
-        If an antenna is not an `~astropy_feedrot.Antenna`, or ``target`` is a
-        `~astropy_feedrot.Satellite` (it transmits one hand only).
-    ValueError
-        If ``max_gap`` is given with ``wrap=True``, with ``wrap=False`` if
-        the epochs run along several axes or go back in time, and as for
-        `~astropy_feedrot.Antenna.feed_rotation`.
-
-    Warns
-    -----
-    DegenerateGeometryWarning, ContinuityWarning
-        As `~astropy_feedrot.Antenna.feed_rotation` and `~astropy_feedrot.unwrap`.
-
-    Examples
-    --------
-    The Yebes 40 m telescope (Nasmyth, right) against a Cassegrain antenna at
-    the same site: the difference of the feed rotations is the elevation, so
-    RR - LL is twice the elevation (Eqs 38 and 46):
-
-    >>> import astropy.units as u
-    >>> from astropy.coordinates import EarthLocation, SkyCoord
-    >>> from astropy.time import Time
-    >>> from astropy_feedrot import Antenna, AltAzMount, NasmythFocus
-    >>> from astropy_feedrot.correction import baseline_rr_ll
-    >>> yebes = EarthLocation.from_geodetic(-3.0869 * u.deg, 40.5247 * u.deg, 988 * u.m)
-    >>> cassegrain = Antenna(yebes, AltAzMount())
-    >>> nasmyth = Antenna(yebes, AltAzMount(), NasmythFocus("right"))
-    >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
-    >>> times = Time("2023-01-25T20:00") + [0, 2] * u.hour
-    >>> baseline_rr_ll(cassegrain, nasmyth, source, times)  # doctest: +FLOAT_CMP
-    <Angle [162.61771062, 117.94659972] deg>
-    >>> 2 * cassegrain.altaz(source, times)[1]  # doctest: +FLOAT_CMP
-    <Angle [162.61771062, 117.94659972] deg>
-    """
-    for name, antenna in (("antenna1", antenna1), ("antenna2", antenna2)):
-        if not isinstance(antenna, Antenna):
-            raise TypeError(f"{name} must be an Antenna, got {type(antenna).__name__}")
-    if isinstance(target, Satellite):
-        raise TypeError(
-            f"Eq 46 compares the RR and LL phases of a weakly polarized natural source; "
-            f"{target!r} transmits {target.polarization} only. Give a SkyCoord, or compare "
-            "feed rotations with Antenna.feed_rotation"
-        )
-    if wrap and max_gap is not None:
-        raise ValueError("max_gap applies to the continuous series only; pass wrap=False")
-    obstime = as_time(obstime)
-    phi1 = antenna1.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
-    phi2 = antenna2.feed_rotation(target, obstime, "RCP", min_elevation=min_elevation)
-    if wrap:
-        return rr_minus_ll(phi1, phi2)
-    # Eq 9 on the difference of the feed rotations, then doubled: each segment
-    # starts from Phi_2 - Phi_1 in (-180, 180] deg.
-    difference = kernel.wrap_phase(phi2.to_value(u.rad) - phi1.to_value(u.rad)) * u.rad
-    axis = time_axis(obstime.shape, difference.shape)
-    if axis is not None:  # a single epoch has nothing to make continuous
-        difference = unwrap(difference, axis=axis, obstime=obstime, max_gap=max_gap)
-    return _to_angle(2 * difference.to_value(u.rad))

@@ -24,8 +24,9 @@ from astropy.coordinates import (
     UnitSphericalRepresentation,
 )
 from astropy.time import Time, TimeDelta
+from astropy.utils.masked import Masked
 
-__all__ = ["as_location", "as_time", "as_skycoord", "broadcast_shape",
+__all__ = ["as_location", "as_time", "as_skycoord", "as_radians", "broadcast_shape",
            "MIN_GEOCENTRIC_DISTANCE"]
 
 #: A target with a distance closer to the geocentre than this is inside the Earth
@@ -284,6 +285,62 @@ def _check_outside_the_earth(coord, name):
             f"target{at} in {name} is {value.to_value(u.km):.0f} km from the geocentre, inside "
             "the Earth; a position needs its distance from the geocentre (kilometres given "
             "as metres?), a direction no distance at all")
+
+
+def as_radians(value, name):
+    """An angle as a float array in radians, NaN where masked.
+
+    Parameters
+    ----------
+    value : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        An angle of any shape, possibly an astropy `~astropy.utils.masked.Masked`
+        quantity.
+    name : str
+        The argument's name, for the error messages.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        The angle in radians, of the input's shape (0-d for a scalar), NaN
+        where the input was masked.
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a Quantity: plain numbers are refused, because
+        degrees and radians cannot be told apart.
+    astropy.units.UnitsError
+        If its unit is not an angle.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.inputs import as_radians
+    >>> as_radians([0, 90] * u.deg, "angle")  # doctest: +FLOAT_CMP
+    array([0.        , 1.57079633])
+    >>> as_radians(30, "feed_rotation")
+    Traceback (most recent call last):
+    ...
+    TypeError: feed_rotation must be an angle Quantity or Angle (e.g. 30 * u.deg), got int; ...
+    """
+    mask = None
+    if isinstance(value, Masked):
+        mask = np.array(value.mask, dtype=bool)
+        value = value.unmasked
+    if not isinstance(value, u.Quantity):
+        raise TypeError(
+            f"{name} must be an angle Quantity or Angle (e.g. 30 * u.deg), got "
+            f"{type(value).__name__}; plain numbers are refused because degrees and "
+            "radians cannot be told apart"
+        )
+    if value.unit.physical_type != "angle":
+        raise u.UnitsError(
+            f"{name} must be an angle (e.g. in deg or rad), got a quantity in "
+            f"{value.unit.to_string() or 'dimensionless units'}; attach an angle unit, "
+            "e.g. value * u.rad"
+        )
+    radians = np.asarray(value.to_value(u.rad), dtype=float)
+    return radians if mask is None else np.where(mask, np.nan, radians)
 
 
 def broadcast_shape(**shapes):

@@ -1,8 +1,9 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Progress of long corrections, as the caller asks for it.
 
-`~astropy_feedrot.uvdata.correct_uvdata` and
-`~astropy_feedrot.io.correct_fitsidi` take ``progress=True`` (astropy's
+`~astropy_feedrot.visibilities.correct_uvdata`,
+`~astropy_feedrot.visibilities.correct_fitsidi` and
+`~astropy_feedrot.visibilities.correct_ms` take ``progress=True`` (astropy's
 `~astropy.utils.console.ProgressBar`), ``False`` or a callable
 ``progress(done, total)``; `progress_steps` turns that into one function to
 call after each step.

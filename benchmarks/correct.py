@@ -1,15 +1,30 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Benchmark: correcting a visibility data set of more than 1 GiB.
 
-Two paths, each on a synthetic data set built here (a VLBA-like array of
-alt-az antennas observing 3C 84; only the layout matters for the speed):
+Three paths, each on a data set built here (only the layout matters for the
+speed):
 
 * ``correct_uvdata``: a pyuvdata ``UVData`` of at least ``--gib`` GiB of
   ``data_array`` (complex64; four circular products, 64 channels), corrected
   in place (``inplace=True``, in chunks) and into a copy (``inplace=False``);
 * ``correct_fitsidi``: a FITS-IDI file of at least ``--gib`` GiB (DiFX-like
   tables from ``tests/fitsidi_writer.py``, its UV_DATA rows repeated over
-  later epochs), corrected into a new file through a memory map.
+  later epochs), corrected into a new file through a memory map, in one
+  process and on ``--workers`` dask workers;
+* ``correct_ms``: a Measurement Set of at least ``--gib`` GiB of ``DATA``
+  (the VLA set of the tests, 19 antennas, 64 channels, four products, its
+  rows doubled until large enough and spread over 10 s epochs), corrected in
+  place into ``CORRECTED_DATA``, in one process and on ``--workers`` dask
+  workers.
+
+Besides the extra heap, the peak extra resident memory of the process during
+each call is sampled (psutil, every 10 ms): it counts casacore's buffers
+too. The floor of ``correct_ms`` is what any in-place correction must do,
+measured in the same run: read ``DATA`` in the same chunks, multiply it by a
+per-row, per-product phase factor and write ``CORRECTED_DATA``. Targets
+(PASS/FAIL): the Measurement Set in place at most 2x that floor, FITS-IDI at
+most 4x a copy of the file, peak extra memory under 300 MiB whatever the
+size, and two dask workers in at most 0.7x the serial time.
 
 For each: the wall time, the time per visibility, the largest extra heap
 memory (``tracemalloc``: numpy registers its buffers there) and the peak
@@ -55,7 +70,7 @@ from astropy.io import fits  # noqa: E402
 from astropy.time import Time  # noqa: E402
 
 import astropy_feedrot  # noqa: E402
-from astropy_feedrot.io import correct_fitsidi  # noqa: E402
+from astropy_feedrot.visibilities import correct_fitsidi  # noqa: E402
 
 GIB = 2 ** 30
 HERE = Path(__file__).resolve().parent
@@ -83,6 +98,54 @@ def _traced(function, *args, **kwargs):
     finally:
         tracemalloc.stop()
     return peak
+
+
+class _PeakRSS:
+    """The peak resident memory of this process above its level at the start (psutil)."""
+
+    def __enter__(self):
+        import threading
+
+        import psutil
+
+        self.process = psutil.Process()
+        self.start = self.peak = self.process.memory_info().rss
+        self.running = True
+
+        def sample():
+            while self.running:
+                self.peak = max(self.peak, self.process.memory_info().rss)
+                time.sleep(0.01)
+
+        self.thread = threading.Thread(target=sample, daemon=True)
+        self.thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.running = False
+        self.thread.join()
+        self.extra = self.peak - self.start
+
+
+def _rss(function, *args, **kwargs):
+    """(seconds, peak extra resident bytes) of a call."""
+    gc.collect()
+    with _PeakRSS() as peak:
+        start = time.perf_counter()
+        function(*args, **kwargs)
+        seconds = time.perf_counter() - start
+    return seconds, peak.extra
+
+
+def _client(workers):
+    import distributed
+
+    cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
+                                       dashboard_address=None)
+    client = distributed.Client(cluster)
+    # Start-up apart: the workers import the package (and astropy's tables) first.
+    client.run(lambda: __import__("astropy_feedrot.visibilities"))
+    return cluster, client
 
 
 def _line(name, seconds, count, heap=None, ratio=None, reference=""):
@@ -145,7 +208,7 @@ def _uvdata(gib):
 
 
 def bench_uvdata(gib, results):
-    from astropy_feedrot.uvdata import correct_uvdata
+    from astropy_feedrot.visibilities import correct_uvdata
 
     print(f"\ncorrect_uvdata: building a UVData of at least {gib} GiB ...", flush=True)
     uv = _uvdata(gib)
@@ -202,7 +265,7 @@ def _fitsidi(path, gib):
     return len(big), len(big) * n_band * n_chan * 4
 
 
-def bench_fitsidi(gib, results, directory):
+def bench_fitsidi(gib, results, directory, workers=0):
     path = Path(directory) / "big.idifits"
     print(f"\ncorrect_fitsidi: writing a FITS-IDI file of at least {gib} GiB ...", flush=True)
     n_rows, count = _fitsidi(path, gib)
@@ -212,24 +275,135 @@ def bench_fitsidi(gib, results, directory):
     copy_time, _ = _measure(shutil.copyfile, path, copy)
     copy.unlink()
     out = path.with_name("corrected.idifits")
-    seconds, _ = _measure(correct_fitsidi, path, out)
+    seconds, rss = _rss(correct_fitsidi, path, out)
     out.unlink()
     heap = _traced(correct_fitsidi, path, out)
     out.unlink()
     _line("shutil.copyfile", copy_time, count)
     _line("correct_fitsidi", seconds, count, heap, seconds / copy_time, "the copy")
+    print(f"  {seconds / (size / GIB):.2f} s/GiB; peak extra resident memory "
+          f"{rss / 2**20:.0f} MiB (the mapped pages of the file count while touched)")
     results.append(("FITS-IDI: extra heap below 64 MiB, whatever the file's size",
                     heap < 64 * 2**20, f"{heap / 2**20:.0f} MiB for {size / GIB:.2f} GiB"))
+    results.append(("FITS-IDI: at most 4x a copy of the file", seconds <= 4 * copy_time,
+                    f"{seconds / copy_time:.2f}x"))
+    if workers:
+        cluster, client = _client(workers)
+        try:
+            parallel, _ = _measure(correct_fitsidi, path, out, client=client)
+        finally:
+            client.close()
+            cluster.close()
+        out.unlink()
+        _line(f"correct_fitsidi, {workers} dask workers", parallel, count, None,
+              parallel / seconds, "one process")
+        results.append((f"FITS-IDI: {workers} dask workers at most 0.7x one process",
+                        parallel <= 0.7 * seconds, f"{parallel / seconds:.2f}x"))
     print(f"  peak resident memory of the process so far: {_peak_rss() / GIB:.2f} GiB "
           "(the memory-mapped file's pages count while they are touched)")
     path.unlink()
+
+
+# --- Measurement Sets ---------------------------------------------------------------------
+
+
+def _ms(directory, gib):
+    """A Measurement Set of at least ``gib`` GiB of DATA: the VLA set of the tests, its
+    153 baselines repeated over 10 s epochs (rows added, the columns written in blocks)."""
+    import tarfile
+
+    from casacore.tables import table
+
+    name = "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms"
+    with tarfile.open(HERE.parent / "tests" / "data" / "uvdata" / f"{name}.tar.gz") as tar:
+        tar.extractall(directory, filter="data")
+    path = Path(directory) / name
+    with table(str(path), readonly=False, ack=False) as t:
+        cell = t.getcell("DATA", 0)
+        first = t.getcol("TIME")
+        one = first == first[0]  # the rows of the first epoch: one per baseline
+        names = ("ANTENNA1", "ANTENNA2", "FEED1", "FEED2", "FIELD_ID", "DATA_DESC_ID")
+        columns = {c: t.getcol(c)[one] for c in names}
+        per_epoch = int(np.count_nonzero(one))
+        epochs = int(np.ceil(gib * GIB / (cell.nbytes * per_epoch)))
+        n = epochs * per_epoch
+        t.addrows(n - t.nrows())
+        phase = np.exp(1j * np.linspace(0, 6, cell.size)).astype(np.complex64)
+        block_epochs = max(1, 65536 // per_epoch)
+        for e in range(0, epochs, block_epochs):
+            m = min(block_epochs, epochs - e)
+            start, rows = e * per_epoch, m * per_epoch
+            for column, values in columns.items():
+                t.putcol(column, np.tile(values, m), start, rows)
+            t.putcol("TIME", first[0] + np.repeat(np.arange(e, e + m), per_epoch) * 10.0,
+                     start, rows)
+            t.putcol("FLAG_ROW", np.zeros(rows, bool), start, rows)
+            t.putcol("DATA", np.broadcast_to(phase.reshape(cell.shape),
+                                             (rows,) + cell.shape).copy(), start, rows)
+    return path, n, n * cell.size, n * cell.nbytes
+
+
+def _floor(path, chunk_rows):
+    """Read DATA in chunks, multiply by a per-row, per-product phase, write CORRECTED_DATA."""
+    from casacore.tables import table
+
+    with table(str(path), readonly=False, ack=False) as t:
+        n = t.nrows()
+        for k in range(0, n, chunk_rows):
+            m = min(chunk_rows, n - k)
+            data = t.getcol("DATA", k, m)
+            phase = np.exp(1j * np.linspace(0, 1, m * data.shape[-1])).astype(np.complex64)
+            data *= phase.reshape(m, 1, data.shape[-1])
+            t.putcol("CORRECTED_DATA", data, k, m)
+
+
+def bench_ms(gib, results, directory, workers=0):
+    from casacore.tables import table
+
+    from astropy_feedrot.visibilities import correct_ms
+
+    print(f"\ncorrect_ms: building a Measurement Set of at least {gib} GiB ...", flush=True)
+    path, n_rows, count, size = _ms(directory, gib)
+    with table(str(path), ack=False) as t:
+        chunk_rows = max(1, 32 * 2**20 // t.getcell("DATA", 0).nbytes)
+    print(f"  {n_rows} rows, DATA {size / GIB:.2f} GiB, {count / 1e6:.0f} M visibilities, "
+          f"chunks of {chunk_rows} rows")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        seconds, rss = _rss(correct_ms, path)  # creates CORRECTED_DATA
+        floor, _ = _measure(_floor, path, chunk_rows)
+        seconds, rss = _rss(correct_ms, path, redo=True)  # the same work, column existing
+    _line("floor: read, phase multiply, write", floor, count)
+    _line("correct_ms (in place)", seconds, count, None, seconds / floor, "the floor")
+    print(f"  {seconds / (size / GIB):.2f} s/GiB; peak extra resident memory "
+          f"{rss / 2**20:.0f} MiB")
+    results.append(("Measurement Set in place: at most 2x the floor", seconds <= 2 * floor,
+                    f"{seconds / floor:.2f}x"))
+    results.append(("Measurement Set: peak extra memory under 300 MiB", rss < 300 * 2**20,
+                    f"{rss / 2**20:.0f} MiB for {size / GIB:.2f} GiB"))
+    if workers:
+        cluster, client = _client(workers)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                parallel, prss = _rss(correct_ms, path, redo=True, client=client)
+        finally:
+            client.close()
+            cluster.close()
+        _line(f"correct_ms, {workers} dask workers", parallel, count, None,
+              parallel / seconds, "one process")
+        results.append((f"Measurement Set: {workers} dask workers at most 0.7x one process",
+                        parallel <= 0.7 * seconds, f"{parallel / seconds:.2f}x"))
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--gib", type=float, default=1.0,
                         help="size of each data set in GiB (default 1)")
-    parser.add_argument("--only", choices=("uvdata", "fitsidi"), help="run one path only")
+    parser.add_argument("--only", choices=("uvdata", "fitsidi", "ms"),
+                        help="run one path only")
+    parser.add_argument("--workers", type=int, default=2,
+                        help="dask workers for the parallel runs (0: none; default 2)")
     parser.add_argument("--dir", default=None, help="where to write the FITS-IDI files "
                         "(default: a temporary directory)")
     parser.add_argument("--strict", action="store_true", help="exit 1 if a check fails")
@@ -242,7 +416,10 @@ def main(argv=None):
         bench_uvdata(args.gib, results)
     if args.only in (None, "fitsidi"):
         with tempfile.TemporaryDirectory(dir=args.dir) as directory:
-            bench_fitsidi(args.gib, results, directory)
+            bench_fitsidi(args.gib, results, directory, args.workers)
+    if args.only in (None, "ms"):
+        with tempfile.TemporaryDirectory(dir=args.dir) as directory:
+            bench_ms(args.gib, results, directory, args.workers)
     print()
     for name, ok, detail in results:
         print(f"{'PASS' if ok else 'FAIL'}  {name}: {detail}")

@@ -105,11 +105,16 @@ def write_fitsidi(path, *, products=("RR", "LL", "RL", "LR"), angles=None, evpa=
                   polarized=0.1, frame="apparent", n_times=6, step_minutes=40, n_band=2,
                   n_chan=3, complex_length=2, program="difx", mntsta=None, crpix=1.0,
                   stations=STATIONS, sources=SOURCES, start=START, autocorrelations=True,
-                  extra_primary=None):
+                  extra_primary=None, n_freqid=1, n_arrays=1):
     """Write a FITS-IDI file; return the expected corrected products per row.
 
     ``angles`` maps a station index to its (POLAA, POLAB) in degrees (the
-    same in every band). Rows cycle through the sources (one scan each).
+    same in every band). Rows cycle through the sources (one scan each) and,
+    with ``n_freqid`` > 1, through as many frequency setups (FREQID), each with
+    its own rows of the ANTENNA table as difx2fits writes them (fitsAN.c).
+    ``n_arrays`` > 1 splits the stations among as many ARRAY_GEOMETRY tables
+    (EXTVER = array number, AIPS Memo 114), the ANTENNA table's ARRAY column
+    saying which.
     Returns a dict with ``expected`` (rows, products) of sky-fixed products
     in the <v1 v2*> convention, ``chi`` (EVPA, deg, in ``frame``) and the
     row metadata.
@@ -171,61 +176,90 @@ def write_fitsidi(path, *, products=("RR", "LL", "RL", "LR"), angles=None, evpa=
     # Tables.
     primary = fits.PrimaryHDU()
     h = primary.header
+    if program == "difx":
+        # difx2fits (fitsHeader.c) and AIPS Memo 114: no primary array, but
+        # GROUPS = T with GCOUNT = PCOUNT = 0 (astropy opens it as a GroupsHDU).
+        h["EXTEND"] = True
+        h["BLOCKED"] = True
     h["OBJECT"] = "BINARYTB"
     h["TELESCOP"] = "VLBA"
     h["OBSERVER"] = "TEST1"
-    h["DATE-OBS"] = start.isot[:10]
     if program == "difx":
         h["ORIGIN"] = "VLBA Correlator"
         h["CORRELAT"] = "DIFX"
+        h["DATE-OBS"] = start.isot[:10]
+        h["DATE-MAP"] = start.isot[:10]
+        h["GROUPS"] = True
+        h["GCOUNT"] = 0
+        h["PCOUNT"] = 0
+        h.add_history("OPENED FITS FILE : 2023JAN26 10h00m00s")
         h.add_history("CORRELATOR = 'DIFX'")
-        h.add_history("CORRVERS = 'DiFX-2.8.1'")
-    elif program == "casacore":
+        h.add_history("CORRVERS = DiFX-2.8.1")
+        h.add_history("OBSCODE : TEST1")
+    else:
+        h["DATE-OBS"] = start.isot[:10]
+    if program == "casacore":
         h["ORIGIN"] = "casacore"
     for key, value in (extra_primary or {}).items():
         h[key] = value
     common = dict(OBSCODE="TEST1", RDATE=start.isot[:10], NO_STKD=n_pol, STK_1=crval,
                   NO_BAND=n_band, NO_CHAN=n_chan, REF_FREQ=8.4e9, CHAN_BW=0.5e6,
                   REF_PIXL=1.0, TABREV=1)
-    geometry = fits.BinTableHDU.from_columns([
-        fits.Column("ANNAME", "8A", array=[name[:8] for name, _, _ in stations]),
-        fits.Column("STABXYZ", "3D", unit="METERS", array=np.array(xyz)),
-        fits.Column("DERXYZ", "3E", unit="METERS/SEC", array=np.zeros((n_ant, 3))),
-        fits.Column("NOSTA", "1J", array=np.arange(1, n_ant + 1)),
-        fits.Column("MNTSTA", "1J", array=np.array(codes)),
-        fits.Column("STAXOF", "3E", unit="METERS", array=np.zeros((n_ant, 3))),
-        fits.Column("DIAMETER", "1E", unit="METERS", array=np.full(n_ant, 25.0)),
-    ], name="ARRAY_GEOMETRY")
-    geometry.header.update(common)
-    geometry.header.update(ARRAYX=0.0, ARRAYY=0.0, ARRAYZ=0.0, ARRNAM="VLBA",
-                           FRAME="GEOCENTRIC", TIMSYS="UTC", TIMESYS="UTC", NUMORB=0,
-                           GSTIA0=0.0, DEGPDY=360.9856449733, FREQ=8.4e9, POLARX=0.0,
-                           POLARY=0.0, UT1UTC=0.0, IATUTC=37.0)
+    array_of = [a * n_arrays // n_ant + 1 for a in range(n_ant)]
+    geometries = []
+    for array in range(1, n_arrays + 1):
+        members = [a for a in range(n_ant) if array_of[a] == array]
+        geometry = fits.BinTableHDU.from_columns([
+            fits.Column("ANNAME", "8A", array=[stations[a][0][:8] for a in members]),
+            fits.Column("STABXYZ", "3D", unit="METERS", array=np.array([xyz[a] for a in members])),
+            fits.Column("DERXYZ", "3E", unit="METERS/SEC", array=np.zeros((len(members), 3))),
+            fits.Column("ORBPARM", "0D", array=np.zeros((len(members), 0))),
+            fits.Column("NOSTA", "1J", array=np.array(members) + 1),
+            fits.Column("MNTSTA", "1J", array=np.array([codes[a] for a in members])),
+            fits.Column("STAXOF", "3E", unit="METERS", array=np.zeros((len(members), 3))),
+            fits.Column("DIAMETER", "1E", unit="METERS", array=np.full(len(members), 25.0)),
+        ], name="ARRAY_GEOMETRY")
+        geometry.header["EXTVER"] = array
+        geometry.header.update(common)
+        geometry.header.update(ARRAYX=0.0, ARRAYY=0.0, ARRAYZ=0.0, ARRNAM=f"VLBA{array}",
+                               FRAME="GEOCENTRIC", TIMSYS="UTC", TIMESYS="UTC", NUMORB=0,
+                               GSTIA0=0.0, DEGPDY=360.9856449733, FREQ=8.4e9, POLARX=0.0,
+                               POLARY=0.0, UT1UTC=0.0, IATUTC=37.0)
+        geometries.append(geometry)
     polaa = np.array([[angles.get(a, (0.0, 0.0))[0]] * n_band for a in range(n_ant)])
     polab = np.array([[angles.get(a, (0.0, 90.0 if basis_letters == "XY" else 0.0))[1]]
                       * n_band for a in range(n_ant)])
+    # One row per antenna and frequency setup (difx2fits, fitsAN.c).
+    an_rows = [(f, a) for f in range(1, n_freqid + 1) for a in range(n_ant)]
     antenna = fits.BinTableHDU.from_columns([
-        fits.Column("TIME", "1D", unit="DAYS", array=np.zeros(n_ant)),
-        fits.Column("TIME_INTERVAL", "1E", unit="DAYS", array=np.full(n_ant, 1.0)),
-        fits.Column("ANNAME", "8A", array=[name[:8] for name, _, _ in stations]),
-        fits.Column("ANTENNA_NO", "1J", array=np.arange(1, n_ant + 1)),
-        fits.Column("ARRAY", "1J", array=np.ones(n_ant, int)),
-        fits.Column("FREQID", "1J", array=np.ones(n_ant, int)),
-        fits.Column("NO_LEVELS", "1J", array=np.full(n_ant, 4)),
-        fits.Column("POLTYA", "1A", array=[basis_letters[0]] * n_ant),
-        fits.Column("POLAA", f"{n_band}E", unit="DEGREES", array=polaa),
-        fits.Column("POLTYB", "1A", array=[basis_letters[1]] * n_ant),
-        fits.Column("POLAB", f"{n_band}E", unit="DEGREES", array=polab),
+        fits.Column("TIME", "1D", unit="DAYS", array=np.zeros(len(an_rows))),
+        fits.Column("TIME_INTERVAL", "1E", unit="DAYS", array=np.full(len(an_rows), 1.0)),
+        fits.Column("ANNAME", "8A", array=[stations[a][0][:8] for _, a in an_rows]),
+        fits.Column("ANTENNA_NO", "1J", array=[a + 1 for _, a in an_rows]),
+        fits.Column("ARRAY", "1J", array=[array_of[a] for _, a in an_rows]),
+        fits.Column("FREQID", "1J", array=[f for f, _ in an_rows]),
+        fits.Column("NO_LEVELS", "1J", array=np.full(len(an_rows), 4)),
+        fits.Column("POLTYA", "1A", array=[basis_letters[0]] * len(an_rows)),
+        fits.Column("POLAA", f"{n_band}E", unit="DEGREES",
+                    array=np.array([polaa[a] for _, a in an_rows])),
+        fits.Column("POLCALA", "0E", array=np.zeros((len(an_rows), 0))),
+        fits.Column("POLTYB", "1A", array=[basis_letters[1]] * len(an_rows)),
+        fits.Column("POLAB", f"{n_band}E", unit="DEGREES",
+                    array=np.array([polab[a] for _, a in an_rows])),
+        fits.Column("POLCALB", "0E", array=np.zeros((len(an_rows), 0))),
     ], name="ANTENNA")
     antenna.header.update(common)
     antenna.header.update(NOPCAL=0, POLTYPE="APPROX")
     frequency = fits.BinTableHDU.from_columns([
-        fits.Column("FREQID", "1J", array=[1]),
-        fits.Column("BANDFREQ", f"{n_band}D", unit="HZ", array=[np.arange(n_band) * 32e6]),
-        fits.Column("CH_WIDTH", f"{n_band}E", unit="HZ", array=[np.full(n_band, 0.5e6)]),
+        fits.Column("FREQID", "1J", array=np.arange(1, n_freqid + 1)),
+        fits.Column("BANDFREQ", f"{n_band}D", unit="HZ",
+                    array=[np.arange(n_band) * 32e6 + f * 1e9 for f in range(n_freqid)]),
+        fits.Column("CH_WIDTH", f"{n_band}E", unit="HZ",
+                    array=[np.full(n_band, 0.5e6)] * n_freqid),
         fits.Column("TOTAL_BANDWIDTH", f"{n_band}E", unit="HZ",
-                    array=[np.full(n_band, 32e6)]),
-        fits.Column("SIDEBAND", f"{n_band}J", array=[np.ones(n_band, int)]),
+                    array=[np.full(n_band, 32e6)] * n_freqid),
+        fits.Column("SIDEBAND", f"{n_band}J", array=[np.ones(n_band, int)] * n_freqid),
+        fits.Column("BB_CHAN", f"{n_band}J", array=[np.ones(n_band, int)] * n_freqid),
     ], name="FREQUENCY")
     frequency.header.update(common)
     n_src = len(sources)
@@ -259,12 +293,15 @@ def write_fitsidi(path, *, products=("RR", "LL", "RL", "LR"), angles=None, evpa=
         fits.Column("BASELINE", "1J", array=baseline),
         fits.Column("FILTER", "1J", array=np.zeros(n_rows, int)),
         fits.Column("SOURCE", "1J", array=[sid for _, sid, _, _ in rows]),
-        fits.Column("FREQID", "1J", array=np.ones(n_rows, int)),
+        fits.Column("FREQID", "1J", array=[k % n_freqid + 1 for k, _, _, _ in rows]),
         fits.Column("INTTIM", "1E", unit="SECONDS", array=np.full(n_rows, 2.0)),
     ]
     if complex_length == 2:
         uv_columns.append(fits.Column("WEIGHT", f"{n_band * n_pol}E",
                                       array=np.ones((n_rows, n_band * n_pol))))
+    if program == "difx":
+        # difx2fits writes an empty GATEID column ('0J') before FLUX.
+        uv_columns.append(fits.Column("GATEID", "0J", array=np.zeros((n_rows, 0), int)))
     uv_columns.append(fits.Column("FLUX", f"{flux[0].size}E", unit="UNCALIB",
                                   array=flux.reshape(n_rows, -1)))
     uv = fits.BinTableHDU.from_columns(uv_columns, name="UV_DATA")
@@ -289,7 +326,7 @@ def write_fitsidi(path, *, products=("RR", "LL", "RL", "LR"), angles=None, evpa=
         uv.header["CRVAL2"] = float(crval + cdelt * (crpix - 1))
     uv.header.update(TMATX11=True, EQUINOX="J2000", WEIGHTYP="CORRELAT", SORT="T*",
                      VIS_SCAL=1.0)
-    fits.HDUList([primary, geometry, antenna, frequency, source, uv]).writeto(
+    fits.HDUList([primary, *geometries, antenna, frequency, source, uv]).writeto(
         path, overwrite=True)
     return dict(expected=expected, rows=rows, products=list(products), evpa=evpa,
                 n_band=n_band, n_chan=n_chan)

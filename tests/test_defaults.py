@@ -5,10 +5,14 @@ import inspect
 from pathlib import Path
 
 from astropy_feedrot.cli import build_parser
-from astropy_feedrot.io import correct_fitsidi
-from astropy_feedrot.rows import feed_rotation_rows
-from astropy_feedrot.uvdata import correct_uvdata, feed_rotation_uvdata
-from astropy_feedrot.visibility_files import correct_file
+from astropy_feedrot.visibilities import (
+    correct_file,
+    correct_fitsidi,
+    correct_ms,
+    correct_uvdata,
+    feed_rotation_rows,
+    feed_rotation_uvdata,
+)
 
 
 def test_every_entry_point_has_the_same_default_frame():
@@ -16,7 +20,7 @@ def test_every_entry_point_has_the_same_default_frame():
     # frame="icrs": one file, results 0.15 deg apart by entry point.
     defaults = {function.__name__: inspect.signature(function).parameters["frame"].default
                 for function in (correct_uvdata, feed_rotation_uvdata, correct_fitsidi,
-                                 correct_file, feed_rotation_rows)}
+                                 correct_file, feed_rotation_rows, correct_ms)}
     correct = build_parser()._subparsers._group_actions[0].choices["correct"]
     defaults["feedrot correct"] = correct.get_default("frame")
     assert set(defaults.values()) == {"apparent"}, defaults

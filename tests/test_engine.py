@@ -224,7 +224,7 @@ def test_the_top_level_is_the_import_surface():
 
     modules = ["antenna", "attitude", "config", "continuity", "correction", "eop", "epochs",
                "exceptions", "focus", "grid", "io", "labels", "mounts", "orbits", "planning",
-               "plotting", "rotators",
+               "plotting", "rotators", "rr_ll",
                "satellite", "stations", "tables", "yaw_models"]
     homes = {}
     for module in modules:

@@ -23,14 +23,14 @@ from fitsidi_writer import START, STATIONS, station_xyz, write_fitsidi
 
 from astropy_feedrot import AltAzMount, NasmythFocus, XYMount
 from astropy_feedrot.exceptions import DegenerateGeometryWarning
-from astropy_feedrot.io import (
-    FileFormatError,
+from astropy_feedrot.io import FileFormatError
+from astropy_feedrot.visibilities import (
+    HISTORY_MARK,
     FITSFormatError,
     correct_fitsidi,
     fitsidi_antennas,
     writing_program,
 )
-from astropy_feedrot.io.fitsidi import HISTORY_MARK
 from astropy_feedrot.receptors import Receptors
 
 CIRCULAR_ANGLES = {0: (5.0, -7.0), 2: (12.0, 3.0)}
@@ -114,6 +114,46 @@ def test_linear_round_trip(tmp_path, products, frame):
     assert np.max(np.abs(chi - info["evpa"])) < 0.01
 
 
+@pytest.mark.parametrize("products", [("RR", "LL", "RL", "LR"), ("LR", "RL", "LL", "RR"),
+                                      ("XX", "YY", "XY", "YX"), ("YX", "XY", "YY", "XX")])
+def test_difx_file_with_two_arrays_and_two_setups(tmp_path, products):
+    # As difx2fits writes it (fitsHeader.c, fitsAG.c, fitsAN.c, fitsUV.c): a
+    # primary header with NAXIS = 0, GROUPS = T, GCOUNT = PCOUNT = 0 (astropy
+    # opens it as random groups), ORBPARM/POLCALA/POLCALB/GATEID columns of
+    # length 0, a WEIGHT column; here also two arrays (two ARRAY_GEOMETRY
+    # tables) and two frequency setups (ANTENNA rows per FREQID).
+    angles = LINEAR_ANGLES if products[0][0] in "XY" else CIRCULAR_ANGLES
+    source, info = run(tmp_path, products=products, angles=angles, n_arrays=2, n_freqid=2)
+    with fits.open(source) as hdul:
+        assert hdul[0].header["GROUPS"] and hdul[0].header["GCOUNT"] == 0
+        assert [h.header["EXTVER"] for h in hdul if h.name == "ARRAY_GEOMETRY"] == [1, 2]
+        assert hdul["UV_DATA"].columns["GATEID"].format == "0J"
+        assert set(hdul["UV_DATA"].data["FREQID"]) == {1, 2}
+    assert sorted(fitsidi_antennas(source)) == [1, 2, 3, 4]
+    output = tmp_path / "out.idifits"
+    correct_fitsidi(source, output)
+    got = corrected_products(output, info)
+    expected = info["expected"][:, None, None, :]
+    # Reference: the writer's voltage-level model (ERFA hd2pa on astropy's HADec).
+    np.testing.assert_allclose(got, np.broadcast_to(expected, got.shape), atol=2e-6)
+    assert np.max(np.abs(evpa(list(products), got) - info["evpa"])) < 0.01
+    with fits.open(source) as a, fits.open(output) as b:
+        np.testing.assert_array_equal(a["UV_DATA"].data["WEIGHT"], b["UV_DATA"].data["WEIGHT"])
+
+
+def test_an_antenna_number_in_two_arrays_is_refused(tmp_path):
+    source, _ = run(tmp_path, n_arrays=2)
+
+    def edit(hdul):
+        second = [h for h in hdul if h.name == "ARRAY_GEOMETRY"][1]
+        second.data["NOSTA"][0] = 1
+
+    bad = rewrite(source, tmp_path / "bad.idifits", edit)
+    with pytest.raises(FITSFormatError, match=r"ARRAY_GEOMETRY \(EXTVER 1\), column NOSTA: "
+                                              r"expected one row per antenna number .*\[1\]"):
+        fitsidi_antennas(bad)
+
+
 def test_without_correction_the_evpa_wanders(tmp_path):
     # The injected data are not trivially right: before correction RL turns
     # with the feed rotation (tens of degrees over the track).
@@ -148,7 +188,8 @@ def test_output_differs_only_in_flux_and_history(tmp_path):
         assert len(a) == len(b)
         history = [str(h) for h in b[0].header["HISTORY"]]
         assert HISTORY_MARK in "".join(history)
-        assert [str(h) for h in a[0].header["HISTORY"]] == history[:2]
+        before = [str(h) for h in a[0].header["HISTORY"]]
+        assert before == history[:len(before)] and len(history) > len(before)
         for key in a[0].header:
             if key != "HISTORY":
                 assert a[0].header[key] == b[0].header[key]
@@ -227,8 +268,37 @@ def test_degenerate_rows_are_nan_with_zero_weight(tmp_path):
 def test_already_corrected_is_refused(tmp_path):
     source, _ = run(tmp_path)
     correct_fitsidi(source, tmp_path / "out.idifits")
-    with pytest.raises(ValueError, match="already removed"):
+    with pytest.raises(ValueError, match=r"removed already .*pass redo=True \(--redo\)"):
         correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits")
+    assert not (tmp_path / "again.idifits").exists()
+    correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits", redo=True)
+    # The capitals of releases before 0.2 are recognised too.
+    old = rewrite(source, tmp_path / "old.idifits", lambda hdul: hdul[0].header.add_history(
+        "FEED ROTATION REMOVED by astropy_feedrot 0.1: UV_DATA FLUX corrected"))
+    with pytest.raises(ValueError, match="removed already"):
+        correct_fitsidi(old, tmp_path / "old_again.idifits")
+
+
+@pytest.mark.parametrize("products, angles", [(("RR", "LL", "RL", "LR"), CIRCULAR_ANGLES),
+                                              (("XX", "YY", "XY", "YX"), LINEAR_ANGLES)])
+def test_apply_then_remove_gives_the_input_back(tmp_path, products, angles):
+    # Identity: applying the feed rotation inverts removing it, row by row.
+    source, info = run(tmp_path, products=products, angles=angles, n_freqid=2)
+    removed = tmp_path / "removed.idifits"
+    correct_fitsidi(source, removed)
+    applied = tmp_path / "applied.idifits"
+    correct_fitsidi(removed, applied, direction="apply")
+    with fits.open(source) as a, fits.open(applied) as b:
+        np.testing.assert_allclose(b["UV_DATA"].data["FLUX"], a["UV_DATA"].data["FLUX"],
+                                   rtol=0, atol=1e-6)
+        assert "Feed rotation applied by astropy_feedrot" in "".join(
+            str(h) for h in b[0].header["HISTORY"])
+    # Applied to the sky-fixed products, the forward direction gives what the
+    # writer's model measured (its voltage-level model, ERFA hd2pa).
+    with pytest.raises(ValueError, match="applied already"):
+        correct_fitsidi(applied, tmp_path / "twice.idifits", direction="apply")
+    with pytest.raises(ValueError, match="direction must be one of"):
+        correct_fitsidi(source, tmp_path / "x.idifits", direction="forward")
 
 
 def test_paths(tmp_path):
@@ -481,3 +551,28 @@ def test_not_a_fits_file(tmp_path):
 
 def test_stations_used_by_the_writer_are_in_the_catalogue():
     assert [name for name, _, _ in STATIONS] == ["FD-VLBA", "EFLSBERG", "YEBES40M", "WETTZ13S"]
+
+
+def test_feeds_given_where_the_antenna_table_has_none(tmp_path):
+    # Antenna 2 (EFLSBERG) loses its ANTENNA rows, as a file without receptors
+    # (the ATCA Miriad case): refused, naming --feeds; given, the result is the
+    # writer's model (its receptors are R and L at 0 deg).
+    source, info = run(tmp_path, angles=CIRCULAR_ANGLES)
+
+    def edit(hdul):
+        table = hdul["ANTENNA"]
+        keep = table.data["ANTENNA_NO"] != 2
+        hdul["ANTENNA"] = fits.BinTableHDU(table.data[keep], header=table.header,
+                                           name="ANTENNA")
+
+    bad = rewrite(source, tmp_path / "nofeed.idifits", edit)
+    with pytest.raises(ValueError, match=r"antenna 2 \(EFLSBERG\) has no receptors: the "
+                                         r"ANTENNA table has no row for it; give the feeds .*"
+                                         r"--feeds R,L"):
+        correct_fitsidi(bad, tmp_path / "out.idifits")
+    assert not (tmp_path / "out.idifits").exists()
+    correct_fitsidi(bad, tmp_path / "out.idifits",
+                    feeds={"EFLSBERG": Receptors("RL", [0, 0] * u.deg)})
+    got = corrected_products(tmp_path / "out.idifits", info)
+    np.testing.assert_allclose(got, np.broadcast_to(info["expected"][:, None, None, :],
+                                                    got.shape), atol=2e-6)

@@ -10,12 +10,12 @@ from fitsidi_writer import write_fitsidi
 
 import astropy_feedrot.cli.common
 import astropy_feedrot.cli.data
-import astropy_feedrot.io.fitsidi as fitsidi
-import astropy_feedrot.uvdata
+import astropy_feedrot.visibilities.fitsidi as fitsidi
+import astropy_feedrot.visibilities.files
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
 from astropy_feedrot.outputs import CommandError, publish, write_files
-from astropy_feedrot.visibility_files import correct_file
+from astropy_feedrot.visibilities import correct_file
 
 VLA = sample_file("vla_day2_8chan.uvfits")
 NATURAL = ["natural", "EFLSBERG", "--source", "13h31m08.29s +30d30m33.0s", "--start", "2023-01-01",
@@ -200,7 +200,7 @@ def test_correct_file_refuses_a_fitsidi_output_of_another_format(idi, tmp_path, 
 
 
 def test_correct_file_checks_the_output_before_reading(tmp_path, monkeypatch):
-    monkeypatch.setattr(astropy_feedrot.uvdata, "read_uvdata", None)  # never reached
+    monkeypatch.setattr(astropy_feedrot.visibilities.files, "read_uvdata", None)  # never reached
     with pytest.raises(ValueError, match=r"cannot tell a format from the extension of "
                        r"'.*out\.txt'; use one of \.uvfits, \.uvh5"):
         correct_file(VLA, tmp_path / "out.txt")

@@ -17,7 +17,11 @@ from astropy.tests.helper import assert_quantity_allclose
 from astropy.time import Time
 
 from astropy_feedrot import DegenerateGeometryWarning
-from astropy_feedrot.rows import distinct_epochs, feed_rotation_rows, frame_position_angle
+from astropy_feedrot.visibilities.rows import (
+    distinct_epochs,
+    feed_rotation_rows,
+    frame_position_angle,
+)
 from astropy_feedrot.stations import get_antenna
 
 ANTENNAS = {3: get_antenna("FD-VLBA"), 7: get_antenna("WETTZ13S"), 9: get_antenna("GGAO12M")}

@@ -28,7 +28,7 @@ from pyuvdata.utils import ECEF_from_ENU  # noqa: E402
 import uvdata_model as model  # noqa: E402
 from astropy_feedrot import Antenna, DegenerateGeometryWarning, StationaryMount  # noqa: E402
 from astropy_feedrot.receptors import Receptors  # noqa: E402
-from astropy_feedrot.uvdata import (  # noqa: E402
+from astropy_feedrot.visibilities import (  # noqa: E402
     HISTORY_MARK,
     antennas_from_uvdata,
     correct_uvdata,

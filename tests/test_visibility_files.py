@@ -20,7 +20,7 @@ from fitsidi_writer import write_fitsidi
 
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.visibility_files import (
+from astropy_feedrot.visibilities import (
     FILE_KINDS,
     antenna_table,
     correct_file,
@@ -147,6 +147,24 @@ def test_command_correct_fitsidi(capsys, idi, tmp_path):
     assert "no such file" in capsys.readouterr().err
 
 
+def test_commands_on_a_difx_file(capsys, tmp_path):
+    # difx2fits' primary header (NAXIS = 0, GROUPS = T, GCOUNT = PCOUNT = 0),
+    # two arrays and two frequency setups: recognised as FITS-IDI, not UVFITS.
+    path = tmp_path / "difx.idifits"
+    model = write_fitsidi(path, angles={0: (12.0, 102.0)}, n_arrays=2, n_freqid=2)
+    assert file_kind(path) == "fits-idi"
+    assert main(["antennas", str(path)]) == 0
+    table = Table.read(capsys.readouterr().out, format="ascii.ecsv")
+    assert list(table["name"]) == ["FD-VLBA", "EFLSBERG", "YEBES40M", "WETTZ13S"]
+    assert table.meta["labels"] == "fits-idi:difx"
+    output = tmp_path / "out.idifits"
+    assert main(["correct", str(path), "-o", str(output), "--quiet"]) == 0
+    values = corrected(output, model)
+    # Reference: the writer's voltage-level model (ERFA hd2pa on astropy's HADec).
+    np.testing.assert_allclose(values, np.broadcast_to(model["expected"][:, None, None, :],
+                                                       values.shape), atol=2e-6)
+
+
 # Through pyuvdata ----------------------------------------------------------------------------
 
 
@@ -156,7 +174,7 @@ def test_command_correct_fitsidi(capsys, idi, tmp_path):
 def test_uvfits_corrected_into_every_format(tmp_path, name):
     # The sample: real VLA data with RR, LL, RL, LR. The corrected copy, read
     # back, equals correct_uvdata on the input read directly.
-    from astropy_feedrot.uvdata import correct_uvdata, read_uvdata
+    from astropy_feedrot.visibilities import correct_uvdata, read_uvdata
 
     before = digest(VLA)
     out = correct_file(VLA, tmp_path / name)
@@ -219,7 +237,7 @@ def test_files_cut_short(idi, tmp_path):
 
 
 def test_correct_fitsidi_refuses_rows_cut_short(idi, tmp_path):
-    from astropy_feedrot.io import FITSFormatError, correct_fitsidi
+    from astropy_feedrot.visibilities import FITSFormatError, correct_fitsidi
 
     path, _ = idi
     cut = tmp_path / "cut.idifits"

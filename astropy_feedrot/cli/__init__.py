@@ -9,9 +9,9 @@ lists the station catalogue (``--network``, ``--mount``); ``feedrot
 coverage`` tabulates the range of feed rotation that candidate polarization
 calibrators offer a network. ``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
-visibility file with the feed rotation removed (see
-`astropy_feedrot.visibility_files`). ``feedrot rinex`` writes a copy of a
-RINEX observation file with the carrier-phase wind-up removed (see
+visibility file with the feed rotation removed, or corrects a Measurement Set
+in place (see `astropy_feedrot.visibilities`). ``feedrot rinex`` writes a copy
+of a RINEX observation file with the carrier-phase wind-up removed (see
 `astropy_feedrot.gnss`).
 
 Each family of commands is a module of this package (``tables``, ``demo``,
@@ -114,8 +114,10 @@ def _run(args):
         print("feedrot: error: out of memory; use fewer epochs (a larger --step or a shorter "
               "span)", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print("feedrot: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as error:
+        # Long corrections say what an interruption left behind.
+        detail = f": {one_line(error)}" if error.args else ""
+        print(f"feedrot: interrupted{detail}", file=sys.stderr)
         return 130
     except Exception as error:
         print(f"feedrot: error: internal error ({type(error).__name__}: {one_line(error)}); "

@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Readers of GNSS orbit and attitude product files, and of visibility files.
+"""Readers of GNSS orbit and attitude product files.
 
 * `read_sp3` reads SP3 precise orbit files (SP3-c and SP3-d, also SP3-a/b):
   Earth-fixed satellite positions and clock corrections.
@@ -9,17 +9,17 @@
   (satellite blocks, PRN assignments).
 * `read_tle` reads the element sets of two- and three-line element files;
   `check_tle_line` and `check_tle_pair` check element lines field by field.
-* `fitsidi_antennas` and `uvfits_antennas` read the antenna tables of
-  FITS-IDI and UVFITS files into `~astropy_feedrot.Antenna` objects
-  (positions, mounts read in the convention of the program that wrote the
-  file, `writing_program`, and receptors).
-* `correct_fitsidi` writes a copy of a FITS-IDI file with the feed rotation
-  removed from its visibilities (:doc:`/fitsidi`).
+
+Visibility files (FITS-IDI, UVFITS, Measurement Sets...) are read and
+corrected by `astropy_feedrot.visibilities`; the names this package gave
+them until 0.2 (``fitsidi_antennas``, ``uvfits_antennas``,
+``correct_fitsidi``, ``writing_program``, ``WritingProgram``, ``open_fits``,
+``FITSFormatError``) still work for one release, with a
+`DeprecationWarning`.
 
 Epochs come back as astropy `~astropy.time.Time`, converted from the file's
 GNSS time system; files that break their format raise `FileFormatError`,
-whose message names the file and the line (for FITS files its subclass
-`FITSFormatError`, which names the table and the column).
+whose message names the file and the line.
 
 Examples
 --------
@@ -48,10 +48,9 @@ from .sinex import SatelliteMetadata, read_satellite_metadata
 from .sp3 import SP3Data, read_sp3
 from .tle import TLE, check_tle_line, check_tle_pair, read_tle
 
-# The visibility-file front-ends build Antenna objects, a layer above the
-# orbit readers that the satellite models import from here; they are loaded
-# on first use, so that importing this package does not need them.
-_FRONT_ENDS = {
+# Visibility files moved to astropy_feedrot.visibilities; their old names
+# here resolve there, with a DeprecationWarning, until the next release.
+_MOVED = {
     "fitsidi_antennas": "fitsidi",
     "correct_fitsidi": "fitsidi",
     "uvfits_antennas": "uvfits",
@@ -76,26 +75,18 @@ __all__ = [
     "TIME_SYSTEMS",
     "check_epoch",
     "epochs_to_time",
-    "fitsidi_antennas",
-    "uvfits_antennas",
-    "correct_fitsidi",
-    "writing_program",
-    "WritingProgram",
-    "open_fits",
-    "FITSFormatError",
 ]
 
 
 def __getattr__(name):
-    if name in _FRONT_ENDS:
+    if name in _MOVED:
         import importlib
+        import warnings
 
-        module = importlib.import_module(f"{__name__}.{_FRONT_ENDS[name]}")
-        value = getattr(module, name)
-        globals()[name] = value
-        return value
+        # A module above this one: loaded on use only, for the deprecated names.
+        module = f"astropy_feedrot.visibilities.{_MOVED[name]}"
+        warnings.warn(f"astropy_feedrot.io.{name} moved to {module}.{name} (also "
+                      f"astropy_feedrot.visibilities.{name}); the old name goes in the next "
+                      "release", DeprecationWarning, stacklevel=2)
+        return getattr(importlib.import_module(module), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_FRONT_ENDS))

@@ -1,0 +1,101 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Visibility data: files of every kind, their antennas, and the feed rotation
+removed from (or applied to) their visibilities.
+
+One module per format, on shared steps:
+
+* `~astropy_feedrot.visibilities.kinds`: the kinds of file (`FILE_KINDS`,
+  `file_kind`);
+* `~astropy_feedrot.visibilities.rows`: rows (time, antenna 1, antenna 2,
+  source) to the feed rotation of both antennas (`feed_rotation_rows`);
+* `~astropy_feedrot.visibilities.receptors`: the receptor step, from feed
+  rotation to the sky position angle of each receptor
+  (`receptor_position_angles`), and receptors given by the user
+  (`with_receptors`, `parse_feeds`);
+* `~astropy_feedrot.visibilities.history`: the one history mark
+  (`HISTORY_MARK`, `APPLY_MARK`);
+* formats: `~astropy_feedrot.visibilities.fitsidi` (FITS-IDI, astropy,
+  memory-mapped), `~astropy_feedrot.visibilities.uvfits` (UVFITS antenna
+  tables), `~astropy_feedrot.visibilities.ms` (Measurement Sets in place,
+  python-casacore), `~astropy_feedrot.visibilities.uvdata` (everything
+  pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the
+  antenna tables FITS-IDI and UVFITS share;
+* `~astropy_feedrot.visibilities.files`: any file, by its kind
+  (`read_antennas`, `antenna_table`, `correct_file`), as ``feedrot
+  antennas`` and ``feedrot correct`` use them.
+
+pyuvdata and python-casacore are optional and imported on first use.
+"""
+
+from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
+from .files import (
+    FITSIDI_EXTENSIONS,
+    antenna_table,
+    check_output_format,
+    correct_file,
+    read_antennas,
+)
+from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
+from .history import APPLY_MARK, HISTORY_MARK
+from .kinds import FILE_KINDS, existing_path, file_kind
+from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
+from .poles import POLES, pole_context
+from .receptors import (
+    ReceptorAngleTable,
+    check_receptors,
+    parse_feeds,
+    receptor_position_angles,
+    with_receptors,
+)
+from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
+from .uvdata import (
+    WRITERS,
+    antennas_from_uvdata,
+    correct_uvdata,
+    feed_rotation_uvdata,
+    read_uvdata,
+    write_uvdata,
+)
+from .uvfits import uvfits_antennas
+
+__all__ = [
+    "FILE_KINDS",
+    "file_kind",
+    "existing_path",
+    "read_antennas",
+    "antenna_table",
+    "correct_file",
+    "check_output_format",
+    "FITSIDI_EXTENSIONS",
+    "feed_rotation_rows",
+    "frame_position_angle",
+    "distinct_epochs",
+    "FRAMES",
+    "POLES",
+    "pole_context",
+    "receptor_position_angles",
+    "ReceptorAngleTable",
+    "check_receptors",
+    "with_receptors",
+    "parse_feeds",
+    "HISTORY_MARK",
+    "APPLY_MARK",
+    "fitsidi_antennas",
+    "correct_fitsidi",
+    "STOKES_CODES",
+    "uvfits_antennas",
+    "FITSFormatError",
+    "WritingProgram",
+    "writing_program",
+    "open_fits",
+    "ms_antennas",
+    "correct_ms",
+    "CORR_TYPES",
+    "MSError",
+    "antennas_from_uvdata",
+    "feed_rotation_uvdata",
+    "correct_uvdata",
+    "read_uvdata",
+    "write_uvdata",
+    "WRITERS",
+]

@@ -1,0 +1,295 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Visibility files of every kind: their antennas, and a corrected copy.
+
+The one entry point for files of every format (`~astropy_feedrot.visibilities.FILE_KINDS`),
+used by ``feedrot antennas`` and ``feedrot correct``:
+
+* FITS-IDI files are read and corrected with astropy alone
+  (`~astropy_feedrot.visibilities.fitsidi_antennas`,
+  `~astropy_feedrot.visibilities.correct_fitsidi`), memory-mapped;
+* UVFITS antenna tables are read with astropy alone
+  (`~astropy_feedrot.visibilities.uvfits_antennas`);
+* everything pyuvdata reads (UVFITS, uvh5, Measurement Sets through
+  python-casacore, Miriad, SMA Mir) is corrected through
+  `astropy_feedrot.visibilities.uvdata` and written in the format of the
+  output's extension; a Measurement Set is corrected in place by
+  `~astropy_feedrot.visibilities.correct_ms`.
+"""
+
+import contextlib
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+from astropy.table import Table
+
+from ..labels import label_from_mount
+from ..outputs import publish, same_file
+from .antenna_tables import writing_program
+from .fitsidi import correct_fitsidi, fitsidi_antennas
+from .kinds import existing_path, file_kind
+from .ms import ms_antennas
+from .poles import pole_context
+from .uvdata import (
+    WRITERS,
+    antennas_from_uvdata,
+    correct_uvdata,
+    read_uvdata,
+    write_uvdata,
+)
+from .uvfits import uvfits_antennas
+
+__all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
+           "check_output_format"]
+
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
+FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
+
+
+def read_antennas(path, *, vertical="geodetic"):
+    """The antennas of a visibility file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A visibility file of any kind of `FILE_KINDS`.
+    vertical : {'geodetic', 'geocentric'}, optional
+        The local vertical of the antennas (see `~astropy_feedrot.Antenna`;
+        ``'geocentric'`` reproduces CASA).
+
+    Returns
+    -------
+    antennas : dict
+        ``{antenna number: Antenna}``, with names, mounts, foci and receptors.
+    software : str
+        The label convention of the file (one of
+        `~astropy_feedrot.labels.SOFTWARE`), in which `antenna_table`
+        writes the labels back.
+
+    Raises
+    ------
+    FileNotFoundError, ValueError
+        As `file_kind` and the readers; ImportError if a pyuvdata format
+        is read without pyuvdata.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import read_antennas
+    >>> antennas, software = read_antennas(sample_file("vla_day2_8chan.uvfits"))
+    >>> len(antennas), software
+    (19, 'fits-idi:casacore')
+    """
+    kind = file_kind(path)
+    if kind == "fits-idi":
+        return fitsidi_antennas(path, vertical=vertical), writing_program(path)[1]
+    if kind == "uvfits":
+        return uvfits_antennas(path, vertical=vertical), writing_program(path)[1]
+    if kind == "ms":
+        return ms_antennas(path, vertical=vertical), "casacore"
+
+    uv = read_uvdata(path, read_data=False)
+    return antennas_from_uvdata(uv, vertical=vertical), "pyuvdata"
+
+
+def antenna_table(antennas, software=None):
+    """The antennas as a table: number, name, position, label, mount, focus, receptors.
+
+    Parameters
+    ----------
+    antennas : dict
+        ``{antenna number: Antenna}``.
+    software : str, optional
+        A convention of `~astropy_feedrot.labels.SOFTWARE`: adds the column
+        ``label``, the mount label of each antenna in that convention (empty
+        where the convention has none).
+
+    Returns
+    -------
+    `~astropy.table.Table`
+        One row per antenna, ordered by number: ``number``, ``name``, ``x``,
+        ``y``, ``z`` (ITRF, m), [``label``], ``mount``, ``focus``,
+        ``receptors`` (letters, e.g. ``RL``) and ``receptor_angles`` (deg).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import antenna_table, read_antennas
+    >>> table = antenna_table(*read_antennas(sample_file("vla_day2_8chan.uvfits")))
+    >>> [list(map(str, table[c][:3])) for c in ("name", "label", "receptors")]
+    [['W09', 'E02', 'E09'], ['0', '0', '0'], ['R', 'R', 'R']]
+    >>> str(table["mount"][0]), str(table["focus"][0])
+    ('AltAzMount()', 'CassegrainFocus()')
+
+    (casacore wrote a blank ``POLTYB`` for this file: one receptor is
+    listed, as read.)
+    """
+    numbers = sorted(antennas)
+    rows = []
+    for number in numbers:
+        antenna = antennas[number]
+        x, y, z = (getattr(antenna.location, c).to_value("m") for c in "xyz")
+        receptors = antenna.receptors
+        row = dict(number=number, name=antenna.name or "", x=x, y=y, z=z)
+        if software is not None:
+            try:
+                row["label"] = str(label_from_mount(antenna.mount, antenna.focus, software))
+            except ValueError:
+                row["label"] = ""
+        row.update(mount=repr(antenna.mount), focus=repr(antenna.focus),
+                   receptors="" if receptors is None else receptors.types,
+                   receptor_angles=" ".join(f"{a:g}" for a in receptors.angles.value)
+                   if receptors is not None else "")
+        rows.append(row)
+    table = Table(rows=rows) if rows else Table(names=["number", "name", "x", "y", "z"])
+    for column in ("x", "y", "z"):
+        if column in table.colnames:
+            table[column].unit = "m"
+            table[column].format = ".4f"
+    if "receptor_angles" in table.colnames:
+        table["receptor_angles"].description = "angles of the receptors in the antenna (deg)"
+    return table
+
+
+def _check_output(source, output, overwrite):
+    """The resolved output path, refused if it is the input or exists without overwrite."""
+    target = Path(os.fspath(output)).expanduser()
+    resolved = target.resolve()
+    if same_file(resolved, source.resolve()):
+        raise ValueError(f"the output {str(target)!r} is the input; the input is never "
+                         "modified: choose another name")
+    if target.exists() and not overwrite:
+        raise FileExistsError(f"{str(target)!r} exists; pass overwrite=True (--overwrite) to "
+                              "replace it")
+    if not resolved.parent.is_dir():
+        raise FileNotFoundError(f"cannot write {str(target)!r}: directory "
+                                f"{str(resolved.parent)!r} does not exist")
+    return resolved
+
+
+def check_output_format(kind, output):
+    """Refuse an output whose extension does not name what `correct_file` writes.
+
+    Parameters
+    ----------
+    kind : str
+        The input's kind, one of `~astropy_feedrot.visibilities.FILE_KINDS`.
+    output : str or path-like
+        The output's name.
+
+    Raises
+    ------
+    ValueError
+        A FITS-IDI input is corrected into FITS-IDI (`FITSIDI_EXTENSIONS`;
+        there is no conversion); any other input into a format pyuvdata
+        writes, named by the extension (`~astropy_feedrot.visibilities.WRITERS`).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import check_output_format
+    >>> check_output_format("uvfits", "out.uvh5")
+    >>> check_output_format("fits-idi", "out.uvfits")
+    Traceback (most recent call last):
+    ...
+    ValueError: 'out.uvfits': a FITS-IDI input is corrected into a FITS-IDI copy ...
+    """
+    text = os.fspath(output)
+    extension = Path(text.rstrip("/" + os.sep)).suffix.lower()
+    if kind == "fits-idi":
+        if extension not in FITSIDI_EXTENSIONS:
+            raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
+                             "(there is no conversion to other formats); give the output one "
+                             f"of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
+    elif extension not in WRITERS:
+        raise ValueError(f"cannot tell a format from the extension of {text!r}; use one of "
+                         f"{', '.join(WRITERS)}")
+
+
+def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
+                 progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
+                 client=None):
+    """Write a copy of a visibility file with the feed rotation removed.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The input, of any kind of `FILE_KINDS`; never modified.
+    output : str or path-like
+        Where to write. A FITS-IDI input gives a FITS-IDI output; any other
+        input is written in the format of the output's extension (``.uvfits``,
+        ``.uvh5``, ``.ms``...), as pyuvdata writes it.
+    frame : str, optional
+        ``'apparent'`` (default) or a celestial frame such as ``'icrs'``:
+        north of the corrected polarization angles (see
+        `~astropy_feedrot.visibilities.frame_position_angle`).
+    vertical : {'geodetic', 'geocentric'}, optional
+        The local vertical (``'geocentric'`` reproduces CASA).
+    overwrite : bool, optional
+        Replace an existing output (never the input).
+    progress : bool or callable, optional
+        Show a progress bar (astropy's `~astropy.utils.console.ProgressBar`).
+    direction : {'remove', 'apply'}, optional
+        Remove the feed rotation (default), or apply it to a model.
+    feeds : `~astropy_feedrot.Receptors` or mapping, optional
+        Receptors for antennas the file gives none
+        (`~astropy_feedrot.visibilities.with_receptors`).
+    redo : bool, optional
+        Correct data whose history says they were corrected in the same
+        direction already.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
+    client : `dask.distributed.Client`, optional
+        For FITS-IDI, correct the chunks of rows on its workers.
+
+    Returns
+    -------
+    pathlib.Path
+        The output written.
+
+    Raises
+    ------
+    FileNotFoundError, FileExistsError, ValueError
+        For a missing input, an existing output without ``overwrite``, the
+        input as output, or data that cannot be corrected (see
+        `~astropy_feedrot.visibilities.correct_uvdata` and
+        `~astropy_feedrot.visibilities.correct_fitsidi`).
+
+    Notes
+    -----
+    The output is written to a temporary file (or directory) beside it and
+    renamed into place at the end: an interrupted run leaves no partial
+    output and an existing output as it was.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import correct_file
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "corrected.uvfits"
+    >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name  # doctest: +IGNORE_WARNINGS
+    'corrected.uvfits'
+    """
+    source = existing_path(path)
+    kind = file_kind(source)
+    check_output_format(kind, output)  # before any work
+    target = _check_output(source, output, overwrite)
+    if kind == "fits-idi":
+        correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
+                        vertical=vertical, direction=direction, feeds=feeds, redo=redo,
+                        pole=pole, client=client)
+        return target
+
+    uv = read_uvdata(source)
+    with pole_context(pole):
+        correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
+                       direction=direction, feeds=feeds, redo=redo)
+    work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+    try:
+        temporary = work / target.name
+        write_uvdata(uv, temporary)
+        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
+    finally:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(work)
+    return target

@@ -1,0 +1,143 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""The kinds of visibility file, told from their content, and who reads each."""
+
+import os
+import warnings
+from pathlib import Path
+
+from astropy.io import fits
+
+__all__ = ["FILE_KINDS", "file_kind", "existing_path"]
+
+#: The kinds of visibility file recognised, and the module of
+#: `astropy_feedrot.visibilities` that reads and corrects each (with the
+#: library it needs).
+FILE_KINDS = {
+    "fits-idi": "fitsidi (astropy, memory-mapped)",
+    "uvfits": "uvfits for antennas (astropy), uvdata for visibilities (pyuvdata)",
+    "uvh5": "uvdata (pyuvdata)",
+    "ms": "ms (python-casacore, in place) or uvdata (pyuvdata, a copy)",
+    "miriad": "uvdata (pyuvdata)",
+    "mir": "uvdata (pyuvdata)",
+}
+
+_HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+# What astropy.io.fits warns on opening a FITS file that ends early.
+_CUT_SHORT = ("truncated", "Header size is not multiple of 2880")
+
+
+def existing_path(path, what="file"):
+    """``path`` as a `~pathlib.Path` (``~`` expanded), or FileNotFoundError.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A file or directory.
+    what : str, optional
+        What it is, for the message.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import existing_path
+    >>> existing_path("/no/such/file.ms", "Measurement Set")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: no such Measurement Set: '/no/such/file.ms'
+    """
+    path = Path(os.fspath(path)).expanduser()
+    if not path.exists():
+        raise FileNotFoundError(f"no such {what}: {str(path)!r}")
+    return path
+
+
+def file_kind(path):
+    """The kind of a visibility file, from its content.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A file (FITS-IDI, UVFITS, uvh5) or a directory (Measurement Set,
+        Miriad, SMA Mir).
+
+    Returns
+    -------
+    str
+        One of `FILE_KINDS`.
+
+    Notes
+    -----
+    A FITS file with a ``UV_DATA`` table is FITS-IDI, whatever its primary
+    header says: FITS-IDI files (AIPS Memo 114, DiFX's difx2fits) write
+    ``GROUPS = T`` with ``NAXIS = 0``, ``GCOUNT = 0`` and ``PCOUNT = 0``.
+    UVFITS is a primary array of random groups (``GROUPS = T``, ``NAXIS1 =
+    0`` and further axes).
+
+    Raises
+    ------
+    FileNotFoundError
+        If nothing is at ``path``.
+    ValueError
+        If the content is none of the known kinds, or a FITS file is cut
+        short.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import file_kind
+    >>> file_kind(sample_file("vla_day2_8chan.uvfits"))
+    'uvfits'
+    """
+    path = existing_path(path)
+    if path.is_dir():
+        if (path / "table.dat").is_file() and (path / "ANTENNA").is_dir():
+            return "ms"
+        if (path / "visdata").is_file() and (path / "vartable").is_file():
+            return "miriad"
+        if (path / "in_read").is_file() and (path / "bl_read").is_file():
+            return "mir"
+        raise ValueError(f"{str(path)!r} is a directory but not a Measurement Set (table.dat "
+                         "and ANTENNA), a Miriad data set (visdata) nor an SMA Mir data set "
+                         "(in_read)")
+    with open(path, "rb") as handle:
+        start = handle.read(8)
+    if start.startswith(_HDF5_SIGNATURE):
+        return "uvh5"
+    if start.startswith(b"SIMPLE"):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                with fits.open(path, memmap=True) as hdus:
+                    header = hdus[0].header
+                    # Random groups hold data: NAXIS1 = 0 and further axes.
+                    # FITS-IDI (AIPS Memo 114, difx2fits) writes GROUPS = T
+                    # too, but with NAXIS = 0 and GCOUNT = PCOUNT = 0.
+                    groups = (bool(header.get("GROUPS", False))
+                              and int(header.get("NAXIS", 0)) >= 2
+                              and int(header.get("NAXIS1", -1)) == 0)
+                    names = {hdu.name for hdu in hdus[1:]}
+            except OSError as error:
+                raise ValueError(f"{str(path)!r} cannot be read as FITS ({error}); the file "
+                                 "may be cut short") from None
+        for record in caught:
+            if any(sign in str(record.message) for sign in _CUT_SHORT):
+                raise ValueError(f"{str(path)!r} is cut short: {record.message}")
+            warnings.warn_explicit(record.message, record.category, record.filename,
+                                   record.lineno)
+        if "UV_DATA" in names:
+            return "fits-idi"
+        if groups:
+            return "uvfits"
+        if "ARRAY_GEOMETRY" in names:
+            raise ValueError(f"{str(path)!r} is a FITS-IDI file without a UV_DATA table; its "
+                             f"extensions: {sorted(names)} (a FITS-IDI file cut short loses "
+                             "its last tables)")
+        raise ValueError(f"{str(path)!r} is a FITS file with neither random groups (UVFITS) "
+                         f"nor a UV_DATA table (FITS-IDI); its extensions: {sorted(names)} "
+                         "(a FITS-IDI file cut short loses its last tables)")
+    raise ValueError(f"cannot tell the kind of {str(path)!r}: not FITS, HDF5 (uvh5), a "
+                     "Measurement Set, Miriad nor SMA Mir")

@@ -1,0 +1,774 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Measurement Sets, read and corrected in place with python-casacore.
+
+* `ms_antennas` reads the ``ANTENNA`` table (``POSITION``, ``MOUNT`` through
+  `astropy_feedrot.labels`) and the receptors of the ``FEED`` table.
+* `correct_ms` writes the feed rotation removed from (or applied to) one data
+  column into another column of the same Measurement Set, in chunks of rows,
+  creating the output column as CASA does when it is missing, and records
+  what it did in the ``HISTORY`` table.
+
+The receptors come from ``FEED`` row by row (``POLARIZATION_TYPE``,
+``RECEPTOR_ANGLE``, for the antenna, feed, spectral window and time of each
+visibility row), the sources from ``FIELD`` (``PHASE_DIR`` with its
+reference frame and polynomial, ephemeris tables of moving sources) and the
+products from ``POLARIZATION`` (``CORR_TYPE``), per data description.
+python-casacore is an optional dependency (``pip install
+'astropy_feedrot[ms]'``), imported on first use.
+"""
+
+import contextlib
+import fcntl
+import os
+from pathlib import Path
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import FK4, FK5, ICRS, EarthLocation, SkyCoord
+from astropy.time import Time
+
+from ..antenna import Antenna
+from ..correction import correct_receptor_visibilities
+from ..exceptions import DegenerateGeometryWarning, warn_caller
+from ..labels import mount_from_label
+from ..progress import progress_steps
+from ..receptors import Receptors, basis_of
+from .history import check_direction, check_history, history_entry
+from .kinds import existing_path, file_kind
+from .poles import POLES, pole_context
+from .receptors import ReceptorAngleTable, check_receptors, with_receptors
+
+__all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
+
+#: The casacore ``Stokes`` codes of ``CORR_TYPE`` that are correlations of
+#: receptors (casacore ``Stokes.h``).
+CORR_TYPES = {5: "RR", 6: "RL", 7: "LR", 8: "LL", 9: "XX", 10: "XY", 11: "YX", 12: "YY"}
+
+_EXTRA = "pip install 'astropy_feedrot[ms]'"
+
+# Bytes of the data column read at once.
+_CHUNK_BYTES = 32 * 2**20
+
+# The keyword of the output column that records an unfinished run.
+_PARTIAL = "FEEDROT_PARTIAL"
+
+# PHASE_DIR reference frames read as celestial coordinates.
+_FRAMES = {"J2000": lambda: FK5(equinox="J2000"), "ICRS": ICRS,
+           "B1950": lambda: FK4(equinox="B1950"), "B1950_VLA": lambda: FK4(equinox="B1950")}
+
+
+class MSError(ValueError):
+    """A Measurement Set cannot be corrected as asked: one line saying why and what to do.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import MSError
+    >>> issubclass(MSError, ValueError)
+    True
+    """
+
+
+def _tables():
+    """casacore.tables, or an ImportError naming the extra."""
+    try:
+        from casacore import tables  # optional: only Measurement Sets need it
+    except ImportError:
+        raise ImportError(f"Measurement Sets need python-casacore: {_EXTRA}") from None
+    return tables
+
+
+def _ms_path(ms):
+    path = existing_path(ms, "Measurement Set")
+    if not path.is_dir() or file_kind(path) != "ms":
+        raise MSError(f"{str(path)!r} is not a Measurement Set (a directory with table.dat "
+                      "and ANTENNA)")
+    return path
+
+
+@contextlib.contextmanager
+def _open(path, *, write=False):
+    tables = _tables()
+    table = tables.table(str(path), readonly=not write, ack=False,
+                         lockoptions="permanent" if write else "auto")
+    try:
+        yield table
+    finally:
+        table.close()
+
+
+def _sub(path, name):
+    tables = _tables()
+    if not (Path(path) / name).is_dir():
+        raise MSError(f"{str(path)!r} has no {name} table")
+    return tables.table(str(Path(path) / name), ack=False)
+
+
+def _text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+# --- antennas and receptors ------------------------------------------------------------
+
+
+def _positions(path):
+    with contextlib.closing(_sub(path, "ANTENNA")) as table:
+        xyz = np.asarray(table.getcol("POSITION"), dtype=float).reshape(-1, 3)
+        reference = str(table.getcolkeywords("POSITION").get("MEASINFO", {}).get("Ref", "ITRF"))
+        names = [_text(n) for n in table.getcol("NAME")]
+        mounts = [_text(m).strip() for m in table.getcol("MOUNT")]
+        flagged = np.asarray(table.getcol("FLAG_ROW"), bool) if "FLAG_ROW" in \
+            table.colnames() else np.zeros(len(names), bool)
+    if reference.upper() != "ITRF":
+        raise MSError(f"{str(path)!r}, table ANTENNA: POSITION is in {reference}, not ITRF; "
+                      "convert the positions to ITRF first")
+    # Rows that hold no antenna (flagged, or at the geocentre as importuvfits
+    # writes the numbers a UVFITS file skips) are left out.
+    empty = flagged | np.all(xyz == 0, axis=1)
+    return xyz, names, mounts, empty
+
+
+def _feed_rows(path):
+    """FEED rows: antenna, feed, spw, start, stop (MJD s), types, angles (deg)."""
+    with contextlib.closing(_sub(path, "FEED")) as table:
+        n = table.nrows()
+        rows = []
+        for k in range(n):
+            types = "".join(_text(t).strip().upper() for t in table.getcell("POLARIZATION_TYPE", k))
+            angles = np.degrees(np.asarray(table.getcell("RECEPTOR_ANGLE", k), float).ravel())
+            mid, interval = float(table.getcell("TIME", k)), float(table.getcell("INTERVAL", k))
+            half = np.inf if interval <= 0 else interval / 2
+            rows.append((int(table.getcell("ANTENNA_ID", k)), int(table.getcell("FEED_ID", k)),
+                         int(table.getcell("SPECTRAL_WINDOW_ID", k)), mid - half, mid + half,
+                         types, tuple(np.round(angles[:len(types)], 9))))
+    return rows
+
+
+def _receptors(types, angles, where):
+    try:
+        return Receptors(types, list(angles) * u.deg)
+    except ValueError as error:
+        raise MSError(f"{where}: {error}") from None
+
+
+def ms_antennas(ms, *, vertical="geodetic"):
+    """The antennas of a Measurement Set, with their receptors.
+
+    Parameters
+    ----------
+    ms : str or path-like
+        The Measurement Set.
+    vertical : {'geodetic', 'geocentric'}, optional
+        The local vertical of each `~astropy_feedrot.Antenna`
+        (``'geocentric'`` reproduces CASA).
+
+    Returns
+    -------
+    dict
+        ``{ANTENNA row: Antenna}``: ``NAME``, ``POSITION`` (ITRF) and
+        ``MOUNT`` (casacore's labels, `~astropy_feedrot.labels`) of every
+        row but those flagged or at the geocentre (placeholders); the
+        receptors of the antenna's ``FEED`` rows when they all agree (None
+        when it has none, or several sets: `correct_ms` then takes each
+        row's own).
+
+    Raises
+    ------
+    ImportError
+        Without python-casacore.
+    FileNotFoundError, MSError
+        For a missing path or one that is not a Measurement Set, positions
+        not in ITRF, or an unknown mount.
+
+    Examples
+    --------
+    >>> import tarfile, tempfile, pathlib
+    >>> from astropy_feedrot.visibilities import ms_antennas
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> with tarfile.open("tests/data/uvdata/X5707_1spw_1scan_10chan_1time_1bl_noatm"
+    ...                   ".ms.tar.gz") as archive:
+    ...     archive.extractall(where, filter="data")
+    >>> antennas = ms_antennas(where / "X5707_1spw_1scan_10chan_1time_1bl_noatm.ms")
+    >>> antennas[0].name, antennas[0].receptors
+    ('DA41', Receptors('XY', [-10.0, 80.0] * u.deg))
+    """
+    path = _ms_path(ms)
+    xyz, names, mounts, empty = _positions(path)
+    sets = {}
+    for antenna, _, _, _, _, types, angles in _feed_rows(path):
+        sets.setdefault(antenna, set()).add((types, angles))
+    antennas = {}
+    for number, (position, name, label) in enumerate(zip(xyz, names, mounts)):
+        if empty[number]:
+            continue
+        where = f"{str(path)!r}, table ANTENNA, antenna {number} ({name})"
+        try:
+            mount, focus = mount_from_label(label, "casacore")
+        except ValueError as error:
+            raise MSError(f"{where}: {error}") from None
+        found = sets.get(number, set())
+        receptors = _receptors(*next(iter(found)), where) if len(found) == 1 else None
+        try:
+            antennas[number] = Antenna(EarthLocation.from_geocentric(*position, unit=u.m),
+                                       mount, focus, name=name,
+                                       vertical=vertical, receptors=receptors)
+        except ValueError as error:
+            raise MSError(f"{where}: {error}") from None
+    return antennas
+
+
+class _Feeds:
+    """The receptors of each row: virtual antennas, one per (antenna, receptor set)."""
+
+    def __init__(self, path, antennas, feeds):
+        self.path = path
+        self.antennas = antennas
+        self.rows = _feed_rows(path)
+        given = with_receptors(antennas, feeds, replace=True) if feeds is not None \
+            else antennas
+        self.virtual, self.key, self.number = {}, {}, {}
+        self.by_antenna = {}
+        for index, (antenna, _, _, _, _, types, angles) in enumerate(self.rows):
+            if antenna not in antennas:
+                continue
+            self.by_antenna.setdefault(antenna, []).append(index)
+        self.fallback = {}
+        for number, antenna in given.items():
+            if number not in self.by_antenna or feeds is not None:
+                self.fallback[number] = self._virtual(number, antenna, antenna.receptors)
+
+    def _virtual(self, number, antenna, receptors):
+        described = None
+        if receptors is not None:
+            described = (receptors.types, tuple(receptors.angles.value))
+        key = (number, described)
+        if key not in self.key:
+            k = len(self.key)
+            self.key[key] = k
+            self.number[k] = number
+            self.virtual[k] = Antenna(antenna.location, antenna.mount, antenna.focus,
+                                      name=antenna.name, vertical=antenna.vertical,
+                                      receptors=receptors)
+        return self.key[key]
+
+    def check(self, keys, products, dd):
+        """MSError unless the receptors of the virtual antennas ``keys`` give ``products``."""
+        for key in np.unique(keys).tolist():
+            antenna = self.virtual[key]
+            label = f"antenna {self.number[key]} ({antenna.name})"
+            try:
+                check_receptors(antenna.receptors, products, label, str(self.path),
+                                "it has no FEED rows; add them to FEED, or give them "
+                                "(feeds=, --feeds R,L)")
+            except ValueError as error:
+                raise MSError(f"{error} (data description {dd})") from None
+
+    def keys(self, antennas, numbers, feed, spw, mjd_s):
+        """The virtual antenna of each row (antenna ``numbers``, ``feed`` ids, times)."""
+        out = np.full(numbers.shape, -1)
+        for number in np.unique(numbers).tolist():
+            rows = np.flatnonzero(numbers == number)
+            if number not in antennas:
+                raise MSError(f"{str(self.path)!r}: rows use antenna {number}, which the "
+                              "ANTENNA table lacks (or holds as a flagged placeholder)")
+            if number in self.fallback:
+                out[rows] = self.fallback[number]
+                continue
+            candidates = [i for i in self.by_antenna.get(number, [])
+                          if self.rows[i][2] in (-1, spw)]
+            if not candidates:
+                raise MSError(f"{str(self.path)!r}: antenna {number} "
+                              f"({antennas[number].name}) has no FEED row for spectral "
+                              f"window {spw}; its receptors are unknown: add them to FEED, or "
+                              "give them (feeds=, --feeds R,L)")
+            # The FEED row whose time range holds the row's time (else the nearest),
+            # among those of the row's feed id.
+            distance = np.full((len(candidates), rows.size), np.inf)
+            for c, i in enumerate(candidates):
+                _, feed_id, _, start, stop, _, _ = self.rows[i]
+                t = mjd_s[rows]
+                d = np.maximum(0.0, np.maximum(start - t, t - stop))
+                distance[c] = np.where(feed[rows] == feed_id, d, np.inf)
+            best = np.argmin(distance, axis=0)
+            if np.isinf(distance[best, np.arange(rows.size)]).any():
+                raise MSError(f"{str(self.path)!r}: antenna {number} has no FEED row for the "
+                              f"FEED1/FEED2 ids {sorted(set(feed[rows].tolist()))}")
+            for c, i in enumerate(candidates):
+                _, _, _, _, _, types, angles = self.rows[i]
+                where = f"{str(self.path)!r}, table FEED, row {i}"
+                key = self._virtual(number, antennas[number], _receptors(types, angles, where))
+                out[rows[best == c]] = key
+        return out
+
+
+# --- fields ------------------------------------------------------------------------------
+
+
+class _EphemerisField:
+    """A moving source: a CASA ephemeris table (MJD, RA, DEC) plus PHASE_DIR offsets."""
+
+    def __init__(self, table_path, offset, name):
+        tables = _tables()
+        with contextlib.closing(tables.table(str(table_path), ack=False)) as table:
+            self.mjd = np.asarray(table.getcol("MJD"), float)
+            self.ra = np.unwrap(np.radians(np.asarray(table.getcol("RA"), float)))
+            self.dec = np.radians(np.asarray(table.getcol("DEC"), float))
+            frame = str(table.getkeywords().get("posrefsys", "ICRF/ICRS")).upper()
+        self.frame = FK5(equinox="J2000") if "J2000" in frame and "ICRS" not in frame else ICRS()
+        self.offset = offset
+        self.name = name
+
+    def __call__(self, epochs):
+        mjd = epochs.utc.mjd
+        outside = (mjd < self.mjd[0] - 1e-9) | (mjd > self.mjd[-1] + 1e-9)
+        if np.any(outside):
+            raise MSError(f"the ephemeris of field {self.name!r} covers MJD {self.mjd[0]:.5f} "
+                          f"to {self.mjd[-1]:.5f} but the data reach {mjd[outside][0]:.5f}; "
+                          "give an ephemeris that spans the observation")
+        ra = np.interp(mjd, self.mjd, self.ra) + self.offset[0]
+        dec = np.interp(mjd, self.mjd, self.dec) + self.offset[1]
+        return SkyCoord(ra * u.rad, dec * u.rad, frame=self.frame)
+
+
+class _PolynomialField:
+    """A field whose PHASE_DIR is a polynomial in time (NUM_POLY > 0)."""
+
+    def __init__(self, coefficients, origin, frame, name):
+        self.coefficients, self.origin, self.frame, self.name = coefficients, origin, frame, name
+
+    def __call__(self, epochs):
+        dt = epochs.utc.mjd * 86400.0 - self.origin
+        powers = dt[:, None] ** np.arange(len(self.coefficients))[None, :]
+        ra, dec = (powers @ self.coefficients).T
+        return SkyCoord(ra * u.rad, dec * u.rad, frame=self.frame)
+
+
+def _fields(path):
+    """{FIELD row: source} from PHASE_DIR and the ephemeris tables."""
+    with contextlib.closing(_sub(path, "FIELD")) as table:
+        columns = table.colnames()
+        info = table.getcolkeywords("PHASE_DIR").get("MEASINFO", {})
+        codes = dict(zip(info.get("TabRefCodes", []), info.get("TabRefTypes", [])))
+        variable = info.get("VarRefCol")
+        fields = {}
+        for k in range(table.nrows()):
+            name = _text(table.getcell("NAME", k))
+            where = f"{str(path)!r}, table FIELD, field {k} ({name})"
+            ref = codes.get(int(table.getcell(variable, k)), "?") if variable \
+                else str(info.get("Ref", "J2000"))
+            direction = np.asarray(table.getcell("PHASE_DIR", k), float).reshape(-1, 2)
+            ephemeris = int(table.getcell("EPHEMERIS_ID", k)) if "EPHEMERIS_ID" in columns \
+                else -1
+            if ephemeris >= 0:
+                found = sorted((path / "FIELD").glob(f"EPHEM{ephemeris}_*.tab"))
+                if not found:
+                    raise MSError(f"{where}: EPHEMERIS_ID {ephemeris} but no table "
+                                  f"FIELD/EPHEM{ephemeris}_*.tab")
+                fields[k] = _EphemerisField(found[0], direction[0], name)
+                continue
+            if ref not in _FRAMES:
+                raise MSError(f"{where}: PHASE_DIR in {ref}; the fields must be in "
+                              f"{sorted(_FRAMES)} or have an ephemeris table")
+            frame = _FRAMES[ref]()
+            if len(direction) > 1 and np.any(direction[1:] != 0):
+                fields[k] = _PolynomialField(direction, float(table.getcell("TIME", k)),
+                                             frame, name)
+            else:
+                fields[k] = SkyCoord(direction[0, 0] * u.rad, direction[0, 1] * u.rad,
+                                     frame=frame)
+    return fields
+
+
+def _descriptions(path):
+    """{DATA_DESC_ID: (spectral window, products)}."""
+    with contextlib.closing(_sub(path, "POLARIZATION")) as table:
+        corr = [np.asarray(table.getcell("CORR_TYPE", k)).tolist() for k in range(table.nrows())]
+    with contextlib.closing(_sub(path, "DATA_DESCRIPTION")) as table:
+        spw = table.getcol("SPECTRAL_WINDOW_ID").tolist()
+        pol = table.getcol("POLARIZATION_ID").tolist()
+    out = {}
+    for dd, (s, p) in enumerate(zip(spw, pol)):
+        codes = corr[p]
+        unknown = [c for c in codes if c not in CORR_TYPES]
+        if unknown:
+            raise MSError(f"{str(path)!r}: data description {dd} holds CORR_TYPE {codes}, "
+                          f"with {unknown} not correlations of receptors (RR=5 ... YY=12); "
+                          "Stokes data cannot be corrected per visibility")
+        products = [CORR_TYPES[c] for c in codes]
+        try:
+            basis_of(products)
+        except ValueError:
+            raise MSError(f"{str(path)!r}: data description {dd} mixes circular and linear "
+                          f"products {products}") from None
+        out[dd] = (s, products)
+    return out
+
+
+# --- writing -------------------------------------------------------------------------------
+
+
+def _check_writable(path):
+    """MSError unless the Measurement Set can be written and no other process holds it."""
+    blocked = [p for p in [path, *path.glob("table.*")] if not os.access(p, os.W_OK)]
+    if blocked:
+        raise MSError(f"{str(path)!r} is read-only ({str(blocked[0])!r} cannot be written): "
+                      "make it writable, or correct a writable copy")
+    lock = path / "table.lock"
+    if lock.exists():
+        handle = os.open(lock, os.O_RDWR)
+        try:
+            # casacore locks table.lock with fcntl; a lock held elsewhere is refused
+            # here at once instead of waiting for it.
+            fcntl.lockf(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise MSError(f"{str(path)!r} is locked by another process (casacore's "
+                          "table.lock): close it there (CASA, casabrowser, a Python "
+                          "session) and try again") from None
+        else:
+            fcntl.lockf(handle, fcntl.LOCK_UN)
+        finally:
+            os.close(handle)
+
+
+def _add_column(table, source, name):
+    """Add ``name`` like ``source`` (description, tiled storage of its own), as CASA does."""
+    tables = _tables()
+    description = table.getcoldesc(source)
+    description.pop("keywords", None)
+    description["comment"] = f"{name} written by astropy_feedrot from {source}"
+    info = table.getdminfo(source)
+    group = f"Tiled{name}"
+    dminfo = {"TYPE": info["TYPE"] if info["TYPE"].startswith("Tiled") else "TiledShapeStMan",
+              "NAME": group, "SPEC": {}}
+    if "DEFAULTTILESHAPE" in info.get("SPEC", {}):
+        dminfo["SPEC"]["DEFAULTTILESHAPE"] = info["SPEC"]["DEFAULTTILESHAPE"]
+    description["dataManagerGroup"] = group
+    description["dataManagerType"] = dminfo["TYPE"]
+    table.addcols(tables.maketabdesc(tables.makecoldesc(name, description)), dminfo)
+
+
+def _history_text(path):
+    with contextlib.closing(_sub(path, "HISTORY")) as table:
+        if table.nrows() == 0:
+            return ""
+        return "\n".join(_text(m) for m in table.getcol("MESSAGE"))
+
+
+def _add_history(path, message):
+    tables = _tables()
+    with contextlib.closing(tables.table(str(path / "HISTORY"), readonly=False,
+                                         ack=False)) as table:
+        row = table.nrows()
+        table.addrows(1)
+        now = Time.now().utc.mjd * 86400.0
+        table.putcell("TIME", row, now)
+        table.putcell("OBSERVATION_ID", row, 0)
+        table.putcell("MESSAGE", row, message)
+        table.putcell("PRIORITY", row, "NORMAL")
+        table.putcell("ORIGIN", row, "astropy_feedrot.visibilities.correct_ms")
+        table.putcell("OBJECT_ID", row, 0)
+        table.putcell("APPLICATION", row, "astropy_feedrot")
+        table.putcell("CLI_COMMAND", row, [""])
+        table.putcell("APP_PARAMS", row, [""])
+
+
+def _chunk_rows(table, column, chunk_rows):
+    if chunk_rows is not None:
+        chunk_rows = int(chunk_rows)
+        if chunk_rows < 1:
+            raise ValueError(f"chunk_rows must be a positive number of rows, got {chunk_rows}")
+        return chunk_rows
+    if table.nrows() == 0:
+        return 1
+    cell = np.asarray(table.getcell(column, 0))
+    return max(1, _CHUNK_BYTES // max(cell.nbytes, 1))
+
+
+def _meta(table):
+    """The columns that say what each row is, for all rows (a few bytes per row)."""
+    return {name: table.getcol(name) for name in ("TIME", "ANTENNA1", "ANTENNA2", "FEED1",
+                                                  "FEED2", "FIELD_ID", "DATA_DESC_ID")}
+
+
+def _plan(path, meta, descriptions, fields, feeds, frame, pole):
+    """Per data description: rows, products, and the virtual antennas of each row.
+
+    Everything is checked here, before anything is written.
+    """
+    ddid = meta["DATA_DESC_ID"]
+    missing = sorted(set(np.unique(meta["FIELD_ID"]).tolist()) - set(fields))
+    if missing:
+        raise MSError(f"{str(path)!r}: rows use FIELD_ID {missing} that the FIELD table lacks")
+    plans = []
+    for dd in np.unique(ddid).tolist():
+        if dd not in descriptions:
+            raise MSError(f"{str(path)!r}: rows use DATA_DESC_ID {dd} that the "
+                          "DATA_DESCRIPTION table lacks")
+        spw, products = descriptions[dd]
+        rows = np.flatnonzero(ddid == dd)
+        time = meta["TIME"][rows]
+        k1 = feeds.keys(feeds.antennas, meta["ANTENNA1"][rows], meta["FEED1"][rows], spw, time)
+        k2 = feeds.keys(feeds.antennas, meta["ANTENNA2"][rows], meta["FEED2"][rows], spw, time)
+        feeds.check(np.concatenate([k1, k2]), products, dd)
+        if basis_of(products) == "linear":
+            lacking = sorted(set(("XX", "XY", "YX", "YY")) - set(products))
+            if lacking:
+                raise MSError(f"{str(path)!r}: data description {dd} holds the linear "
+                              f"products {products} only, without {lacking}: the feed "
+                              "rotation of linear feeds mixes all four, so it cannot be "
+                              "removed visibility by visibility; rotate Stokes Q + iU by "
+                              "twice the feed rotation after imaging instead")
+        with pole_context(pole):
+            angles = ReceptorAngleTable(
+                feeds.virtual, time, meta["FIELD_ID"][rows], k1, k2, fields,
+                lambda t: Time(t / 86400.0, format="mjd", scale="utc"), products=products,
+                frame=frame, where=str(path))
+        plans.append((dd, rows, products, k1, k2, angles))
+    return plans
+
+
+class _Block:
+    """One chunk of rows and its receptors' position angles; picklable, for dask."""
+
+    def __init__(self, rows, products, theta1, theta2):
+        self.rows, self.products, self.theta1, self.theta2 = rows, products, theta1, theta2
+
+
+def _corrected(data, block, direction):
+    """``data`` (rows, channels, products) corrected in place; the NaN rows."""
+    theta1, theta2 = block.theta1, block.theta2
+    # One angle pair per row, for every channel.
+    correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
+                                  block.products, out=data, direction=direction)
+    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
+    if bad.any():
+        data[bad] = np.nan
+    return int(np.count_nonzero(bad))
+
+
+@contextlib.contextmanager
+def _selection(table, rows):
+    """(table, start, count) of the rows: the table itself for a contiguous range, else a
+    selection of them (a reference table)."""
+    if rows[-1] - rows[0] + 1 == rows.size:
+        yield table, int(rows[0]), int(rows.size)
+        return
+    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
+        yield selection, 0, int(rows.size)
+
+
+def _remote_block(path, column, block, direction):
+    """A dask task: read a chunk (no read lock: the client holds the write lock) and
+    correct it; the client writes it."""
+    tables = _tables()
+    with contextlib.closing(tables.table(str(path), ack=False,
+                                         lockoptions="autonoread")) as table, \
+            _selection(table, block.rows) as (selection, start, n):
+        data = selection.getcol(column, start, n)
+        return data, _corrected(data, block, direction)
+
+
+def _results(work, client, path, column, direction):
+    """(block, corrected data or None, NaN rows) in order; dask keeps two per worker going."""
+    if client is None:
+        for block in work:
+            yield block, None, None
+        return
+    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
+    blocks, pending = iter(work), []
+    while True:
+        while len(pending) < ahead:
+            block = next(blocks, None)
+            if block is None:
+                break
+            pending.append((block, client.submit(_remote_block, path, column, block,
+                                                 direction, pure=False)))
+        if not pending:
+            return
+        done, future = pending.pop(0)
+        data, bad = future.result()
+        yield done, data, bad
+
+
+def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
+               direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
+               progress=False, feeds=None, redo=False, pole="itrs", client=None):
+    """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
+
+    Reads ``data_column`` in chunks of rows and writes the result into
+    ``corrected_column`` of the same Measurement Set; every other column and
+    table is left as it was, but for one row added to ``HISTORY``.
+
+    Parameters
+    ----------
+    ms : str or path-like
+        The Measurement Set.
+    data_column : str, optional
+        The column read (``'DATA'``; ``'MODEL_DATA'`` to corrupt a model).
+    corrected_column : str, optional
+        The column written (``'CORRECTED_DATA'``); created when missing, as
+        CASA creates it (the description of ``data_column``, tiled storage of
+        its own). It may be ``data_column`` itself.
+    direction : {'remove', 'apply'}, optional
+        ``'remove'`` (default): receptors fixed on the sky (R and L, or X
+        north and Y east of ``frame``). ``'apply'``: the inverse, from a sky
+        model to what the turning receptors see.
+    frame : str, optional
+        North of the sky-fixed receptors: ``'apparent'`` (default) or a
+        celestial frame such as ``'icrs'``.
+    vertical : {'geodetic', 'geocentric'}, optional
+        The antennas' local vertical (``'geocentric'`` reproduces CASA).
+    chunk_rows : int, optional
+        Rows read at once (default: 32 MiB of the data column); the extra
+        memory is about twice a chunk, plus some 60 bytes per row for the
+        columns that say what each row is (time, antennas, feeds, field, data
+        description).
+    progress : bool or callable, optional
+        True shows astropy's progress bar; a callable is called as
+        ``progress(done, total)`` after each chunk.
+    feeds : `~astropy_feedrot.Receptors` or mapping, optional
+        Receptors to use instead of ``FEED`` (all antennas, or ``{antenna
+        number or name: Receptors}``).
+    redo : bool, optional
+        Allow a correction in the direction the ``HISTORY`` says was made
+        already to either column.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`):
+        the Earth-fixed z axis with polar motion (default), or CASA's (no polar
+        motion). ``vertical='geocentric', pole='casa'`` reproduces
+        ``applycal(parang=True)`` (:doc:`/correcting`).
+    client : `dask.distributed.Client`, optional
+        Correct the chunks on its workers, a few at a time each; this process
+        writes them, in order. The result is bit for bit the serial one.
+
+    Returns
+    -------
+    pathlib.Path
+        The Measurement Set.
+
+    Raises
+    ------
+    ImportError
+        Without python-casacore.
+    FileNotFoundError, MSError
+        For a path that is not a Measurement Set, a missing ``data_column``,
+        an antenna without ``FEED`` rows, receptors of the other basis than
+        the products (a circular-linear baseline), Stokes products, a set
+        that is read-only or locked by another process, or a correction the
+        ``HISTORY`` says was made already; nothing is written then.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if the feed rotation is undefined in some rows
+        (an alt-az antenna at the zenith): their output is NaN.
+
+    Notes
+    -----
+    The visibilities of a Measurement Set are :math:`\\langle v_1 v_2^*
+    \\rangle` (casacore), corrected with
+    `~astropy_feedrot.correction.correct_receptor_visibilities`. Each chunk
+    is written as soon as it is corrected, and the output column's keyword
+    ``FEEDROT_PARTIAL`` records the rows done until the end. If the run is
+    interrupted (Ctrl-C, an error), ``data_column`` is intact unless it is
+    the output column; the message says which rows of the output are
+    corrected, and running the same call again goes on from there.
+
+    Examples
+    --------
+    >>> import tarfile, tempfile, pathlib
+    >>> from astropy_feedrot.visibilities import correct_ms
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> with tarfile.open("tests/data/uvdata/day2_TDEM0003_10s_norx_1src_1spw_2ints"
+    ...                   ".ms.tar.gz") as archive:
+    ...     archive.extractall(where, filter="data")
+    >>> correct_ms(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms").name
+    'day2_TDEM0003_10s_norx_1src_1spw_2ints.ms'
+    """
+    direction = check_direction(direction)
+    if pole not in POLES:
+        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
+    path = _ms_path(ms)
+    _tables()
+    # Before casacore opens anything: it would wait for another process's lock.
+    _check_writable(path)
+    with _open(path) as table:
+        columns = table.colnames()
+        if data_column not in columns:
+            data = [c for c in columns if table.getcoldesc(c).get("valueType") == "complex"]
+            raise MSError(f"{str(path)!r} has no column {data_column!r} (its data columns: "
+                          f"{data}); choose one with data_column= (--data-column)")
+        if table.getcoldesc(data_column).get("valueType") != "complex":
+            raise MSError(f"{str(path)!r}: column {data_column!r} is not complex "
+                          "visibilities")
+        partial = None
+        if corrected_column in columns:
+            partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
+        meta = _meta(table)
+        step_rows = _chunk_rows(table, data_column, chunk_rows)
+    what = f"{data_column} -> {corrected_column}"
+    resume = 0
+    if partial is not None and partial.get("what") == what \
+            and partial.get("direction") == direction:
+        # Go on with the chunks of the interrupted run.
+        resume, step_rows = int(partial["chunks"]), int(partial["chunk_rows"])
+    else:
+        history = _history_text(path)
+        for column in dict.fromkeys([corrected_column, data_column]):
+            check_history(history, direction, f"{str(path)!r} (HISTORY of {column})",
+                          redo=redo, what=f"-> {column}")
+    antennas = ms_antennas(path, vertical=vertical)
+    fields = _fields(path)
+    feed_table = _Feeds(path, antennas, feeds)
+    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole)
+    chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
+                 angles) for dd, rows, products, k1, k2, angles in plans
+                for k in range(0, rows.size, step_rows)]
+    total = meta["TIME"].size
+    nan_rows, done, chunks = 0, sum(item[0].size for item in chunking[:resume]), resume
+
+    def blocks():
+        for rows, products, k1, k2, angles in chunking[resume:]:
+            time, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
+            yield _Block(rows, products, angles(time, field, k1), angles(time, field, k2))
+
+    with _open(path, write=True) as table:
+        if corrected_column not in table.colnames():
+            _add_column(table, data_column, corrected_column)
+        try:
+            with progress_steps(progress, len(chunking) - resume) as step:
+                for block, data, bad in _results(blocks(),
+                                                 client, path, data_column, direction):
+                    rows = block.rows
+                    with _selection(table, rows) as (selection, start, n):
+                        if data is None:
+                            data = selection.getcol(data_column, start, n)
+                            bad = _corrected(data, block, direction)
+                        selection.putcol(corrected_column, data, start, n)
+                    nan_rows += bad
+                    done += rows.size
+                    chunks += 1
+                    table.putcolkeyword(corrected_column, _PARTIAL,
+                                        {"what": what, "direction": direction, "done": done,
+                                         "chunks": chunks, "chunk_rows": step_rows})
+                    step()
+        except BaseException as error:
+            table.flush()
+            intact = "is intact" if data_column != corrected_column else \
+                "is partly corrected"
+            message = (f"{str(path)!r}: interrupted after {done} of {total} rows; "
+                       f"{data_column} {intact}; the first {chunks} chunks of {step_rows} "
+                       f"rows of {corrected_column} (keyword {_PARTIAL}) are corrected, the "
+                       "others not: run the same correction again to finish")
+            if isinstance(error, KeyboardInterrupt):
+                raise KeyboardInterrupt(message) from None
+            if isinstance(error, Exception):
+                raise MSError(f"{message} ({type(error).__name__}: {error})") from error
+            raise
+        table.removecolkeyword(corrected_column, _PARTIAL)
+    _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
+                 ("" if pole == "itrs" else f" (pole={pole})"))
+    if nan_rows:
+        warn_caller(f"the feed rotation is undefined in {nan_rows} of {total} rows (an "
+                    "alt-az antenna pointing at the zenith): their output is NaN",
+                    DegenerateGeometryWarning)
+    return path

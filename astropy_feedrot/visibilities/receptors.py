@@ -1,0 +1,423 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""The receptor step shared by every visibility format.
+
+Rows of visibility data (time, antenna 1, antenna 2, source) become the sky
+position angles of the receptors of both antennas:
+
+.. math:: \\theta = \\Phi + \\alpha
+
+with :math:`\\Phi` the feed rotation of the antenna
+(`~astropy_feedrot.visibilities.feed_rotation_rows`) and :math:`\\alpha` the
+angle of the receptor in the antenna (`~astropy_feedrot.Receptors`). A
+linear dipole fixed to the ground (a `~astropy_feedrot.StationaryMount`)
+does not turn rigidly: each of its dipoles has its own projection on the
+sky. `receptor_position_angles` checks what the products need (receptors
+known, one basis per baseline) and says which antenna lacks what.
+
+`with_receptors` gives receptors to antennas whose file has none (ATCA
+Miriad files, old UVFITS files): ``feedrot correct --feeds X,Y``.
+"""
+
+import warnings
+
+import numpy as np
+from astropy import units as u
+from astropy.time import Time
+
+from ..antenna import Antenna
+from ..exceptions import DegenerateGeometryWarning
+from ..frames import local_frame
+from ..mounts import FixedAxisMount
+from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
+from .rows import feed_rotation_rows
+
+__all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
+           "parse_feeds"]
+
+_POLCONVERT = ("a baseline between linear and circular feeds is not supported (convert one "
+               "of them first, e.g. with PolConvert)")
+
+
+def _dipole_antenna(antenna, alpha):
+    """A stand-in whose feed rotation is the sky position angle of one fixed dipole.
+
+    Eq 13 with a fixed vector :math:`\\hat{a}` is the position angle of the
+    projection of :math:`\\hat{a}` on the plane of the sky: for a dipole fixed
+    to the ground, its direction as the source sees it.
+    """
+    local = local_frame(antenna.location, vertical=antenna.vertical)
+    aligned, transverse, _ = antenna.mount.dipoles(local)
+    a = np.radians(alpha)
+    # alpha grows from the aligned dipole away from the transverse one (east
+    # toward south for StationaryMount), as position angles grow on the sky.
+    axis = np.cos(a) * np.asarray(aligned) - np.sin(a) * np.asarray(transverse)
+    return Antenna(antenna.location, FixedAxisMount(axis, frame="itrs"), name=antenna.name,
+                   vertical=antenna.vertical)
+
+
+def check_receptors(receptors, products, label, where="the data",
+                    hint="give the antennas' receptors"):
+    """Refuse receptors that cannot give the correlation products.
+
+    Parameters
+    ----------
+    receptors : `~astropy_feedrot.receptors.Receptors` or None
+        The receptors of one antenna.
+    products : sequence of str
+        The products of the data (``'RR'``, ``'XY'``...).
+    label : str
+        The antenna, for the message (``'antenna 3 (EA05)'``).
+    where : str, optional
+        The data, for the message.
+    hint : str, optional
+        What to do when ``receptors`` is None.
+
+    Returns
+    -------
+    str
+        The basis, ``'circular'`` or ``'linear'``.
+
+    Raises
+    ------
+    ValueError
+        If ``receptors`` is None, of the other basis than ``products`` (a
+        baseline between a circular and a linear feed), or lacks a receptor
+        the products need.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import check_receptors
+    >>> check_receptors(Receptors("XY", [0, 90] * u.deg), ["RR", "LL"], "antenna 1", "x.ms")
+    Traceback (most recent call last):
+    ...
+    ValueError: x.ms: antenna 1 has linear receptors 'XY' but the data hold circular ...
+    """
+    basis = basis_of(products)
+    if receptors is None:
+        raise ValueError(f"{where}: {label} has no receptors: {hint}")
+    if receptors.basis != basis:
+        raise ValueError(f"{where}: {label} has {receptors.basis} receptors "
+                         f"{receptors.types!r} but the data hold {basis} products "
+                         f"{list(products)}; {_POLCONVERT}")
+    lacking = sorted(set("".join(products)) - set(receptors.types))
+    if lacking:
+        raise ValueError(f"{where}: {label} has receptors {receptors.types!r} but the "
+                         f"products {list(products)} need {lacking}")
+    return basis
+
+
+def _check_antennas(antennas, used, products, where, hint):
+    """The basis of the products, after checking every antenna used can give them."""
+    basis = basis_of(products)
+    missing = [int(n) for n in used if int(n) not in antennas]
+    if missing:
+        raise ValueError(f"{where}: the rows use antenna numbers {missing[:10]} that have no "
+                         "antenna (no row in the antenna table)")
+    for n in used:
+        antenna = antennas[int(n)]
+        if not isinstance(antenna, Antenna):
+            raise TypeError(f"antennas[{int(n)}] must be an Antenna, got "
+                            f"{type(antenna).__name__}")
+        label = f"antenna {int(n)} ({antenna.name})" if antenna.name else f"antenna {int(n)}"
+        check_receptors(antenna.receptors, products, label, where, hint)
+    return basis
+
+
+def receptor_position_angles(antennas, antenna1, antenna2, obstime, sources,
+                             source_index=None, *, products, frame="apparent",
+                             where="the data", hint="give the antennas' receptors"):
+    """Sky position angles of the receptors of both antennas of every row.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{antenna number: Antenna}``, each with `~astropy_feedrot.Receptors`.
+    antenna1, antenna2 : array-like of int, shape (N,)
+        The antennas of each row.
+    obstime : `~astropy.time.Time`, shape (N,)
+        The time of each row.
+    sources : `~astropy.coordinates.SkyCoord` or mapping
+        As in `~astropy_feedrot.visibilities.feed_rotation_rows`.
+    source_index : array-like, optional
+        The source of each row, as in
+        `~astropy_feedrot.visibilities.feed_rotation_rows`.
+    products : sequence of str
+        The correlation products of the data (``'RR'``, ``'XY'``...): their
+        basis decides the receptors needed.
+    frame : str or frame, optional
+        North of the position angles (``'apparent'``, the default, or a
+        celestial frame such as ``'icrs'``).
+    where : str, optional
+        The data, for messages (a file name and table).
+    hint : str, optional
+        What to do when an antenna has no receptors, for the message.
+
+    Returns
+    -------
+    theta1, theta2 : `~numpy.ndarray`, shape (N, 2)
+        Position angles in degrees of the receptors of antenna 1 and 2 in
+        the order ``(R, L)`` or ``(X, Y)``; NaN where the feed rotation is
+        undefined (the caller counts and warns).
+
+    Raises
+    ------
+    ValueError
+        If an antenna has no antenna entry or no receptors, receptors of the
+        other basis than the products (a circular-linear baseline), or lacks
+        a receptor the products need; the message names the antenna.
+    TypeError
+        If an entry of ``antennas`` is not an `~astropy_feedrot.Antenna`.
+
+    Examples
+    --------
+    Two VLBA antennas with R at 0 deg and L at 0 deg: both receptors turn
+    with the parallactic angle.
+
+    >>> import numpy as np
+    >>> from astropy.time import Time
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import receptor_position_angles
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.visibilities import with_receptors
+    >>> feeds = Receptors("RL", [0, 0] * u.deg)
+    >>> antennas = with_receptors({1: get_antenna("FD-VLBA"), 2: get_antenna("PIETOWN")},
+    ...                           feeds)
+    >>> t = Time(["2023-01-25T20:00", "2023-01-25T21:00"])
+    >>> theta1, theta2 = receptor_position_angles(antennas, [1, 1], [2, 2], t,
+    ...                                           SkyCoord("3h19m48s +41d30m42s"),
+    ...                                           products=["RR", "LL"])
+    >>> theta1.shape, bool(np.all(theta1[:, 0] == theta1[:, 1]))
+    ((2, 2), True)
+    """
+    ant1 = np.asarray(antenna1, dtype=int)
+    ant2 = np.asarray(antenna2, dtype=int)
+    used = np.unique(np.concatenate([ant1, ant2]))
+    basis = _check_antennas(antennas, used, products, where, hint)
+    letters = RECEPTOR_TYPES[basis]
+    # Virtual antennas: key 2n + k for receptor k of antenna n. Tracking mounts
+    # (and circular feeds) turn rigidly, theta = Phi + alpha with one key 2n; a
+    # linear dipole fixed to the ground has its own projection on the sky.
+    virtual, keys, offsets = {}, {}, {}
+    for n in used.tolist():
+        antenna = antennas[n]
+        alphas = [antenna.receptors.angle(letter).to_value(u.deg) if letter in
+                  antenna.receptors.types else 0.0 for letter in letters]
+        if antenna.mount.tracks or basis == "circular":
+            virtual[2 * n] = antenna
+            keys[n] = (2 * n, 2 * n)
+            offsets[n] = alphas
+        else:
+            virtual[2 * n] = _dipole_antenna(antenna, alphas[0])
+            virtual[2 * n + 1] = _dipole_antenna(antenna, alphas[1])
+            keys[n] = (2 * n, 2 * n + 1)
+            offsets[n] = [0.0, 0.0]
+    key = np.array([keys[n] for n in used.tolist()])  # (A, 2)
+    offset = np.array([offsets[n] for n in used.tolist()])  # (A, 2)
+    pos1, pos2 = np.searchsorted(used, ant1), np.searchsorted(used, ant2)
+    n_rows = ant1.size
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegenerateGeometryWarning)
+        if np.all(key[:, 0] == key[:, 1]):
+            phi = feed_rotation_rows(virtual, key[pos1, 0], key[pos2, 0], obstime, sources,
+                                     source_index, frame=frame).to_value(u.deg)
+            phi = np.concatenate([phi, phi])
+        else:
+            index = None if source_index is None else np.tile(np.asarray(source_index), 2)
+            phi = feed_rotation_rows(
+                virtual, np.concatenate([key[pos1, 0], key[pos1, 1]]),
+                np.concatenate([key[pos2, 0], key[pos2, 1]]), _tile(obstime), sources,
+                index, frame=frame).to_value(u.deg)
+    theta1 = np.stack([phi[:n_rows, 0], phi[n_rows:, 0]], axis=-1) + offset[pos1]
+    theta2 = np.stack([phi[:n_rows, 1], phi[n_rows:, 1]], axis=-1) + offset[pos2]
+    return theta1, theta2
+
+
+class ReceptorAngleTable:
+    """The receptors' position angles of many rows, computed once for each distinct
+    (time, source, antenna) and looked up by rows.
+
+    A visibility file repeats each epoch and source for every baseline, and is
+    read in chunks: the angles are computed here for all the rows at once, at
+    their distinct epochs (`receptor_position_angles`), and each chunk looks
+    its rows up (`__call__`) instead of running the geometry again.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{key: Antenna}`` with receptors.
+    time : array-like of float, shape (N,)
+        The time of each row, in any unit ``to_time`` understands.
+    source : array-like of int, shape (N,)
+        The source (key of ``sources``) of each row.
+    key1, key2 : array-like of int, shape (N,)
+        The antennas of each row.
+    sources : mapping
+        ``{source key: source}``, as `feed_rotation_rows` takes them.
+    to_time : callable
+        Turns an array of ``time`` values into a `~astropy.time.Time`.
+    products, frame, where, hint
+        As `receptor_position_angles`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.time import Time
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import ReceptorAngleTable, with_receptors
+    >>> antennas = with_receptors({1: get_antenna("FD-VLBA"), 2: get_antenna("PIETOWN")},
+    ...                           Receptors("RL", [0, 0] * u.deg))
+    >>> jd = np.array([2459970.3, 2459970.3, 2459970.4])
+    >>> table = ReceptorAngleTable(antennas, jd, [0, 0, 0], [1, 2, 1], [2, 1, 2],
+    ...                            {0: SkyCoord("3h19m48s +41d30m42s")},
+    ...                            lambda t: Time(t, format="jd"), products=["RR"])
+    >>> theta = table(jd, np.zeros(3, int), np.array([1, 2, 1]))
+    >>> theta.shape, bool(theta[0, 0] != theta[1, 0])
+    ((3, 2), True)
+    """
+
+    def __init__(self, antennas, time, source, key1, key2, sources, to_time, *, products,
+                 frame="apparent", where="the data", hint="give the antennas' receptors"):
+        time, source = np.asarray(time, float), np.asarray(source)
+        self.times = np.unique(time)
+        self.sources = np.unique(source)
+        self.n_keys = int(max(antennas)) + 1
+        codes = np.unique(np.concatenate([self._codes(time, source, np.asarray(key1)),
+                                          self._codes(time, source, np.asarray(key2))]))
+        keys = codes % self.n_keys
+        rest = codes // self.n_keys
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DegenerateGeometryWarning)
+            self.table, _ = receptor_position_angles(
+                antennas, keys, keys, to_time(self.times[rest // self.sources.size]),
+                sources, self.sources[rest % self.sources.size], products=products,
+                frame=frame, where=where, hint=hint)
+        self.codes = codes
+
+    def _codes(self, time, source, keys):
+        t = np.searchsorted(self.times, time)
+        s = np.searchsorted(self.sources, source)
+        return (t * self.sources.size + s) * self.n_keys + keys
+
+    def __call__(self, time, source, keys):
+        """The position angles (deg), shape (N, 2), of the receptors of antennas
+        ``keys`` in rows of these times and sources (rows the table was made from)."""
+        return self.table[np.searchsorted(self.codes, self._codes(np.asarray(time, float),
+                                                                  np.asarray(source),
+                                                                  np.asarray(keys)))]
+
+
+def _tile(obstime):
+    """Two copies of a time array, end to end."""
+    obstime = obstime if isinstance(obstime, Time) else Time(obstime)
+    return obstime[np.tile(np.arange(obstime.size), 2)]
+
+
+def _given(antenna, receptors):
+    """``antenna`` with other receptors."""
+    return Antenna(antenna.location, antenna.mount, antenna.focus, name=antenna.name,
+                   vertical=antenna.vertical, receptors=receptors, rotator=antenna.rotator)
+
+
+def parse_feeds(text):
+    """Receptors from a command-line text: ``'R,L'``, ``'X,Y'`` or ``'X:45,Y:135'``.
+
+    Parameters
+    ----------
+    text : str
+        Two receptor letters separated by a comma, each optionally followed
+        by ``:angle`` in degrees (default 0 for R, L and X, 90 for Y).
+
+    Returns
+    -------
+    `~astropy_feedrot.Receptors`
+
+    Raises
+    ------
+    ValueError
+        For anything else, with the accepted forms.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import parse_feeds
+    >>> parse_feeds("X:45,Y:135")
+    Receptors('XY', [45.0, 135.0] * u.deg)
+    >>> parse_feeds("R,L").types
+    'RL'
+    """
+    usage = ("give the feeds as two letters with optional angles in degrees, e.g. 'R,L', "
+             "'X,Y' or 'X:45,Y:135'")
+    parts = [p.strip() for p in str(text).split(",")]
+    if len(parts) != 2:
+        raise ValueError(f"feeds {text!r}: {usage}")
+    types, angles = "", []
+    for part in parts:
+        letter, _, angle = part.partition(":")
+        letter = letter.strip().upper()
+        if letter not in ("R", "L", "X", "Y"):
+            raise ValueError(f"feeds {text!r}: unknown receptor {letter!r}; {usage}")
+        try:
+            value = float(angle) if angle.strip() else (90.0 if letter == "Y" else 0.0)
+        except ValueError:
+            raise ValueError(f"feeds {text!r}: angle {angle!r} is not a number; "
+                             f"{usage}") from None
+        types += letter
+        angles.append(value)
+    return Receptors(types, angles * u.deg)
+
+
+def with_receptors(antennas, receptors, *, replace=False):
+    """The antennas, given ``receptors`` where they have none.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{antenna number: Antenna}``.
+    receptors : `~astropy_feedrot.Receptors` or mapping
+        The receptors of every antenna, or ``{antenna number or name:
+        Receptors}``.
+    replace : bool, optional
+        Replace the receptors an antenna has (default: keep them).
+
+    Returns
+    -------
+    dict
+        A new ``{antenna number: Antenna}``.
+
+    Raises
+    ------
+    TypeError
+        If ``receptors`` is neither.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import with_receptors
+    >>> antennas = with_receptors({1: get_antenna("FD-VLBA")}, Receptors("XY", [0, 90] * u.deg))
+    >>> antennas[1].receptors.types
+    'XY'
+    """
+    if isinstance(receptors, Receptors):
+        def given(number, antenna):
+            return receptors
+    elif hasattr(receptors, "get"):
+        def given(number, antenna):
+            return receptors.get(number, receptors.get(antenna.name))
+    else:
+        raise TypeError(f"receptors must be Receptors or a mapping {{antenna: Receptors}}, "
+                        f"got {type(receptors).__name__}")
+    out = {}
+    for number, antenna in antennas.items():
+        new = given(number, antenna)
+        if new is not None and (replace or antenna.receptors is None):
+            antenna = _given(antenna, new)
+        out[number] = antenna
+    return out

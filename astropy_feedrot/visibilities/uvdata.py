@@ -1,0 +1,727 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Feed rotation of pyuvdata's `~pyuvdata.UVData` objects, and its removal.
+
+`antennas_from_uvdata` turns the telescope of a `~pyuvdata.UVData` object
+(positions, ``mount_type``, ``feed_array`` and ``feed_angle``) into
+`~astropy_feedrot.Antenna` objects; `feed_rotation_uvdata` gives the
+position angle on the sky of both antennas' receptors for every
+baseline-time, whatever the phase centre (sidereal, ephemeris, drift scan or
+unprojected); `correct_uvdata` removes the feed rotation from the
+visibilities, so that the receptors are fixed on the sky; `read_uvdata` and
+`write_uvdata` read and write the files pyuvdata knows, without downloading
+anything.
+
+pyuvdata is an optional dependency (``pip install 'astropy_feedrot[uvdata]'``),
+imported when a function here is called. The conventions (pyuvdata's
+conjugation, feed angles, the vertical of CASA) are in ``docs/uvdata.rst``.
+"""
+
+import contextlib
+import os
+import shutil
+import tempfile
+import warnings
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import Angle, EarthLocation
+from astropy.time import Time
+
+from ..antenna import Antenna
+from ..correction import correct_receptor_visibilities
+from ..eop import iers_context
+from ..exceptions import DegenerateGeometryWarning, warn_caller
+from ..frames import VERTICALS
+from ..labels import mount_from_label
+from ..mounts import AltAzMount
+from ..outputs import publish
+from ..progress import progress_steps
+from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
+from .history import check_direction, check_history, history_entry
+from .phase_centres import phase_centre_sources
+from .receptors import receptor_position_angles, with_receptors
+
+__all__ = [
+    "antennas_from_uvdata",
+    "feed_rotation_uvdata",
+    "correct_uvdata",
+    "read_uvdata",
+    "write_uvdata",
+    "WRITERS",
+]
+
+__doctest_requires__ = {("*",): ["pyuvdata"]}
+
+#: Writers by file name extension (lower case), used by `write_uvdata`.
+WRITERS = {
+    ".uvfits": "write_uvfits",
+    ".uvh5": "write_uvh5",
+    ".h5": "write_uvh5",
+    ".hdf5": "write_uvh5",
+    ".ms": "write_ms",
+    ".uv": "write_miriad",
+    ".miriad": "write_miriad",
+}
+
+# pyuvdata polarization codes of correlation products (AIPS Memo 117); the
+# first letter is the receptor of ant_1.
+_STOKES = {1: "pI", 2: "pQ", 3: "pU", 4: "pV"}
+_EXTRA = "pip install 'astropy_feedrot[uvdata]'"
+
+
+def _pyuvdata():
+    """The pyuvdata module, or an ImportError naming the extra."""
+    try:
+        import pyuvdata
+    except ImportError:
+        raise ImportError(f"astropy_feedrot.visibilities.uvdata needs pyuvdata: {_EXTRA}") from None
+    return pyuvdata
+
+
+def _check_uvdata(uv):
+    pyuvdata = _pyuvdata()
+    if not isinstance(uv, pyuvdata.UVData):
+        raise TypeError(f"uv must be a pyuvdata UVData object (e.g. from read_uvdata), got "
+                        f"{type(uv).__name__}")
+
+
+def _check_vertical(vertical):
+    if vertical not in VERTICALS:
+        raise ValueError(f"vertical must be one of {VERTICALS}, got {vertical!r}")
+
+
+# --- antennas -------------------------------------------------------------------
+
+
+def _receptors(feeds, angles, stationary):
+    """Receptors of one antenna from pyuvdata's feeds and feed angles (radians)."""
+    types = [str(f).strip().upper() for f in feeds]
+    alpha = list(np.degrees(np.asarray(angles, dtype=float)))
+    if stationary:
+        # pyuvdata: 0 = north, 90 deg = east; here alpha = 0 is the aligned
+        # (east) dipole of StationaryMount, so alpha = feed_angle - 90 deg.
+        alpha = [a - 90.0 for a in alpha]
+    if len(types) == 1:
+        # One feed listed (UVFITS files whose POLTYB is blank): the other
+        # receptor of the pair, at the same angle (circular) or 90 deg on (linear).
+        (letter,) = types
+        basis = basis_of(letter)
+        other = [t for t in RECEPTOR_TYPES[basis] if t != letter][0]
+        step = 0.0 if basis == "circular" else (90.0 if letter == "X" else -90.0)
+        types.append(other)
+        alpha.append(alpha[0] + step)
+    return Receptors("".join(types), alpha * u.deg)
+
+
+def _antennas(uv, vertical, numbers=None):
+    """{antenna number: Antenna} of the telescope (only ``numbers`` if given)."""
+    _check_vertical(vertical)
+    tel = uv.telescope
+    if tel.mount_type is None:
+        raise ValueError(
+            "the data do not say how the antennas are mounted (telescope.mount_type is "
+            "None); set it, e.g. uv.telescope.mount_type = ['alt-az'] * uv.telescope.Nants, "
+            "or pass antennas={number: Antenna}")
+    if not isinstance(tel.location, EarthLocation):
+        raise ValueError(f"the telescope location must be on the Earth (an EarthLocation), "
+                         f"got {type(tel.location).__name__}")
+    centre = np.array([tel.location.x.to_value(u.m), tel.location.y.to_value(u.m),
+                       tel.location.z.to_value(u.m)])
+    all_numbers = [int(n) for n in tel.antenna_numbers]
+    wanted = set(all_numbers if numbers is None else (int(n) for n in numbers))
+    antennas = {}
+    for k, number in enumerate(all_numbers):
+        if number not in wanted:
+            continue
+        name = str(tel.antenna_names[k])
+        label = tel.mount_type[k]
+        try:
+            mount, focus = mount_from_label(label, "pyuvdata")
+        except ValueError as err:
+            raise ValueError(
+                f"antenna {name} (number {number}): {err}. If you know the mount, set "
+                "uv.telescope.mount_type, or pass antennas={number: Antenna}") from None
+        receptors = None
+        if tel.feed_array is not None and tel.feed_angle is not None:
+            try:
+                receptors = _receptors(tel.feed_array[k], tel.feed_angle[k], not mount.tracks)
+            except ValueError as err:
+                raise ValueError(
+                    f"antenna {name} (number {number}): {err}. Files often give 0 for both "
+                    "linear receptors; if you know the angles, set uv.telescope.feed_angle "
+                    "(radians, e.g. [0, pi/2] for x and y)") from None
+        xyz = centre + np.asarray(tel.antenna_positions[k], dtype=float)
+        location = EarthLocation.from_geocentric(*xyz, unit=u.m)
+        antennas[number] = Antenna(location, mount, focus, name=name, vertical=vertical,
+                                   receptors=receptors)
+    return antennas
+
+
+def antennas_from_uvdata(uv, *, vertical="geodetic"):
+    """The antennas of a `~pyuvdata.UVData` object as `~astropy_feedrot.Antenna` objects.
+
+    Parameters
+    ----------
+    uv : `~pyuvdata.UVData`
+        The data; its ``telescope`` gives the location, the antenna
+        positions, names and numbers, ``mount_type``, ``feed_array`` and
+        ``feed_angle``.
+    vertical : {'geodetic', 'geocentric'}, optional
+        The local vertical of every antenna (`~astropy_feedrot.Antenna`).
+        ``'geocentric'`` reproduces CASA and casacore, whose parallactic
+        angles use the geocentric vertical.
+
+    Returns
+    -------
+    dict
+        ``{antenna number: Antenna}`` for every antenna of the telescope, at
+        its absolute position (``telescope.location`` plus
+        ``antenna_positions``), with the mount and focus of its
+        ``mount_type`` (`~astropy_feedrot.labels.mount_from_label`, convention
+        ``'pyuvdata'``) and its receptors (`~astropy_feedrot.receptors.Receptors`).
+
+    Raises
+    ------
+    ImportError
+        If pyuvdata is not installed.
+    TypeError
+        If ``uv`` is not a `~pyuvdata.UVData` object.
+    ValueError
+        If ``telescope.mount_type`` is missing, names a mount without a
+        feed-rotation model (``'phased'``, ``'other'``, ``'orbiting'``), the
+        telescope is not on the Earth, or for an unknown ``vertical``.
+
+    Notes
+    -----
+    Receptor angles :math:`\\alpha` (`~astropy_feedrot.receptors`) come from
+    ``feed_angle``: for steerable mounts pyuvdata's 0 is the direction toward
+    the zenith, as here, so :math:`\\alpha` = ``feed_angle``. For ``'fixed'``
+    antennas (a `~astropy_feedrot.StationaryMount`, whose reference dipole
+    points east) pyuvdata's 0 is north and 90 deg east, so :math:`\\alpha` =
+    ``feed_angle`` - 90 deg. When the file lists one feed (UVFITS files with
+    a blank ``POLTYB``), the other receptor is added at the same angle for
+    circular feeds and 90 deg further (``Y`` after ``X``) for linear ones.
+    Without ``feed_array`` the antennas have no receptors.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from pyuvdata import Telescope
+    >>> from astropy_feedrot.visibilities.uvdata import antennas_from_uvdata
+    >>> from pyuvdata import UVData
+    >>> site = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0790 * u.deg, 2124 * u.m)
+    >>> tel = Telescope.new(name="TEST", instrument="TEST", location=site,
+    ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
+    ...                     feed_array=["x", "y"], feed_angle=[np.pi / 2, 0.0],
+    ...                     mount_type="alt-az")
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["xx", "yy", "xy", "yx"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True)
+    >>> antennas = antennas_from_uvdata(uv)
+    >>> antennas[1].mount, antennas[1].receptors
+    (AltAzMount(), Receptors('XY', [90.0, 0.0] * u.deg))
+    """
+    _check_uvdata(uv)
+    return _antennas(uv, vertical)
+
+
+# --- position angles of the receptors ----------------------------------------------
+
+
+def _position_angles(uv, antennas, frame, vertical):
+    """Sky position angles (deg) of the receptors of ant_1 and ant_2, (Nblts, 2) each.
+
+    Returns (theta1, theta2, basis, undefined) with the last axis in the order
+    (R, L) or (X, Y); ``undefined`` counts the rows with NaN. The degenerate
+    rows are not warned about here.
+    """
+    ant1 = np.asarray(uv.ant_1_array, dtype=int)
+    ant2 = np.asarray(uv.ant_2_array, dtype=int)
+    used = np.unique(np.concatenate([ant1, ant2]))
+    if antennas is None:
+        antennas = _antennas(uv, vertical, used)
+    elif not hasattr(antennas, "keys"):
+        raise TypeError(f"antennas must be a mapping {{antenna number: Antenna}}, got "
+                        f"{type(antennas).__name__}")
+    missing = [int(n) for n in used if int(n) not in antennas]
+    if missing:
+        raise ValueError(f"the data use antenna numbers {missing[:10]} that antennas lacks")
+    bases = set()
+    for n in used:
+        if isinstance(antennas[int(n)], Antenna) and antennas[int(n)].receptors is not None:
+            bases.add(antennas[int(n)].receptors.basis)
+    if len(bases) > 1:
+        raise ValueError("the antennas mix circular and linear feeds; a baseline between a "
+                         "linear and a circular feed is not supported")
+    basis = bases.pop() if bases else "circular"
+    products = [letter * 2 for letter in RECEPTOR_TYPES[basis]]
+    sources, unprojected = phase_centre_sources(uv)
+    theta1, theta2 = receptor_position_angles(
+        antennas, ant1, ant2, Time(uv.time_array, format="jd", scale="utc"), sources,
+        np.asarray(uv.phase_center_id_array), products=products, frame=frame,
+        hint="the data give no telescope.feed_array/feed_angle; set them, or pass "
+             "antennas= with Receptors (or feeds=, --feeds R,L on the command line)")
+    if unprojected:
+        # An alt-az antenna pointing at the zenith has no defined orientation.
+        altaz = np.array([isinstance(antennas[int(n)].mount, AltAzMount) for n in used])
+        pos1, pos2 = np.searchsorted(used, ant1), np.searchsorted(used, ant2)
+        rows = np.isin(uv.phase_center_id_array, list(unprojected))
+        theta1[rows & altaz[pos1]] = np.nan
+        theta2[rows & altaz[pos2]] = np.nan
+    undefined = int(np.count_nonzero(np.isnan(theta1).any(-1) | np.isnan(theta2).any(-1)))
+    return theta1, theta2, basis, undefined
+
+
+def _frame_text(frame):
+    return frame if isinstance(frame, str) else getattr(frame, "name", type(frame).__name__)
+
+
+@iers_context()
+def feed_rotation_uvdata(uv, *, frame="apparent", vertical="geodetic", antennas=None):
+    """Position angle on the sky of both antennas' feeds, for every baseline-time.
+
+    Parameters
+    ----------
+    uv : `~pyuvdata.UVData`
+        The data.
+    frame : str or `~astropy.coordinates.BaseCoordinateFrame`, optional
+        North of reference: ``'apparent'`` (default, the true pole of date)
+        or a celestial frame such as ``'icrs'`` (see
+        `~astropy_feedrot.visibilities.frame_position_angle`; compare pyuvdata's
+        ``phase_center_frame_pa``).
+    vertical : {'geodetic', 'geocentric'}, optional
+        Local vertical of the antennas made from ``uv``; ``'geocentric'``
+        reproduces CASA. Ignored with ``antennas``.
+    antennas : mapping, optional
+        ``{antenna number: Antenna}`` (with receptors) to use instead of the
+        telescope of ``uv``.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        Shape (Nblts, 2), degrees: for ``ant_1`` and ``ant_2`` of each row,
+        the position angle :math:`\\theta = \\Phi + \\alpha` (north through
+        east) of the antenna's R receptor (circular feeds) or X receptor
+        (linear feeds), i.e. its feed rotation plus that receptor's angle.
+        For a linear dipole fixed to the ground it is the position angle of
+        the dipole's projection on the sky. NaN where undefined.
+
+    Raises
+    ------
+    ImportError
+        If pyuvdata is not installed.
+    TypeError
+        If ``uv`` is not a `~pyuvdata.UVData` object or ``antennas`` not a
+        mapping of `~astropy_feedrot.Antenna`.
+    ValueError
+        As `antennas_from_uvdata`; for antennas without receptors, feeds
+        mixing circular and linear, a ``near_field`` phase centre, epochs
+        outside an ephemeris, or an unknown ``frame``.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the number of rows, if some angles are undefined (an
+        alt-az antenna at the zenith: unprojected data, or a drift scan at
+        the zenith).
+
+    Notes
+    -----
+    Each phase centre of ``phase_center_catalog`` is followed as it moves:
+    ``sidereal`` in its ``cat_frame`` (``icrs``, ``fk5`` with a Julian
+    ``cat_epoch`` as equinox, ``fk4`` with a Besselian one) with proper
+    motion (pyuvdata's ``cat_pm_ra`` is dRA/dt relative to J2000.0) and
+    distance; ``ephem`` interpolated in ``cat_frame`` at ``cat_times`` (RA
+    unwrapped; linear below four points, a cubic spline from four, as
+    pyuvdata), refusing epochs outside the ephemeris; ``driftscan`` a fixed
+    azimuth and elevation at the telescope location; ``unprojected`` the
+    telescope's zenith, where fixed antennas are defined and alt-az ones are
+    not (NaN).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from pyuvdata import Telescope, UVData
+    >>> from astropy_feedrot.visibilities.uvdata import feed_rotation_uvdata
+    >>> site = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0790 * u.deg, 2124 * u.m)
+    >>> tel = Telescope.new(name="TEST", instrument="TEST", location=site,
+    ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
+    ...                     feed_array=["r", "l"], feed_angle=[0.0, 0.0],
+    ...                     mount_type="alt-az")
+    >>> centre = {0: dict(cat_name="3C286", cat_type="sidereal", cat_lon=np.radians(202.78),
+    ...                   cat_lat=np.radians(30.51), cat_frame="icrs", cat_epoch=2000.0)}
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll", "rl", "lr"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True,
+    ...                 phase_center_catalog=centre)  # doctest: +IGNORE_WARNINGS
+    >>> feed_rotation_uvdata(uv)  # doctest: +FLOAT_CMP
+    <Angle [[-66.44957886, -66.44738958]] deg>
+    """
+    _check_uvdata(uv)
+    theta1, theta2, _, undefined = _position_angles(uv, antennas, frame, vertical)
+    if undefined:
+        warn_caller(f"the feed rotation is undefined in {undefined} of {uv.Nblts} "
+                    "baseline-times (an alt-az antenna pointing at the zenith); they are NaN",
+                    DegenerateGeometryWarning)
+    return Angle(np.stack([theta1[:, 0], theta2[:, 0]], axis=-1), u.deg)
+
+
+# --- correcting the visibilities ----------------------------------------------------
+
+
+def _product_names(uv):
+    if getattr(uv, "flex_spw_polarization_array", None) is not None:
+        raise ValueError("data with a polarization per spectral window "
+                         "(flex_spw_polarization_array) are not supported; call "
+                         "uv.remove_flex_pol() first")
+    codes = [int(c) for c in uv.polarization_array]
+    stokes = [_STOKES.get(c, str(c)) for c in codes if c not in PRODUCT_CODES]
+    if stokes:
+        raise ValueError(
+            f"the data hold Stokes or pseudo-Stokes products {stokes}: feed rotation acts on "
+            "the correlations of receptors (RR, LL, RL, LR or XX, XY, YX, YY), which those "
+            "have already mixed; correct the data before forming Stokes parameters")
+    names = [PRODUCT_CODES[c] for c in codes]
+    try:
+        basis = basis_of(names)
+    except ValueError:
+        raise ValueError(f"the data mix circular and linear products {names}; correct data "
+                         "of one basis at a time") from None
+    if basis == "linear" and not {"XX", "XY", "YX", "YY"} <= set(names):
+        raise ValueError(
+            f"the data hold the linear products {names} only: the feed rotation of linear "
+            "feeds mixes XX, XY, YX and YY, so it cannot be removed visibility by "
+            "visibility without all four. Image Stokes Q and U instead and rotate Q + iU "
+            "by minus twice the angle of feed_rotation_uvdata")
+    return names, basis
+
+
+def _chunk_rows(uv):
+    """Baseline-times per chunk: the temporaries stay below data_array.nbytes / 8."""
+    data = uv.data_array
+    # A chunk costs about three times its rows in complex128 (the linear case
+    # forms four products and four results, one polarization each).
+    row_bytes = 3 * 16 * int(np.prod(data.shape[1:]))
+    return max(1, int(data.nbytes // 8 // row_bytes))
+
+
+@iers_context()
+def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", antennas=None,
+                   progress=False, direction="remove", feeds=None, redo=False):
+    """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
+
+    Parameters
+    ----------
+    uv : `~pyuvdata.UVData`
+        The data: circular products (any subset of RR, LL, RL, LR, any
+        order) or all four linear ones (XX, XY, YX, YY, any order), with
+        ``telescope.mount_type``, ``feed_array`` and ``feed_angle``.
+    inplace : bool, optional
+        False (default): return a corrected copy and leave ``uv`` as it was.
+        True: correct ``uv`` itself, in chunks of baseline-times whose
+        temporaries stay below a quarter of ``data_array``'s size, and
+        return it.
+    frame : str or `~astropy.coordinates.BaseCoordinateFrame`, optional
+        The north the corrected receptors refer to: ``'apparent'`` (default,
+        the true pole of date) or a celestial frame such as ``'icrs'``.
+    vertical : {'geodetic', 'geocentric'}, optional
+        Local vertical (``'geocentric'`` reproduces CASA).
+    antennas : mapping, optional
+        ``{antenna number: Antenna}`` to use instead of the telescope of ``uv``.
+    progress : bool or callable, optional
+        True shows astropy's `~astropy.utils.console.ProgressBar` over the
+        chunks; a callable is called as ``progress(done, total)`` after each.
+    direction : {'remove', 'apply'}, optional
+        ``'apply'`` does the inverse: visibilities of sky-fixed receptors (a
+        model) become those the antennas measure; ``feed_angle`` is left as
+        it is.
+    feeds : `~astropy_feedrot.Receptors` or mapping, optional
+        Receptors for antennas the data give none (see
+        `~astropy_feedrot.visibilities.with_receptors`).
+    redo : bool, optional
+        Correct data whose history says they were corrected in the same
+        direction already.
+
+    Returns
+    -------
+    `~pyuvdata.UVData`
+        The corrected data: receptors fixed on the sky, circular R and L, or
+        linear X toward the north and Y toward the east of ``frame``.
+        ``telescope.feed_angle`` is set to 0 for X, R and L and 90 deg for Y
+        (for every mount this is how pyuvdata reads a feed at those position
+        angles with no rotation left), and one line is appended to the
+        history.
+
+    Raises
+    ------
+    ImportError
+        If pyuvdata is not installed.
+    TypeError
+        If ``uv`` is not a `~pyuvdata.UVData` object, or ``progress`` is
+        neither a bool nor a callable.
+    ValueError
+        For Stokes or pseudo-Stokes data, linear data without all four
+        products (parallel hands only: rotate Stokes Q + iU after imaging),
+        products or feeds mixing circular and linear, data whose history says
+        they were corrected already, no data_array, and as
+        `feed_rotation_uvdata`.
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if the feed rotation is undefined in some
+        baseline-times: their data are set to NaN and flagged.
+
+    Notes
+    -----
+    The visibilities follow pyuvdata's convention, the complex conjugate of
+    :math:`\\langle v_1 v_2^* \\rangle` (`~astropy_feedrot.correction.correct_receptor_visibilities`
+    with ``conjugate=True``). Autocorrelations are corrected as any row:
+    RR and LL do not change, RL and LR turn by twice the feed rotation, and
+    for linear feeds the parallel hands are set exactly real (the corrected
+    coherency is Hermitian; only rounding made them complex).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from pyuvdata import Telescope, UVData
+    >>> from astropy_feedrot.visibilities.uvdata import correct_uvdata, feed_rotation_uvdata
+    >>> site = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0790 * u.deg, 2124 * u.m)
+    >>> tel = Telescope.new(name="TEST", instrument="TEST", location=site,
+    ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
+    ...                     feed_array=["r", "l"], feed_angle=[0.0, 0.0],
+    ...                     mount_type="alt-az")
+    >>> centre = {0: dict(cat_name="3C286", cat_type="sidereal", cat_lon=np.radians(202.78),
+    ...                   cat_lat=np.radians(30.51), cat_frame="icrs", cat_epoch=2000.0)}
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll", "rl", "lr"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True, empty=True,
+    ...                 phase_center_catalog=centre)  # doctest: +IGNORE_WARNINGS
+    >>> uv.data_array[:] = 1.0
+    >>> fixed = correct_uvdata(uv)
+    >>> theta = feed_rotation_uvdata(uv)[0].to_value(u.rad)
+    >>> rl = fixed.data_array[0, 0, 2]  # conj(RL) turned by theta_1 + theta_2
+    >>> bool(np.isclose(rl, np.exp(-1j * (theta[0] + theta[1]))))
+    True
+    >>> float(np.abs(uv.data_array[0, 0, 2] - 1))  # uv itself is unchanged
+    0.0
+    """
+    _check_uvdata(uv)
+    direction = check_direction(direction)
+    names, basis = _product_names(uv)
+    check_history(uv.history, direction, "these data", redo=redo)
+    if feeds is not None:
+        used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
+        antennas = with_receptors(_antennas(uv, vertical, used) if antennas is None
+                                  else antennas, feeds)
+    if uv.data_array is None:
+        raise ValueError("uv has no data_array (metadata only); read the data too")
+    theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical)
+    if basis_feeds != basis:
+        raise ValueError(f"the data hold {basis} products {names} but the feeds are "
+                         f"{basis_feeds}")
+    target = uv if inplace else uv.copy()
+    data = target.data_array
+    theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
+    theta2 = theta2[:, np.newaxis, :] * u.deg
+    auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
+    parallel = [k for k, name in enumerate(names) if name[0] == name[1]]
+    n_rows = data.shape[0]
+    step = _chunk_rows(target)
+    starts = range(0, n_rows, step)
+    with progress_steps(progress, len(starts)) as done_step:
+        for start in starts:
+            chunk = slice(start, min(start + step, n_rows))
+            block = data[chunk]
+            with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
+                correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
+                                              conjugate=True, out=block, direction=direction)
+            if basis == "linear":
+                for row in np.flatnonzero(auto[chunk]):
+                    for k in parallel:
+                        block[row, ..., k].imag = 0
+            done_step()
+    if undefined:
+        bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
+        data[bad] = np.nan
+        target.flag_array[bad] = True
+        warn_caller(f"the feed rotation is undefined in {undefined} of {n_rows} "
+                    "baseline-times (an alt-az antenna pointing at the zenith): their data "
+                    "are NaN and flagged", DegenerateGeometryWarning)
+    tel = target.telescope
+    if direction == "remove" and tel.feed_array is not None:
+        sky = {"x": 0.0, "y": np.pi / 2, "r": 0.0, "l": 0.0}
+        tel.feed_angle = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(
+            tel.feed_array)
+    what = "data_array" + ("; feed_angle set to match" if direction == "remove" else "")
+    target.history += " " + history_entry(direction, what, frame=_frame_text(frame),
+                                          vertical=vertical) + "."
+    return target
+
+
+# --- files --------------------------------------------------------------------------
+
+
+@contextlib.contextmanager
+def _offline():
+    """No download: IERS from astropy's bundled tables, no site registry from the web.
+
+    pyuvdata asks astropy for its site names (which downloads ``sites.json``)
+    when a file has no telescope location. Offline, astropy cannot fall back
+    on a bundled list, so a registry with no real site stands in for it while
+    the file is read; pyuvdata then takes the location from its own table of
+    known telescopes, or from the antenna positions.
+    """
+    from astropy.coordinates.sites import SiteRegistry
+    from astropy.utils.data import conf as data_conf
+
+    with data_conf.set_temp("allow_internet", False), iers_context():
+        try:
+            with warnings.catch_warnings():
+                # astropy 6.0 falls back on its built-in list, with this warning.
+                warnings.filterwarnings("ignore", "Could not access the main site list")
+                EarthLocation.get_site_names()
+        except OSError:  # URLError: not cached and no internet
+            previous = EarthLocation._site_registry
+            registry = SiteRegistry()
+            # An empty registry is falsy, and astropy would try to download again.
+            registry.add_site(["astropy_feedrot offline"], EarthLocation.from_geocentric(
+                6378137.0, 0.0, 0.0, unit=u.m))
+            EarthLocation._site_registry = registry
+            try:
+                yield
+            finally:
+                EarthLocation._site_registry = previous
+        else:
+            yield
+
+
+def read_uvdata(path, **kwargs):
+    """Read a visibility file with pyuvdata, without downloading anything.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Any file or directory `pyuvdata.UVData.from_file` reads (UVFITS,
+        uvh5, Measurement Set, Miriad, Mir...).
+    **kwargs
+        Passed to `pyuvdata.UVData.from_file` (e.g. ``file_type``).
+
+    Returns
+    -------
+    `~pyuvdata.UVData`
+
+    Raises
+    ------
+    ImportError
+        If pyuvdata is not installed.
+    FileNotFoundError
+        If ``path`` does not exist.
+
+    Notes
+    -----
+    pyuvdata looks up astropy's registry of sites when a file carries no
+    telescope location (Measurement Sets not written by pyuvdata, Mir), and
+    astropy downloads that registry. Here internet access is off while the
+    file is read; the registry then holds no site, and pyuvdata uses its own
+    table of known telescopes or the mean antenna position. Earth
+    orientation comes from astropy's bundled IERS tables.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import EarthLocation
+    >>> from pyuvdata import Telescope, UVData
+    >>> from astropy_feedrot.visibilities.uvdata import read_uvdata, write_uvdata
+    >>> site = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0790 * u.deg, 2124 * u.m)
+    >>> tel = Telescope.new(name="TEST", instrument="TEST", location=site,
+    ...                     antenna_positions={0: [0.0, 0, 0], 1: [100.0, 0, 0]},
+    ...                     feed_array=["r", "l"], feed_angle=[0.0, 0.0],
+    ...                     mount_type="alt-az")
+    >>> uv = UVData.new(freq_array=np.array([1.4e9]), channel_width=np.array([1e6]),
+    ...                 polarization_array=["rr", "ll"], times=np.array([2460000.9]),
+    ...                 integration_time=np.array([10.0]), telescope=tel,
+    ...                 antpairs=[(0, 1)], do_blt_outer=True,
+    ...                 empty=True)  # doctest: +IGNORE_WARNINGS
+    >>> path = os.path.join(tempfile.mkdtemp(), "test.uvh5")
+    >>> write_uvdata(uv, path)
+    >>> read_uvdata(path).telescope.mount_type.tolist()
+    ['alt-az', 'alt-az']
+    """
+    pyuvdata = _pyuvdata()
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"no file or directory {path!r}")
+    with _offline():
+        return pyuvdata.UVData.from_file(path, **kwargs)
+
+
+def write_uvdata(uv, path, overwrite=False):
+    """Write a `~pyuvdata.UVData` object, in the format its file name's extension names.
+
+    Parameters
+    ----------
+    uv : `~pyuvdata.UVData`
+        The data.
+    path : str or path-like
+        The file (or directory, for a Measurement Set or Miriad data) to
+        write; its extension chooses the writer (`WRITERS`): ``.uvfits``,
+        ``.uvh5``/``.h5``/``.hdf5``, ``.ms``, ``.uv``/``.miriad``.
+    overwrite : bool, optional
+        Replace an existing file (default False).
+
+    Raises
+    ------
+    ImportError
+        If pyuvdata is not installed.
+    TypeError
+        If ``uv`` is not a `~pyuvdata.UVData` object.
+    ValueError
+        For an extension without a writer.
+    FileExistsError
+        If ``path`` exists and ``overwrite`` is False.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from pyuvdata import UVData
+    >>> from astropy_feedrot.visibilities.uvdata import write_uvdata
+    >>> write_uvdata(UVData(), os.path.join(tempfile.mkdtemp(), "out.fits"))
+    Traceback (most recent call last):
+    ...
+    ValueError: cannot tell the format of 'out.fits' from its extension '.fits'; ...
+    """
+    _check_uvdata(uv)
+    path = os.fspath(path)
+    extension = os.path.splitext(path.rstrip("/" + os.sep))[1].lower()
+    if extension not in WRITERS:
+        raise ValueError(f"cannot tell the format of {os.path.basename(path)!r} from its "
+                         f"extension {extension!r}; use one of {', '.join(WRITERS)}")
+    if os.path.exists(path) and not overwrite:
+        raise FileExistsError(f"{path!r} exists; pass overwrite=True to replace it")
+    writer = getattr(uv, WRITERS[extension])
+    # Written beside the target and published in one step: exclusively unless overwrite,
+    # so that a file made meanwhile by another program is never replaced.
+    name = os.path.basename(path.rstrip("/" + os.sep))
+    work = tempfile.mkdtemp(dir=os.path.dirname(os.path.abspath(path)), prefix=f".{name}.")
+    try:
+        temporary = os.path.join(work, name)
+        with _offline():
+            if WRITERS[extension] == "write_uvfits":
+                writer(temporary)
+            else:
+                writer(temporary, clobber=True)
+        publish(temporary, path, overwrite=overwrite)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)

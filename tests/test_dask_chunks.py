@@ -1,0 +1,67 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""The chunks of a FITS-IDI file and of a Measurement Set corrected on dask
+workers: bit for bit the serial result (the reference is the package's own
+serial run, itself checked against independent models in test_io_fitsidi.py
+and test_ms.py)."""
+
+import hashlib
+
+import numpy as np
+import pytest
+
+distributed = pytest.importorskip("distributed")
+pytest.importorskip("casacore")
+
+from casacore.tables import table  # noqa: E402
+from fitsidi_writer import write_fitsidi  # noqa: E402
+from ms_model import fill_model, unpack  # noqa: E402
+
+from astropy_feedrot.cli import main  # noqa: E402
+from astropy_feedrot.visibilities import correct_fitsidi, correct_ms  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        yield client
+
+
+def sha(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def test_fitsidi_on_two_workers(tmp_path, client):
+    source = tmp_path / "in.idifits"
+    write_fitsidi(source, angles={0: (5.0, -7.0)}, n_times=12, n_freqid=2)
+    correct_fitsidi(source, tmp_path / "serial.idifits", chunk_bytes=4096)
+    correct_fitsidi(source, tmp_path / "dask.idifits", chunk_bytes=4096, client=client)
+    assert sha(tmp_path / "serial.idifits") == sha(tmp_path / "dask.idifits")
+
+
+def test_ms_on_two_workers(tmp_path, client):
+    serial = unpack(tmp_path / "a")
+    fill_model(serial)
+    parallel = unpack(tmp_path / "b")
+    fill_model(parallel)
+    correct_ms(serial, chunk_rows=40)
+    correct_ms(parallel, chunk_rows=40, client=client)
+    with table(str(serial), ack=False) as a, table(str(parallel), ack=False) as b:
+        np.testing.assert_array_equal(a.getcol("CORRECTED_DATA"), b.getcol("CORRECTED_DATA"))
+
+
+def test_command_with_workers(tmp_path, capsys):
+    ms = unpack(tmp_path)
+    fill_model(ms)
+    assert main(["correct", str(ms), "--in-place", "--workers", "2", "--quiet"]) == 0
+    reference = unpack(tmp_path / "ref")
+    fill_model(reference)
+    correct_ms(reference)
+    with table(str(ms), ack=False) as a, table(str(reference), ack=False) as b:
+        np.testing.assert_array_equal(a.getcol("CORRECTED_DATA"), b.getcol("CORRECTED_DATA"))
+    assert main(["correct", str(ms), "--in-place", "--workers", "2", "--dask",
+                 "tcp://127.0.0.1:1", "--redo"]) == 1
+    assert "--dask and --workers exclude each other" in capsys.readouterr().err
+    assert main(["correct", str(ms), "--in-place", "--workers", "0", "--redo"]) == 1
+    assert "--workers must be at least 1, got 0" in capsys.readouterr().err
