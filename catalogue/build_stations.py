@@ -646,7 +646,7 @@ def to_table(rows):
         "mount": "geodetic station-catalogue mount code",
         "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
         "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
-                       "0 where none does; not applied by get_antenna",
+                       "0 where none does; get_antenna adds it as a fixed rotator",
         "position_source": "file and line, or paper table, of the position",
         "mount_source": "where the mount comes from",
         "focus_source": "where the focus comes from, or 'assumed: <reason>'",

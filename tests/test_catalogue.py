@@ -9,10 +9,13 @@ import sys
 from contextlib import redirect_stdout
 from pathlib import Path
 
+import erfa
 import numpy as np
 import pytest
 from astropy import units as u
+from astropy.coordinates import AltAz, HADec, SkyCoord
 from astropy.table import Table
+from astropy.time import Time
 
 from astropy_feedrot import AltAzMount, CassegrainFocus, NasmythFocus
 from astropy_feedrot.cli import main as cli_main
@@ -246,6 +249,45 @@ def test_smt_and_sma_focus_from_eht_imaging():
     assert TABLE["feed_offset"][row] == eht["SMA"][4] == 45
     for name in ("JCMT", "ALMA"):
         assert eht[name][3] == 0 and get_antenna(name).focus == CassegrainFocus()
+
+
+# The EHT codes of eht-imaging's arrays/EHT2025.txt with FR_PAR_ANGLE 1 (the rows
+# whose feed rotation the file states; FR_PAR_ANGLE 0 marks rows without one).
+EHT_FEEDS = {"PV": "PICOVEL", "SMT": "SMT", "SMA": "SMA", "LMT": "LMT", "ALMA": "ALMA",
+             "APEX": "APEX", "JCMT": "JCMT"}
+
+
+@pytest.mark.parametrize("code", sorted(EHT_FEEDS))
+def test_eht_feed_rotation_is_eht_imaging_formula(code):
+    # eht-imaging's feed rotation: FR_PAR * PA + FR_ELEV * El + FR_OFFSET, with
+    # the coefficients read from its array file; PA from ERFA's hd2pa on
+    # astropy's HADec, El from astropy's AltAz (independent of the package's
+    # engine). The SMA's 45 deg offset is applied by get_antenna (a fixed rotator).
+    fr_par, fr_elev, fr_off = _eht_coefficients()[code]
+    assert fr_par == 1
+    antenna = get_antenna(EHT_FEEDS[code])
+    source = SkyCoord("12h30m49.42s +12d23m28.0s")  # M87
+    times = Time("2025-04-10T00:00") + np.arange(0, 24, 0.5) * u.hour
+    hadec = source.transform_to(HADec(obstime=times, location=antenna.location))
+    altaz = source.transform_to(AltAz(obstime=times, location=antenna.location))
+    up = altaz.alt > 5 * u.deg
+    assert up.any()
+    lat = antenna.location.to_geodetic().lat.to_value(u.rad)
+    pa = np.rad2deg(erfa.hd2pa(hadec.ha.to_value(u.rad), hadec.dec.to_value(u.rad), lat))
+    expected = fr_par * pa + fr_elev * altaz.alt.deg + fr_off
+    got = antenna.feed_rotation(source, times).deg
+    difference = (got - expected + 180) % 360 - 180
+    assert np.max(np.abs(difference[up])) < 1e-6  # deg
+
+
+def _eht_coefficients():
+    rows = {}
+    path = ROOT / "catalogue" / "sources" / "eht-imaging" / "EHT2025.txt"
+    for line in path.read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            parts = line.split()
+            rows[parts[0]] = tuple(float(v) for v in parts[6:9])
+    return rows
 
 
 def test_robledo_70_is_dss63():
