@@ -359,8 +359,11 @@ def build():
         if tag == "sked":
             origin = entry["origin"]
             solution = SKED_GEODETIC.match(origin)
-            frame = (f"GSFC solution {solution[1]}" + (", epoch 2021.0" if solution[1] ==
-                                                        "2020c" else "")) if solution else origin
+            if solution:
+                epoch = ", epoch 2021.0" if solution[1] == "2020c" else ""
+                frame = f"GSFC solution {solution[1]}{epoch}"
+            else:
+                frame = origin
             where = f"{SKED}position.cat line {entry['line']} ({frame})"
             codes = {entry["code"].upper()}
         elif tag == "casa-obs":
