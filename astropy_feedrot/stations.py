@@ -159,8 +159,10 @@ class StationCatalogue:
         empty for the mount's default), ``vx``, ``vy``, ``vz`` (velocity unit) with
         ``epoch`` (MJD of the position), ``networks`` (comma-separated network
         names, see `get_network`), ``rotator`` (a mode of
-        `~astropy_feedrot.rotators.Rotator`, ``'sky'`` or ``'fixed'`` at
-        angle 0, or empty for none), ``source`` or ``position_source``,
+        `~astropy_feedrot.rotators.Rotator`, ``'sky'`` or ``'fixed'``, or empty
+        for none), ``feed_offset`` (an angle unit: the feed's constant angle in
+        the cabin, such as eht-imaging's ``FR_OFFSET``; a fixed rotator at that
+        angle, or the angle of the ``rotator`` column's mode), ``source`` or ``position_source``,
         ``mount_source``, ``focus_source`` and ``rotator_source``
         (citations). Other columns are kept and ignored.
     origin : str, optional
@@ -598,16 +600,31 @@ class StationCatalogue:
                        name=str(self._table["name"][row]), rotator=self._rotator(row))
 
     def _rotator(self, row):
-        """The Rotator of a row's ``rotator`` column, or None."""
-        if "rotator" not in self._table.colnames:
-            return None
-        mode = str(self._table["rotator"][row]).strip().lower()
-        if mode in ("", "--", "none"):
-            return None
-        if mode not in ("sky", "fixed"):
+        """The Rotator of a row's ``rotator`` and ``feed_offset`` columns, or None.
+
+        A feed offset without a rotator is a feed fixed in the cabin at that
+        angle: a ``'fixed'`` rotator (eht-imaging adds its ``FR_OFFSET`` the
+        same way, ``fr_par * PA + fr_elev * El + fr_off``).
+        """
+        mode = ""
+        if "rotator" in self._table.colnames:
+            mode = str(self._table["rotator"][row]).strip().lower()
+        mode = "" if mode in ("--", "none") else mode
+        if mode not in ("", "sky", "fixed"):
             raise ValueError(f"{self._origin}: rotator of {self._table['name'][row]!r} must be "
                              f"'sky', 'fixed' or empty, got {mode!r}")
-        return Rotator(mode)
+        offset = 0 * u.deg
+        if "feed_offset" in self._table.colnames:
+            column = self._table["feed_offset"]
+            if column.unit is None or column.unit.physical_type != "angle":
+                raise ValueError(f"{self._origin}: the feed_offset column needs an angle unit "
+                                 f"(deg), got {column.unit}")
+            value = column[row]
+            if not np.ma.is_masked(value) and np.isfinite(value):
+                offset = (float(value) * column.unit).to(u.deg)
+        if mode == "":
+            return None if offset == 0 else Rotator("fixed", offset)
+        return Rotator(mode, offset)
 
 
 @functools.lru_cache(maxsize=1)

@@ -8,41 +8,61 @@ the satellite cannot see in the Earth's shadow. Real satellites follow
 published laws instead; `ModelAttitude` implements them from the satellite's
 orbit and the Sun, in the satellite's orbital frame:
 
-================  ==============================================================
-law               behaviour (source)
-================  ==============================================================
-``gps-iir``       noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
-                  starting where the nominal rate would exceed it (Kouba 2009,
-                  GPS Solutions 13:1-12); nominal in the shadow.
-``gps-iif``       noon turns at 0.11 deg/s, in the wrong direction for a beta
-                  between the yaw bias (-0.7 deg) and 0; through the shadow
-                  (within 13.25 deg of the anti-Sun direction, Kouba's limit) a
-                  constant yaw rate that takes the nominal yaw at shadow entry to
-                  the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
-                  values of Kouba's eclips.f, May 2017). Also used for GPS III,
-                  an assumption (no law was published when this was written).
-``glonass-m``     noon turns at 0.25 deg/s, symmetric about noon (from the
-                  nominal yaw at ``-a`` to that at ``+a``,
-                  `symmetric_half_width`); in the shadow (14.2 deg), a turn at
-                  the maximum rate towards the nominal yaw at shadow exit, then
-                  a stop
-                  (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
-                  Adv. Space Res. 56:1015-1029).
-``galileo``       the smoothed yaw steering of the Galileo satellite metadata
-                  (European GNSS Service Centre): within ``beta_x`` of noon and
-                  midnight for a beta below ``beta_y``, an auxiliary Sun
-                  direction whose out-of-plane component is smoothed;
-                  ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
-``beidou-on``     BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
-                  along the velocity) while the beta angle at the last orbit
-                  quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
-                  steering otherwise (Montenbruck et al. 2015).
-``orbit-normal``  BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
-                  2015).
-================  ==============================================================
+=================  ==============================================================
+law                behaviour (source)
+=================  ==============================================================
+``gps-iir``        noon and midnight turns at the maximum yaw rate, 0.20 deg/s,
+                   starting where the nominal rate would exceed it (Kouba 2009,
+                   GPS Solutions 13:1-12); nominal in the shadow.
+``gps-iif``        noon turns at 0.11 deg/s, in the wrong direction for a beta
+                   between the yaw bias (-0.7 deg) and 0; through the shadow
+                   (within 13.25 deg of the anti-Sun direction, Kouba's limit) a
+                   constant yaw rate that takes the nominal yaw at shadow entry to
+                   the nominal yaw at shadow exit (Kouba 2009; Dilssner 2010;
+                   values of Kouba's eclips.f, May 2017). Also used for GPS III,
+                   an assumption (no law was published when this was written).
+``glonass-m``      noon turns at 0.25 deg/s, symmetric about noon (from the
+                   nominal yaw at ``-a`` to that at ``+a``,
+                   `symmetric_half_width`); in the shadow (14.2 deg), a turn at
+                   the maximum rate towards the nominal yaw at shadow exit, then
+                   a stop
+                   (Dilssner et al. 2011, as summarised by Montenbruck et al. 2015,
+                   Adv. Space Res. 56:1015-1029).
+``galileo``        the smoothed yaw steering of the Galileo satellite metadata
+                   (European GNSS Service Centre): within ``beta_x`` of noon and
+                   midnight for a beta below ``beta_y``, an auxiliary Sun
+                   direction whose out-of-plane component is smoothed;
+                   ``beta_y, beta_x`` = 2, 15 deg (IOV), 4.1, 10 deg (FOC).
+``beidou-on``      BeiDou-2 MEO and IGSO: orbit-normal mode (yaw 0, the x axis
+                   along the velocity) while the beta angle at the last orbit
+                   quadrature (orbit angle 90 deg) is below 4 deg, nominal yaw
+                   steering otherwise (Montenbruck et al. 2015).
+``orbit-normal``   BeiDou-2 GEO: orbit-normal mode always (Montenbruck et al.
+                   2015).
+``beidou-3-cast``  BeiDou-3 MEO and IGSO built by CAST (``BDS-3M-CAST``,
+                   ``BDS-3I``): continuous yaw steering; within ``beta_x`` = 6 deg
+                   of orbit angle of noon and midnight for a beta below
+                   ``beta_y`` = 3 deg, the smoothed yaw ``s 90 deg + (psi_s -
+                   s 90 deg) cos(pi (delta + 6 deg) / 12 deg)`` from the nominal
+                   yaw ``psi_s`` at the window's entry, ``s`` the sign of the
+                   nominal yaw at noon and midnight (Wang et al. 2018, GPS
+                   Solutions 22:125, their period ``t_max`` being the time
+                   of 24 deg of orbit angle, 3090 s for a MEO, 5740 s for an IGSO;
+                   continuous yaw steering, as the China Satellite Navigation
+                   Office's BDS-3 metadata of 2019 says, Yang et al. 2021).
+``beidou-3-secm``  BeiDou-3 MEO built by SECM (``BDS-3M-SECM-A``, ``-B``): for a
+                   beta below ``beta_y`` = 3 deg, the nominal yaw of a beta of
+                   ``+-3 deg`` (the China Satellite Navigation Office's law, as
+                   given by Yang, Guo and Zhao 2021, arXiv:2112.13252); the sign
+                   follows the beta angle's, changed only where that yaw is
+                   within 5 deg of 0 (Yang et al.'s observation: the switch waits
+                   for the yaw to be below 5 deg once the beta angle has crossed
+                   0; here instantaneous).
+=================  ==============================================================
 
 
-Other blocks (GPS IIA, BeiDou-3, QZSS, NavIC, GLONASS-K) have no model here.
+Other blocks (GPS IIA, the BeiDou-3 demonstration satellites ``BDS-3SI``,
+``BDS-3SM``, BeiDou-3 GEO, QZSS, NavIC, GLONASS-K) have no model here.
 
 A turn keeps the direction, and the start and aim, set by the beta angle when
 the turn started (`turn_age`), when the beta
@@ -74,7 +94,7 @@ from .io import read_satellite_metadata
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
-           "model_yaw", "symmetric_half_width", "turn_age",
+           "model_yaw", "symmetric_half_width", "turn_age", "secm_switch_age",
            "default_metadata"]
 
 #: Earth's rotation rate (rad/s, IERS Conventions 2010), for inertial velocities.
@@ -93,6 +113,10 @@ BETA_START_LIMIT = 6.0
 #: Beta angle below which BeiDou-2 MEO and IGSO satellites switch to orbit normal.
 BEIDOU_BETA = np.radians(4.0)
 
+#: Yaw (rad) below which a BeiDou-3 SECM satellite takes the sign of the beta angle
+#: (Yang, Guo and Zhao 2021).
+SECM_SWITCH_YAW = np.radians(5.0)
+
 
 class YawLaw(NamedTuple):
     """A yaw-attitude law and its parameters.
@@ -101,14 +125,17 @@ class YawLaw(NamedTuple):
     ----------
     kind : str
         ``'gps-iir'``, ``'gps-iif'``, ``'glonass-m'``, ``'galileo'``,
-        ``'beidou-on'`` or ``'orbit-normal'``.
+        ``'beidou-on'``, ``'orbit-normal'``, ``'beidou-3-cast'`` or
+        ``'beidou-3-secm'``.
     max_yaw_rate : float or None
         Maximum yaw rate in deg/s (turn laws).
     yaw_bias : float
         Yaw bias in deg (GPS IIF: the noon turns of a beta between it and 0
         go the wrong way).
     beta_y, beta_x : float or None
-        The Galileo smoothing limits in deg.
+        The smoothing limits in deg: the beta angle below which, and the
+        orbit angle from noon and midnight within which, the yaw departs from
+        nominal (Galileo and BeiDou-3; BeiDou-3 SECM uses ``beta_y`` only).
     shadow : float or None
         Half-width of the Earth's shadow in deg, as the angle at the Earth's
         centre between the satellite and the anti-Sun direction (shadow-crossing
@@ -136,6 +163,8 @@ _IIF = YawLaw("gps-iif", 0.11, -0.7, shadow=13.25)
 _GLONASS = YawLaw("glonass-m", 0.25, shadow=14.2)
 _BEIDOU = YawLaw("beidou-on")
 _GEO = YawLaw("orbit-normal")
+_CAST = YawLaw("beidou-3-cast", beta_y=3.0, beta_x=6.0)
+_SECM = YawLaw("beidou-3-secm", beta_y=3.0)
 
 #: The law of each satellite block of the IGS metadata (``SATELLITE/IDENTIFIER``).
 LAWS = {
@@ -145,6 +174,7 @@ LAWS = {
     "GAL-1": YawLaw("galileo", beta_y=2.0, beta_x=15.0),
     "GAL-2": YawLaw("galileo", beta_y=4.1, beta_x=10.0),
     "BDS-2M": _BEIDOU, "BDS-2I": _BEIDOU, "BDS-2G": _GEO,
+    "BDS-3M-CAST": _CAST, "BDS-3I": _CAST, "BDS-3M-SECM-A": _SECM, "BDS-3M-SECM-B": _SECM,
 }
 
 #: The blocks each law serves.
@@ -259,9 +289,10 @@ def turn_age(law, beta, mu, rate_orbit):
     The start is that of the law's turn for the current beta angle: ``-half``
     from noon (and, for GPS IIR, midnight) for a turn law whose maximum yaw
     rate the nominal yaw would exceed, the shadow entry for GPS IIF and
-    GLONASS-M, ``beta_x`` before noon or midnight for Galileo. NaN where no
-    turn is under way (after the turn's nominal end, taken as the shadow's
-    half-width past noon or midnight, or ``beta_x`` for Galileo).
+    GLONASS-M, ``beta_x`` before noon or midnight for Galileo and BeiDou-3
+    CAST. NaN where no turn is under way (after the turn's nominal end, taken
+    as the shadow's half-width past noon or midnight, or ``beta_x`` for
+    Galileo and BeiDou-3 CAST), and always for the laws without turns.
 
     Examples
     --------
@@ -282,7 +313,7 @@ def turn_age(law, beta, mu, rate_orbit):
     night = _wrap(mu)
     age = np.full(beta.shape, np.nan)
     with np.errstate(invalid="ignore"):
-        if law.kind == "galileo":
+        if law.kind in ("galileo", "beidou-3-cast"):
             window = np.radians(law.beta_x)
             delta = np.where(np.cos(noon) > 0, noon, night)
             return np.where(np.abs(delta) <= window, (delta + window) / rate_orbit, np.nan)
@@ -303,6 +334,35 @@ def turn_age(law, beta, mu, rate_orbit):
         shadow = np.arccos(np.clip(np.cos(end) / np.cos(beta), -1, 1))
         inside = (np.abs(beta) < end) & (np.abs(night) <= shadow)
         return np.where(inside, (night + shadow) / rate_orbit, age)
+
+
+def secm_switch_age(law, mu, rate_orbit):
+    """Seconds since a BeiDou-3 SECM satellite's yaw was last within 5 deg of 0.
+
+    Below a beta of ``law.beta_y`` the satellite yaws as the nominal law would
+    for a beta of ``+-beta_y``; the sign is that of the beta angle when the yaw
+    was last below `SECM_SWITCH_YAW` (Yang, Guo and Zhao 2021), which happens
+    once an orbit, for orbit angles ``mu`` with ``sin(mu) > tan(beta_y) /
+    tan(5 deg)`` (between 36.8 and 143.2 deg for 3 deg). Zero there, else
+    the time since the orbit angle left that arc.
+
+    Examples
+    --------
+    Half an orbit after the end of the arc (143.2 deg), in units of the orbit
+    angle:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.yaw_models import LAWS, secm_switch_age
+    >>> rate = 2 * np.pi / 46396
+    >>> age = secm_switch_age(LAWS["BDS-3M-SECM-A"], np.radians(-36.8), rate)
+    >>> round(float(np.degrees(age * rate)), 1)
+    180.0
+    """
+    mu = np.asarray(mu, dtype=float)
+    low = np.arcsin(np.tan(np.radians(law.beta_y)) / np.tan(SECM_SWITCH_YAW))
+    last = np.pi - low
+    inside = (mu >= low) & (mu <= last)
+    return np.where(inside, 0.0, np.mod(mu - last, 2 * np.pi) / rate_orbit)
 
 
 def _turn(psi, beta, delta, rate_orbit, max_rate, sign, active_region, start_yaw,
@@ -341,14 +401,16 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_star
     radius : ndarray
         Geocentric distance of the satellite in metres (the shadow's width).
     beta_quadrature : ndarray, optional
-        Beta angle at the last orbit quadrature (BeiDou's mode switch);
-        ``beta`` if not given.
+        Beta angle at the last orbit quadrature (BeiDou-2's mode switch), or
+        for BeiDou-3 SECM when the yaw was last within 5 deg of 0
+        (`secm_switch_age`); ``beta`` if not given.
     beta_start : ndarray, optional
-        Beta angle when the current turn started (see `turn_age`). Where its sign differs from ``beta``'s, the
-        direction of a turn, the yaw it starts from and, through a shadow,
-        the yaw it aims at follow it, so that a turn keeps its direction when
-        the beta angle changes sign during it (as Kouba's ``eclips`` keeps
-        ``BETAINI``); ``beta`` if not given.
+        Beta angle when the current turn started (see `turn_age`). Where its
+        sign differs from ``beta``'s, the direction of a turn, the yaw it
+        starts from and, through a shadow, the yaw it aims at follow it, so
+        that a turn keeps its direction when the beta angle changes sign
+        during it (as Kouba's ``eclips`` keeps ``BETAINI``); ``beta`` if not
+        given.
 
     Returns
     -------
@@ -414,6 +476,22 @@ def model_yaw(law, beta, mu, rate_orbit, radius, beta_quadrature=None, beta_star
         shy = 0.5 * ((-np.sin(beta) - s)
                      + (np.sin(beta) - s) * np.cos(np.pi * np.abs(c) / np.sin(beta_x)))
         yaw = np.where(inside, np.arctan2(shy, c), yaw)
+    elif law.kind == "beidou-3-cast":
+        beta_y, beta_x = np.radians(law.beta_y), np.radians(law.beta_x)
+        delta = np.where(np.cos(noon) > 0, noon, night)
+        inside = (np.abs(start) < beta_y) & (np.abs(delta) <= beta_x)
+        # s: the sign of the nominal yaw at noon and midnight, -sign(beta) (+0 for 0).
+        s = np.where(start >= 0, -1.0, 1.0)
+        entry = np.where(np.cos(noon) > 0, np.pi, 0.0) - beta_x
+        psi_s = np.arctan2(s * np.abs(np.tan(start)), np.sin(entry))
+        smooth = s * np.pi / 2 + (psi_s - s * np.pi / 2) * np.cos(
+            np.pi * (delta + beta_x) / (2 * beta_x))
+        yaw = np.where(inside, smooth, yaw)
+    elif law.kind == "beidou-3-secm":
+        beta_y = np.radians(law.beta_y)
+        last = beta if beta_quadrature is None else np.asarray(beta_quadrature)
+        s = np.where(last >= 0, 1.0, -1.0)
+        yaw = np.where(np.abs(beta) <= beta_y, nominal_yaw(s * beta_y, mu), yaw)
     elif law.kind == "orbit-normal":
         yaw = np.zeros_like(yaw)
     elif law.kind == "beidou-on":
@@ -567,6 +645,8 @@ class ModelAttitude(Attitude):
         quadrature = start = None
         if self.law.kind == "beidou-on":
             quadrature = self._beta_before(obstime, np.mod(mu - np.pi / 2, 2 * np.pi) / rate)
+        elif self.law.kind == "beidou-3-secm":
+            quadrature = self._beta_before(obstime, secm_switch_age(self.law, mu, rate))
         elif self.law.kind != "orbit-normal":
             age = np.broadcast_to(turn_age(self.law, beta, mu, rate), beta.shape).ravel()
             inside = np.isfinite(age) & (np.abs(beta.ravel()) < np.radians(BETA_START_LIMIT))

@@ -27,6 +27,7 @@ from astropy.table import Table
 from checks import (
     ANTINFO,
     ANTINFO_MOUNTS,
+    CASA,
     DIFX,
     EHT2025,
     EHT_NAMES,
@@ -37,7 +38,14 @@ from checks import (
     PYUVDATA,
     REFERENCE_POINTS,
     SCHED,
+    MEERKAT_DISHES,
+    MEERKAT_EXTENT,
+    SIMMS,
+    SINGLE_SOURCE,
     SITES,
+    SKED,
+    SKED_GEODETIC,
+    SKED_MOUNTS,
     SOURCE_TAGS,
     SOURCES,
     TOLERANCES,
@@ -178,6 +186,32 @@ COMMON_NAMES = {
     "GREENLAND": ["Greenland Telescope"],
     # SCHED's PDBURE repeats NOEMA's position and is left out: its name stays.
     "NOEMA": ["PDBURE", "Plateau de Bure"],
+    "KOKEE12M": ["Kokee 12m"],
+    "MACGO12M": ["McDonald 12m", "MGO 12m"],
+    "ONSA13SW": ["Onsala 13SW", "Onsala twin SW"],
+    "ONSA13NE": ["Onsala 13NE", "Onsala twin NE"],
+    "NYALE13N": ["Ny-Alesund 13N"],
+    "NYALE13S": ["Ny-Alesund 13S"],
+    "SESHAN13": ["Sheshan 13m", "Seshan 13m"],
+    "TIANMA13": ["Tianma 13m"],
+    "NOBEYA45": ["Nobeyama 45m", "NRO 45m", "NRO"],
+    "BADRT13V": ["BADAR13M", "Badary 13m"],
+    "ZELRT13V": ["ZELEN13M", "Zelenchukskaya 13m"],
+}
+
+#: Stations that SCHED's files lack, and the source of their position:
+#: name -> (source tag, key). sked's position.cat (the IVS scheduling
+#: catalogue) holds the VGOS antennas, casacore's Observatories Nobeyama's 45 m
+#: (sked's NOBEYA45 is the 6 m antenna's position: see checks.py), DiFX's antenna_db
+#: the Russian 13 m VGOS antennas (under their DiFX names BADAR13M and
+#: ZELEN13M; the IVS names are antenna-info's). Their mounts come from sked's
+#: antenna.cat, else from antenna-info.
+OTHER_POSITIONS = {
+    "KOKEE12M": ("sked", "KOKEE12M"), "MACGO12M": ("sked", "MACGO12M"),
+    "ONSA13SW": ("sked", "ONSA13SW"), "NYALE13N": ("sked", "NYALE13N"),
+    "SESHAN13": ("sked", "SESHAN13"), "TIANMA13": ("sked", "TIANMA13"),
+    "NOBEYA45": ("casa-obs", "NRO"),
+    "BADRT13V": ("difx", "Badary 13m"), "ZELRT13V": ("difx", "Zelenchukskya13"),
 }
 
 #: VGOS stations (names only, their IVS names; no source used here lists the
@@ -186,7 +220,7 @@ COMMON_NAMES = {
 #: S/X antennas, not VGOS ones, and are not tagged.
 VGOS = {"GGAO12M", "WETTZ13S", "WETTZ13N", "ISHIOKA", "ONSA13NE", "ONSA13SW", "NYALE13N",
         "NYALE13S", "KOKEE12M", "MACGO12M", "RAEGSMAR", "RAEGYEB", "HOBART12", "KATH12M",
-        "YARRA12M", "WESTFORD"}
+        "YARRA12M", "WESTFORD", "SESHAN13", "TIANMA13", "BADRT13V", "ZELRT13V"}
 
 
 # A real ALMA Measurement Set (pyuvdata 3.1.3 test data, written by CASA 5.1.1's
@@ -313,6 +347,53 @@ def build():
             position_source=f"{SCHED}locations.dat line {loc['line']} ({loc['frame']})",
             mount_source=f"{SCHED}stations.dat line {station_line[station]} ({station}: "
                          f"MOUNT=ALTAZ, the antennas of the {network})",
+            focus_source="", checks=[])
+
+    # 1d. Stations SCHED's files lack (OTHER_POSITIONS): the position from
+    # sked's position.cat or DiFX's antenna_db, the mount from sked's
+    # antenna.cat or the IVS antenna-info file.
+    for name, (tag, key) in OTHER_POSITIONS.items():
+        if name in rows:
+            continue
+        entry = sources[tag][key]
+        if tag == "sked":
+            origin = entry["origin"]
+            solution = SKED_GEODETIC.match(origin)
+            if solution:
+                epoch = ", epoch 2021.0" if solution[1] == "2020c" else ""
+                frame = f"GSFC solution {solution[1]}{epoch}"
+            else:
+                frame = origin
+            where = f"{SKED}position.cat line {entry['line']} ({frame})"
+            codes = {entry["code"].upper()}
+        elif tag == "casa-obs":
+            entry = dict(xyz=entry)
+            where = f"{CASA} ({key})"
+            codes = set()
+        else:
+            where = f"{DIFX} line {entry['line']} ({entry['name']})"
+            codes = set()
+        antenna, info = sources["sked-ant"].get(name), sources["antinfo"].get(name)
+        if antenna is not None and antenna["axis"] in SKED_MOUNTS:
+            code = SKED_MOUNTS[antenna["axis"]]
+            mount_source = f"{SKED}antenna.cat line {antenna['line']} ({antenna['axis']})"
+        else:
+            code = ANTINFO_MOUNTS[info["mount"]]
+            mount_source = f"{ANTINFO} line {info['line']} ({info['mount']})"
+        rows[name] = dict(
+            name=name, aliases=[entry["code"]] if tag == "sked" else [], networks={"IVS"},
+            xyz=entry["xyz"], vel=[0.0] * 3, epoch=math.nan, mount=code, focus="cassegrain",
+            frame="", sched_codes=codes, position_source=where, mount_source=mount_source,
+            focus_source="", checks=[])
+
+    # 1e. The dishes of MeerKAT (simms's layout): alt-az, as the file says.
+    for name, entry in sources["simms"].items():
+        rows[name] = dict(
+            name=name, aliases=[], networks={"MeerKAT"}, xyz=entry["xyz"], vel=[0.0] * 3,
+            epoch=math.nan, mount=MOUNT_CODES.get(entry["mount"].replace("-", "")),
+            focus="cassegrain", frame="", sched_codes=set(),
+            position_source=f"{SIMMS} line {entry['line']} ({name})",
+            mount_source=f"{SIMMS} line {entry['line']} ({entry['mount']})",
             focus_source="", checks=[])
 
     # 2. The EVN planner: networks for SCHED stations (same code, within 5 km),
@@ -474,23 +555,42 @@ def build():
         row["checks"] = crosscheck(row["name"], row["xyz"], row["vel"], row["epoch"],
                                    is_geodetic(row["position_source"]), row["refs"], sources)
         row["mount_checks"] = mount_checks(row, sources)
+        if row["name"] in SINGLE_SOURCE:
+            row["position_source"] += f"; single source: {SINGLE_SOURCE[row['name']]}"
+        if row["name"] in MEERKAT_DISHES:
+            row["array_distance"] = float(np.linalg.norm(
+                np.subtract(row["xyz"], rows["MEERKAT"]["xyz"])))
+            row["position_source"] += f" ({row['array_distance']:.0f} m from MEERKAT)"
 
     # A station is kept if another source confirms its position, or if its
     # position is the current GSFC VLBI solution (the best there is) and no
     # other source used holds it; a kept station must agree with every source.
     confirmed = [row for row in rows.values()
-                 if any(c["status"] != "FAIL" for c in row["checks"])
+                 if any(c["status"] != "FAIL" for c in row["checks"]) and
+                 row["name"] not in SINGLE_SOURCE
                  or (not row["checks"] and "locations.dat line" in row["position_source"]
                      and row.get("frame", "").startswith("GSFC Jan. 12, 2020"))]
     confirmed += [row for row in rows.values() if row not in confirmed and
                   rows.get(DERIVED_FROM.get(row.get("frame"), "")) in confirmed]
-    kept = [row for row in rows.values() if row in confirmed or row["name"] in PAPER_FOCUS]
+    kept = [row for row in rows.values() if row in confirmed or row["name"] in PAPER_FOCUS
+            or row["name"] in SINGLE_SOURCE]
     left_out = sorted(row["name"] for row in rows.values() if row not in kept)
     axis_checks = {
         "locations.dat": validate_axistypes(axis_now, sched),
         "Master_NRAO/locations.dat.2005f": validate_axistypes(axis_2005, sched),
     }
     return kept, left_out, sorted(no_mount), axis_checks
+
+
+def array_failures(rows):
+    """The MeerKAT dishes against the array: its 64 dishes, each within its extent."""
+    dishes = {row["name"]: row["array_distance"] for row in rows if "array_distance" in row}
+    failed = [f"MeerKAT: {len(dishes)} dishes, the array has {len(MEERKAT_DISHES)} "
+              f"({', '.join(sorted(set(MEERKAT_DISHES) ^ set(dishes)))})"] \
+        if set(dishes) != set(MEERKAT_DISHES) else []
+    return failed + [f"{name}: {distance:.0f} m from MEERKAT, beyond the array's extent "
+                     f"({MEERKAT_EXTENT:g} m)" for name, distance in sorted(dishes.items())
+                     if distance > MEERKAT_EXTENT]
 
 
 def _clean_aliases(rows):
@@ -549,7 +649,7 @@ def to_table(rows):
         "mount": "geodetic station-catalogue mount code",
         "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
         "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
-                       "0 where none does; not applied by get_antenna",
+                       "0 where none does; get_antenna adds it as a fixed rotator",
         "position_source": "file and line, or paper table, of the position",
         "mount_source": "where the mount comes from",
         "focus_source": "where the focus comes from, or 'assumed: <reason>'",
@@ -596,10 +696,19 @@ def report(rows, left_out, no_mount, axis_checks):
         for ref, stated, status, _ in row["mount_checks"]:
             lines.append(f"  {row['name']:12s} {ref:28s} {stated:9s} (catalogue: "
                          f"{row['mount']} {row['focus'] or '-'})  {status}")
-    single = sorted(row["name"] for row in rows if not row["checks"])
+    single = sorted(row["name"] for row in rows
+                    if not row["checks"] and row["name"] not in SINGLE_SOURCE)
     lines += ["", "Kept with one source (the current GSFC solution, the paper, or an ATCA pad "
               "that SCHED derives from AT_W104; no other source used holds them): "
               + (", ".join(single) or "none")]
+    lines += ["", "Kept with one source, each with its reason (no other source used holds "
+              "the position; listed in checks.py SINGLE_SOURCE):"]
+    lines += [f"  {name:10s} {why}" for name, why in sorted(SINGLE_SOURCE.items())
+              if name not in MEERKAT_DISHES]
+    distances = [row["array_distance"] for row in rows if "array_distance" in row]
+    lines += [f"  M000-M063  {SINGLE_SOURCE[MEERKAT_DISHES[0]]}: {len(distances)} dishes, "
+              f"{min(distances):.0f} m to {max(distances):.0f} m from MEERKAT (the array's "
+              f"extent: {MEERKAT_EXTENT:g} m)"]
     lines += ["", "Left out (no other source confirms the position): "
               + (", ".join(left_out) or "none")]
     lines += ["", "Left out (GSFC geodetic stations whose mount no source gives): "
@@ -627,6 +736,7 @@ def main(argv=None):
     kept = {row["name"] for row in rows}
     failed += [f"{name}: left out, but the catalogue must hold it (REQUIRED)"
                for name in sorted(REQUIRED - kept)]
+    failed += array_failures(rows)
     if failed:
         print("Unexplained disagreements (fix the row, or list the reason in "
               "EXCEPTIONS, REFERENCE_POINTS or MOUNT_EXCEPTIONS):\n  " + "\n  ".join(failed),

@@ -19,11 +19,14 @@ from readers import (
     read_casa_sched,
     read_difx_antennas,
     read_eht,
+    read_itrf_layout,
     read_locations,
     read_observatories,
     read_planner,
     read_pyuvdata_telescopes,
     read_sites,
+    read_sked_antennas,
+    read_sked_positions,
 )
 
 SOURCES = Path(__file__).resolve().parent / "sources"
@@ -48,6 +51,20 @@ DIFX = "DiFX libraries/difxio/difxio/antenna_db.c (commit ed8d571)"
 
 ANTINFO = "IVS antenna-info.txt (A. Nothnagel, commit 9ec66be)"
 
+SKED = "sked_catalogs (commit 5aa7e2a) "
+
+SIMMS = "simms simms/observatories/meerkat.itrf.txt (commit e715505)"
+
+#: The MeerKAT dishes of simms's layout: the array's 64 (M000-M063), each
+#: within the array's extent (its longest baseline, 8 km) of the catalogue's
+#: MEERKAT (SCHED's, a position in the array's core). The build checks both.
+MEERKAT_DISHES = [f"M{i:03d}" for i in range(64)]
+MEERKAT_EXTENT = 8000.0
+MEERKAT_TEXT = ("simms's MeerKAT layout (ratt-ru/simms, 'Update MeerKAT coordinates', 2018) is "
+                "the only source used that names the dishes (casadata's meerkat.cfg is the "
+                "80-dish design layout, without names); the build checks the array's 64 dishes "
+                "and each against the catalogue's MEERKAT (SCHED)")
+
 PAPER = "paper"
 
 #: Common epoch (MJD, 2020 Jan 1) at which two positions are compared, each
@@ -56,8 +73,9 @@ COMPARE_EPOCH = 58849.0
 
 #: Tolerance of each class of comparison (metres), and what it compares.
 TOLERANCES = {
-    "geodetic": (1.0, "two VLBI solutions (GSFC, USNO, or the paper's Tables 1 and 3), "
-                      "both moved to 2020.0 with their velocities"),
+    "geodetic": (1.0, "two VLBI solutions (GSFC, USNO, sked's position.cat from GSFC "
+                      "2020c, or the paper's Tables 1 and 3), both moved to 2020.0 with "
+                      "their velocities (sked's, given without, as they are)"),
     "compiled": (50.0, "a position that only an observatory or a compiled list gives "
                        "(the EVN planner, eht-imaging, casacore's Observatories, "
                        "astropy-data's sites) against any other"),
@@ -78,10 +96,47 @@ SOURCE_TAGS = {
     "pyuvdata": (PYUVDATA, False),
     "difx": (DIFX, False),
     "antinfo": (ANTINFO, None),  # mounts and foci, no positions
+    "sked": (f"{SKED}position.cat", None),
+    "sked-ant": (f"{SKED}antenna.cat", None),  # mounts, no positions
+    "simms": (SIMMS, None),
+}
+
+#: sked position.cat origins that are VLBI solutions (geodetic positions):
+#: ``2020c`` the GSFC solution 2020c (epoch 2021 Jan 1, the file's header),
+#: ``GLB...`` older GSFC solutions. The file gives no velocities: its position
+#: is compared as given (one year of plate motion is under 10 cm).
+SKED_GEODETIC = re.compile(r"(2020c|GLB[0-9]+)\b")
+
+#: sked antenna.cat axis types and the catalogue's mount codes (SEST: the
+#: SEST's own alt-az slewing model).
+SKED_MOUNTS = {"AZEL": "AZEL", "HADC": "EQUA", "XYNS": "X-YN", "XYEW": "X-YE", "SEST": "AZEL"}
+
+#: Stations the catalogue keeps although a single source used here holds
+#: their position: name -> the reason. Listed by name in crosscheck.txt and on
+#: the docs page.
+SINGLE_SOURCE = {
+    "NOBEYA45": "casacore's Observatories NRO (latitude 35.9445 deg, the 45 m dish; the same "
+                "position as SCHED stations.dat's commented-out NOBEYA45 entry, so not an "
+                "independent one) is the only position of the 45 m; sked's NOBEYA45 is 407 m "
+                "from it (see the exception)",
+    "NYALE13N": "sked's position.cat gives it from the station (an e-mail of 2020 Aug 5); the "
+                "GSFC solutions of SCHED 1.29.1 and DiFX's antenna_db lack it; it lies 85 m "
+                "from its twin NYALE13S (GSFC solution)",
+    "BADRT13V": "DiFX's antenna_db gives it (as BADAR13M, 'to about 1 m, for "
+                "identification'); the GSFC solutions of SCHED 1.29.1 and sked's position.cat "
+                "lack it; it lies 152 m from the 32 m BADARY (GSFC solution)",
+    "ZELRT13V": "DiFX's antenna_db gives it (as ZELEN13M, 'to about 1 m, for "
+                "identification'); the GSFC solutions of SCHED 1.29.1 and sked's position.cat "
+                "lack it; it lies 120 m from the 32 m ZELENCHK (GSFC solution)",
+    **{name: MEERKAT_TEXT for name in MEERKAT_DISHES},
 }
 
 TOHOKU_TEXT = ("the 2011 Mar 11 Tohoku earthquake, whose jump and post-seismic motion the "
                "two solutions model differently")
+
+SKED_MOBILE = ("a mobile VLBI site, observed decades before both solutions' epochs: sked's "
+               "GSFC 2020c position (epoch 2021.0, no velocity given) and the GSFC 2014a "
+               "solution moved to 2020.0 extrapolate it with differently estimated velocities")
 
 OLD_SOLUTION = ("casadata's row is an old solution (USNO 1998-6, or as its FRAME says) at "
                 "epoch 1997.0, moved 23 years with its own velocity")
@@ -135,6 +190,20 @@ EXCEPTIONS = {
     ("GREENLAND", "planner"): (1500.0, "the planner's [Greenland] and eht-imaging's GLT "
                                        "differ by 1.3 km and no third source holds the GLT; "
                                        "1.3 km tilts the vertical by 0.012 deg"),
+    ("TSUKUB32", "sked"): (1.5, TOHOKU_TEXT),
+    ("MIZNAO10", "sked"): (1.5, TOHOKU_TEXT),
+    ("MIZUSGSI", "sked"): (1.5, TOHOKU_TEXT),
+    **{(name, "sked"): (1.5, SKED_MOBILE) for name in ("CTVASBAY", "GGAO7108", "OCOTILLO")},
+    ("GIFU3", "sked"): (300.0, "sked's GIFU3 has the origin 'GSI' (0.1 m digits, not a VLBI "
+                               "solution) and lies 265 m from the GSFC 2014a solution's "
+                               "antenna, whose position the catalogue keeps"),
+    ("NOBEYA45", "sked"): (420.0, "sked's NOBEYA45 (origin GLB659) lies 2.6 m from its "
+                                  "NOBEY_6M (GSFC 2020c): the 6 m antenna's position under "
+                                  "the 45 m's name, 407 m from casacore's NRO (the 45 m dish, "
+                                  "latitude 35.9445 deg against 35.9409 deg)"),
+    ("ARECIBO", "sked"): (55000.0, "sked's ARECIBO (origin 'Other') lies 54.6 km from the dish "
+                                   "(latitude 18.23 deg against 18.34 deg): not the antenna's "
+                                   "position"),
     ("SPT", "planner"): (1200.0, "the planner places SPT at the pole; DiFX's antenna_db "
                                  "1.16 km from it, at longitude -45 deg"),
     ("SPT", "eht2025"): (1200.0, "eht-imaging places SPT at the pole (0.01, 0.01 m: the "
@@ -205,7 +274,7 @@ OBSERVATORY_NAMES = {
     "ALMA": "ALMA", "ATCA": "ATCA", "GMRT": "GMRT_C02", "SMA": "SMA", "VLA": "VLA",
     "ASKAP": "ASKAP32", "MeerKAT": "MEERKAT", "NOEMA": "NOEMA", "APEX": "APEX", "SMT": "SMT",
     "JCMT": "JCMT", "PKS": "PARKES", "MOPRA": "MOPRA", "ARECIBO": "ARECIBO",
-    "GBT": "GBT-VLBA", "Effelsberg": "EFLSBERG", "WSRT": "WB_RT1", "NRO": "NOBEY_45",
+    "GBT": "GBT-VLBA", "Effelsberg": "EFLSBERG", "WSRT": "WB_RT1", "NRO": "NOBEYA45",
     "FAST": "FAST", "IRAM_PDB": "NOEMA", "ATA": "ATA", "HERA": "HERA", "OVRO-LWA": "OVRO-LWA",
     "MWA": "MWA",
 }
@@ -223,7 +292,7 @@ SITE_NAMES = {
 DIFX_NAMES = {"Apex": "APEX", "LMT": "LMT", "Pico Veleta": "PICOVEL", "SMA": "SMA",
               "SMT": "SMT", "JCMT": "JCMT", "Kitt Peak 12": "KP12", "South Pole": "SPT",
               "ALMA": "ALMA", "NYALES13S": "NYALE13S", "ONSALS60": "ONSALA60",
-              "DSS43": "TIDBIN64"}
+              "DSS43": "TIDBIN64", "Badary 13m": "BADRT13V", "Zelenchukskya13": "ZELRT13V"}
 
 #: antenna-info mount codes and the catalogue's.
 ANTINFO_MOUNTS = {"MO_AZEL": "AZEL", "MO_EQUA": "EQUA", "MO_XYNO": "X-YN", "MO_XYEA": "X-YE",
@@ -279,6 +348,10 @@ def load_sources():
         "pyuvdata": read_pyuvdata_telescopes(SOURCES / "pyuvdata" / "telescopes.py"),
         "difx": {e["name"]: e for e in read_difx_antennas(SOURCES / "difx" / "antenna_db.c")},
         "antinfo": read_antenna_info(SOURCES / "antenna-info" / "antenna-info.txt"),
+        "sked": read_sked_positions(SOURCES / "sked" / "position.cat"),
+        "sked-ant": read_sked_antennas(SOURCES / "sked" / "antenna.cat"),
+        "simms": {e["name"]: e for e in
+                  read_itrf_layout(SOURCES / "simms" / "meerkat.itrf.txt")},
     }
 
 
@@ -309,7 +382,8 @@ def references(row, sources):
                  if EHT_NAMES.get(e) == name and e not in EHT_NOT_CURRENT
                  and not row["position_source"].startswith(SOURCE_TAGS[tag][0])]
     refs += [f"casa-obs:{o}" for o, station in OBSERVATORY_NAMES.items()
-             if station == name and o in sources["casa-obs"]]
+             if station == name and o in sources["casa-obs"]
+             and not row["position_source"].startswith(f"{CASA} ({o})")]
     refs += [f"sites:{s}" for s, station in SITE_NAMES.items() if station == name
              and not row["position_source"].startswith(f"{SITES} ({s}:")]
     refs += [f"difx:{k}" for k, e in sources["difx"].items()
@@ -319,6 +393,8 @@ def references(row, sources):
     refs += [f"pyuvdata:{k}" for k, e in sources["pyuvdata"].items()
              if "xyz" in e and PYUVDATA_NAMES.get(k) == name
              and not row["position_source"].startswith(PYUVDATA)]
+    if name in sources["sked"] and not row["position_source"].startswith(SKED):
+        refs.append(f"sked:{name}")
     return refs
 
 
@@ -330,6 +406,9 @@ def source_record(sources, ref):
         return dict(xyz=record, vel=[0.0] * 3, epoch=math.nan, geodetic=False)
     if tag in ("eht2017", "eht2025", "planner", "sites", "pyuvdata", "difx"):
         return dict(xyz=record["xyz"], vel=[0.0] * 3, epoch=math.nan, geodetic=False)
+    if tag == "sked":
+        return dict(xyz=record["xyz"], vel=[0.0] * 3, epoch=math.nan,
+                    geodetic=bool(SKED_GEODETIC.match(record["origin"])))
     frame = record["frame"]
     return dict(xyz=record["xyz"], vel=record["vel"], epoch=record["epoch"],
                 geodetic=bool(re.match(r"(GSFC|USNO)", frame)))
@@ -389,6 +468,8 @@ def mount_checks(row, sources):
     refs = list(row["refs"])
     if row["name"] in sources["antinfo"]:
         refs.append(f"antinfo:{row['name']}")
+    if row["name"] in sources["sked-ant"] and not row["mount_source"].startswith(SKED):
+        refs.append(f"sked-ant:{row['name']}")
     for ref in refs:
         tag, key = ref.split(":", 1)
         record = sources[tag][key]
@@ -405,6 +486,11 @@ def mount_checks(row, sources):
                 agree = row["focus"] != "prime" and not (row["focus"] == "" and
                                                          row["mount"] == "GNSS")
                 found.append((ref, "focus secondary", "agree" if agree else "disagree"))
+            continue
+        if tag == "sked-ant":
+            stated = SKED_MOUNTS.get(record["axis"])
+            agree = _axis_family(stated) == _axis_family(row["mount"])
+            found.append((ref, f"mount {stated}", "agree" if agree else "disagree"))
             continue
         if tag == "difx" and record["mount"]:
             stated = DIFX_MOUNTS.get(record["mount"])
@@ -451,6 +537,10 @@ def failures(rows):
     lines = [f"{name}: the listed reason for {tag} is not needed (no such difference)"
              for name, tag in sorted({**EXCEPTIONS, **REFERENCE_POINTS, **MOUNT_EXCEPTIONS})
              if (name, tag) not in used]
+    lines += [f"{row['name']}: listed as single-source, but {c['ref']} confirms it (within "
+              f"{c['limit']:g} m): remove it from SINGLE_SOURCE"
+              for row in rows if row["name"] in SINGLE_SOURCE
+              for c in row["checks"] if c["status"] == "ok"]
     for row in rows:
         for check in row["checks"]:
             if check["status"] == "FAIL":

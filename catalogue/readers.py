@@ -282,3 +282,51 @@ def read_difx_antennas(path):
                                 xyz=[float(found[i]) for i in (3, 4, 5)],
                                 mount=found[8] or "", line=number))
     return entries
+
+
+def read_sked_positions(path):
+    """sked's ``position.cat``: IVS name -> two-letter code, position, origin and line.
+
+    ``origin`` is the file's last column(s): ``2020c`` for the GSFC solution
+    2020c (epoch 2021 Jan 1, the file's header says), another solution's name
+    (``GLB1069``, ``GLB659``) or a note (``SHAO``, ``email ...``).
+    """
+    found = {}
+    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+        words = line.split()
+        if line.startswith("*") or len(words) < 8:
+            continue
+        found.setdefault(words[1], dict(code=words[0], xyz=[float(w) for w in words[2:5]],
+                                        origin=" ".join(words[8:]), line=number))
+    return found
+
+
+def read_sked_antennas(path):
+    """sked's ``antenna.cat``: IVS name -> axis type, diameter (m), two-letter code, line.
+
+    The axis types are ``AZEL``, ``HADC`` (polar), ``XYNS``, ``XYEW`` and
+    ``SEST`` (the SEST's own alt-az slewing model).
+    """
+    found = {}
+    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+        words = line.split()
+        if line.startswith("*") or len(words) < 14:
+            continue
+        found.setdefault(words[1], dict(axis=words[2], diameter=float(words[12]),
+                                        code=words[13], line=number))
+    return found
+
+
+def read_itrf_layout(path):
+    """An array layout of simms (``*.itrf.txt``): entries in file order.
+
+    Each line: X, Y, Z (ITRF, m), dish diameter (m), antenna name and mount
+    (``ALT-AZ``); each entry: ``name``, ``xyz``, ``diameter``, ``mount``, ``line``.
+    """
+    entries = []
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        words = line.split()
+        if len(words) == 6 and not line.startswith("#"):
+            entries.append(dict(name=words[4], xyz=[float(w) for w in words[:3]],
+                                diameter=float(words[3]), mount=words[5], line=number))
+    return entries

@@ -9,10 +9,13 @@ import sys
 from contextlib import redirect_stdout
 from pathlib import Path
 
+import erfa
 import numpy as np
 import pytest
 from astropy import units as u
+from astropy.coordinates import AltAz, HADec, SkyCoord
 from astropy.table import Table
+from astropy.time import Time
 
 from astropy_feedrot import AltAzMount, CassegrainFocus, NasmythFocus
 from astropy_feedrot.cli import main as cli_main
@@ -65,7 +68,12 @@ def test_size_and_provenance():
     ("ATCA", {"AT_W104", "AT_N2", "AT_W392"}),
     ("ATA", {"ATA"}), ("HERA", {"HERA"}), ("MWA", {"MWA"}), ("OVRO-LWA", {"OVRO-LWA"}),
     ("VGOS", {"GGAO12M", "WETTZ13S", "ISHIOKA", "RAEGSMAR", "RAEGYEB", "ONSA13NE", "NYALE13S",
-              "WETTZ13N", "HOBART12", "KATH12M", "YARRA12M", "WESTFORD"}),
+              "WETTZ13N", "HOBART12", "KATH12M", "YARRA12M", "WESTFORD",
+              # sked's position.cat (with DiFX's antenna_db), or a single source.
+              "KOKEE12M", "MACGO12M", "ONSA13SW", "NYALE13N", "SESHAN13", "TIANMA13",
+              "BADRT13V", "ZELRT13V"}),
+    # simms's MeerKAT layout: the 64 dishes, and SCHED's MEERKAT.
+    ("MeerKAT", {"MEERKAT", *(f"M{i:03d}" for i in range(64))}),
     ("GMVA", {"EFLSBERG", "PICOVEL"}),
     ("IVS", {"WETTZELL", "HOBART26", "KOKEE"}),
 ])
@@ -241,6 +249,45 @@ def test_smt_and_sma_focus_from_eht_imaging():
     assert TABLE["feed_offset"][row] == eht["SMA"][4] == 45
     for name in ("JCMT", "ALMA"):
         assert eht[name][3] == 0 and get_antenna(name).focus == CassegrainFocus()
+
+
+# The EHT codes of eht-imaging's arrays/EHT2025.txt with FR_PAR_ANGLE 1 (the rows
+# whose feed rotation the file states; FR_PAR_ANGLE 0 marks rows without one).
+EHT_FEEDS = {"PV": "PICOVEL", "SMT": "SMT", "SMA": "SMA", "LMT": "LMT", "ALMA": "ALMA",
+             "APEX": "APEX", "JCMT": "JCMT"}
+
+
+@pytest.mark.parametrize("code", sorted(EHT_FEEDS))
+def test_eht_feed_rotation_is_eht_imaging_formula(code):
+    # eht-imaging's feed rotation: FR_PAR * PA + FR_ELEV * El + FR_OFFSET, with
+    # the coefficients read from its array file; PA from ERFA's hd2pa on
+    # astropy's HADec, El from astropy's AltAz (independent of the package's
+    # engine). The SMA's 45 deg offset is applied by get_antenna (a fixed rotator).
+    fr_par, fr_elev, fr_off = _eht_coefficients()[code]
+    assert fr_par == 1
+    antenna = get_antenna(EHT_FEEDS[code])
+    source = SkyCoord("12h30m49.42s +12d23m28.0s")  # M87
+    times = Time("2025-04-10T00:00") + np.arange(0, 24, 0.5) * u.hour
+    hadec = source.transform_to(HADec(obstime=times, location=antenna.location))
+    altaz = source.transform_to(AltAz(obstime=times, location=antenna.location))
+    up = altaz.alt > 5 * u.deg
+    assert up.any()
+    lat = antenna.location.to_geodetic().lat.to_value(u.rad)
+    pa = np.rad2deg(erfa.hd2pa(hadec.ha.to_value(u.rad), hadec.dec.to_value(u.rad), lat))
+    expected = fr_par * pa + fr_elev * altaz.alt.deg + fr_off
+    got = antenna.feed_rotation(source, times).deg
+    difference = (got - expected + 180) % 360 - 180
+    assert np.max(np.abs(difference[up])) < 1e-6  # deg
+
+
+def _eht_coefficients():
+    rows = {}
+    path = ROOT / "catalogue" / "sources" / "eht-imaging" / "EHT2025.txt"
+    for line in path.read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            parts = line.split()
+            rows[parts[0]] = tuple(float(v) for v in parts[6:9])
+    return rows
 
 
 def test_robledo_70_is_dss63():
@@ -460,3 +507,66 @@ def test_cli_coverage_station_names(capsys):
     assert cli_main(["coverage", "--stations", "KP", "EFLSBERG", *span]) != 0
     error = capsys.readouterr().err.strip().splitlines()
     assert len(error) == 1 and "ambiguous antenna name 'KP'" in error[0], error
+
+
+def test_meerkat_dishes():
+    # MeerKAT has 64 dishes, M000 to M063 (SARAO); its longest baseline is 8 km,
+    # so every dish lies within 8 km of the catalogue's MEERKAT, and no two
+    # 13.5 m dishes can stand closer than their diameter.
+    dishes = [a for a in get_network("MeerKAT") if a.name != "MEERKAT"]
+    assert sorted(a.name for a in dishes) == [f"M{i:03d}" for i in range(64)]
+    xyz = np.array([[a.location.x.to_value(u.m), a.location.y.to_value(u.m),
+                     a.location.z.to_value(u.m)] for a in dishes])
+    centre = get_antenna("MEERKAT").location
+    centre = np.array([centre.x.to_value(u.m), centre.y.to_value(u.m), centre.z.to_value(u.m)])
+    assert np.all(np.linalg.norm(xyz - centre, axis=1) < 8000)
+    separation = np.linalg.norm(xyz[:, None] - xyz[None], axis=2) + np.eye(64) * 1e9
+    assert separation.min() > 13.5
+    assert all(a.mount == AltAzMount() for a in dishes)
+    assert get_antenna("m063").name == "M063"
+
+
+def test_single_source_stations_say_why():
+    # A station kept with one source is named, with its reason, in
+    # crosscheck.txt and in its position_source (the docs page's column).
+    text = (ROOT / "catalogue" / "crosscheck.txt").read_text()
+    single = {"NOBEYA45", "NYALE13N", "BADRT13V", "ZELRT13V", *(f"M{i:03d}" for i in range(64))}
+    for row in ROWS:
+        name = str(TABLE["name"][row])
+        if name in single:
+            assert "; single source: " in _text(row, "position_source"), name
+            listed = "\n  M000-M063  " if re.fullmatch(r"M0[0-6][0-9]", name) else \
+                f"\n  {name} "
+            assert listed in text, name
+    assert {str(n) for n in TABLE["name"]} >= single
+
+
+def test_nobeyama_45m_is_not_the_6m_antenna():
+    # sked's NOBEYA45 is 2.6 m from its NOBEY_6M: not the 45 m dish, whose
+    # centre no other antenna can stand within 22 m of. The catalogue's is
+    # casacore's NRO, at the 45 m's latitude (35.9445 deg; the 6 m's 35.9409).
+    nro = get_antenna("Nobeyama 45m")
+    assert nro.name == "NOBEYA45" and get_antenna("NRO").name == "NOBEYA45"
+    assert nro.location.to_geodetic().lat.deg == pytest.approx(35.9445, abs=2e-4)
+    six = get_antenna("NOBEY_6M").location
+    assert np.linalg.norm([(nro.location.x - six.x).to_value(u.m),
+                           (nro.location.y - six.y).to_value(u.m),
+                           (nro.location.z - six.z).to_value(u.m)]) > 22.5
+    text = (ROOT / "catalogue" / "crosscheck.txt").read_text()
+    assert re.search(r"NOBEYA45 +sked:NOBEYA45 +407\.\d+ m +\(exception\)", text)
+
+
+@pytest.mark.parametrize("name, code, difx", [
+    # sked's position.cat (GSFC 2020c or the observatory) against DiFX's
+    # antenna_db, each within the 50 m of a compiled position (0.01 to 1.1 m).
+    ("KOKEE12M", "K2", "Kokee 12"), ("MACGO12M", "Mg", "MacDonald"),
+    ("ONSA13SW", "Ow", "Onsala 13SW"), ("SESHAN13", "S6", "Seshan 13m"),
+    ("TIANMA13", "T1", "Tianma 13m"),
+])
+def test_vgos_antennas_from_sked(name, code, difx):
+    row = list(TABLE["name"]).index(name)
+    assert _text(row, "position_source").startswith("sked_catalogs (commit 5aa7e2a) position.cat")
+    assert f"difx:{difx}" in _text(row, "crosschecks").split(",")
+    assert TABLE["largest_difference"][row] < 1.1
+    assert get_antenna(code).name == name
+    assert "VGOS" in _text(row, "networks").split(",")

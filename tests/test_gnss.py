@@ -392,25 +392,25 @@ def test_no_position(tmp_path, sp3):
 
 def test_model_attitude(tmp_path, sp3, orbits):
     # PRNs of 2023-01-25 in the IGS metadata: G05 GPS-IIR-M, G01 GPS-IIF... the synthetic
-    # orbits carry them; C19 (BeiDou-3) has no model and is left untouched.
+    # orbits carry them; C59 (BeiDou-3 GEO) has no model and is left untouched.
     from astropy_feedrot.gnss.synthetic import constellation as make
     from astropy_feedrot.yaw_models import orbit_angles
     from astropy_feedrot.attitude import sun_position
 
     named = make(START, {"G": 5, "E": 4, "R": 4, "C": 1})
-    named["C19"] = named.pop("C01")
+    named["C59"] = named.pop("C01")
     path = tmp_path / "named.sp3"
     write_sp3(path, named, START, 17)
     source = _rinex(tmp_path / "a.rnx", epochs=120, sats=list(named))
-    with pytest.warns(OrbitWarning, match=r"C19: no yaw model for its block BDS-3M"):
+    with pytest.warns(OrbitWarning, match=r"C59: no yaw model for its block BDS-3G"):
         report = correct_rinex(source, tmp_path / "model.rnx", path, attitude="model")
-    assert list(report.untouched) == ["C19"]
+    assert list(report.untouched) == ["C59"]
     correct_rinex(source, tmp_path / "nominal.rnx", path)
     model, nominal = _phases(tmp_path / "model.rnx"), _phases(tmp_path / "nominal.rnx")
     times = START + 3600 * u.s + np.arange(120) * 30 * u.s
     sun = sun_position(times)
     for prn, orbit in named.items():
-        if prn == "C19":
+        if prn == "C59":
             continue
         position = orbit.position(times)
         velocity = orbit.position(times + 0.5 * u.s) - orbit.position(times - 0.5 * u.s)

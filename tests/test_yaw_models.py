@@ -91,8 +91,8 @@ def test_iif_shadow_crossing_at_a_constant_rate():
     # Kouba's shadow: the satellite within 13.25 deg of the anti-Sun direction, seen
     # from the Earth's centre (eclips's ANIGHT = 180 + 13.25 deg; independent test of
     # the geometry, from the positions alone).
-    cosine = -np.sum(position * sun, axis=-1) / (np.linalg.norm(position, axis=-1)
-                                                  * np.linalg.norm(sun, axis=-1))
+    norms = np.linalg.norm(position, axis=-1) * np.linalg.norm(sun, axis=-1)
+    cosine = -np.sum(position * sun, axis=-1) / norms
     shadow = cosine > np.cos(np.radians(13.25))
     inside = shadow[1:] & shadow[:-1]
     assert 1500 < np.count_nonzero(shadow) < 4000  # about 55 minutes at this beta
