@@ -74,6 +74,7 @@ __all__ = [
     "clear_orientation_cache",
     "fast_path_applies",
     "site_position",
+    "distance_less",
     "FIXED_FRAMES",
     "FAST_PATH_MIN_DISTANCE",
     "DEFAULT_STEP",
@@ -178,7 +179,7 @@ def fast_path_applies(target, obstime):
     target = as_skycoord(target)
     if not isinstance(target.frame, FIXED_FRAMES) or target.data.differentials:
         return False
-    if not _distance_less(target.data):
+    if not distance_less(target.data):
         distance = target.spherical.distance
         if distance.unit.physical_type != "length" or not np.all(
                 np.abs(distance) >= FAST_PATH_MIN_DISTANCE):
@@ -190,8 +191,25 @@ def fast_path_applies(target, obstime):
     return target.size == 1 or int(np.prod(shape)) == target.size * obstime.size
 
 
-def _distance_less(data):
-    """Whether astropy treats coordinate data as a direction without distance."""
+def distance_less(data):
+    """Whether astropy treats coordinate data as a direction without distance.
+
+    Parameters
+    ----------
+    data : `~astropy.coordinates.BaseRepresentation`
+        The data of a coordinate (``coord.data``).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot.earth import distance_less
+    >>> distance_less(SkyCoord("03h19m48s +41d30m42s").data)
+    True
+    """
     return (isinstance(data, UnitSphericalRepresentation)
             or data.to_cartesian().x.unit == u.one)
 
@@ -470,8 +488,10 @@ class EarthOrientation:
         target : `~astropy.coordinates.SkyCoord`
             Directions fixed in a celestial frame (shape S), with or without
             distance.
-        location : `~astropy.coordinates.EarthLocation`
-            The site (a single one).
+        location : `~astropy.coordinates.EarthLocation` or None
+            The site (a single one), or None for the geocentre (the
+            directions a network shares; `~astropy_feedrot.grid_natural`
+            adds each site's diurnal aberration).
 
         Returns
         -------
@@ -501,8 +521,8 @@ class EarthOrientation:
         (100, 3)
         """
         target = as_skycoord(target)
-        location = as_location(location)
-        if not location.isscalar:
+        location = None if location is None else as_location(location)
+        if location is not None and not location.isscalar:
             raise ValueError(f"location must be a single site, got shape {location.shape}")
         icrs = target if isinstance(target.frame, ICRS) else target.icrs
         shape = icrs.shape
@@ -511,9 +531,9 @@ class EarthOrientation:
         pco = erfa.s2c(unit_vectors.lon.to_value(u.rad), unit_vectors.lat.to_value(u.rad))
         pco = pco.reshape(-1, 3)
         distance = None
-        if not _distance_less(data):
+        if not distance_less(data):
             distance = icrs.spherical.distance.to_value(u.au).reshape(-1)
-        site = site_position(location)
+        site = np.zeros(3) if location is None else site_position(location)
 
         def evaluate(instants):
             return self._directions_at(instants, pco, distance, site)
@@ -543,6 +563,31 @@ class EarthOrientation:
         0.984
         """
         return self._per_epoch(self._sun_at, 1)[0]
+
+    def geocentre_velocity(self):
+        """Barycentric velocity of the geocentre in ITRS, in units of c, at each epoch.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            ERFA ``epv00`` (the velocity of the annual aberration) rotated to
+            ITRS, at the flattened epochs.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot.earth import EarthOrientation
+        >>> v = EarthOrientation(Time("2023-01-25")).geocentre_velocity()
+        >>> round(float(np.linalg.norm(v)) * 299792.458, 1)  # km/s
+        30.3
+        """
+        return self._per_epoch(self._velocity_at, 1)[0]
+
+    def _velocity_at(self, instants):
+        x, y, s = self._cip.at(instants.tt).T
+        v = self._velocity.at(instants.tt)[:, 3:6] * _C_AU_PER_DAY
+        return instants.to_itrs(erfa.rxp(erfa.c2ixys(x, y, s), v))[np.newaxis]
 
     def _sun_at(self, instants):
         x, y, s = self._cip.at(instants.tt).T

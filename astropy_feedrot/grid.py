@@ -37,6 +37,7 @@ from .attitude import Attitude
 from .continuity import delay_of_difference, frequency_hz
 from .engine import ReceiverArrays, Receivers, check_form
 from .eop import iers_context
+from .earth import distance_less
 from .epochs import Epochs
 from .frames import (
     as_elevation_limit,
@@ -53,6 +54,7 @@ from .grid_arrays import (  # noqa: F401 (BLOCK_POINTS: kept importable from her
     nominal_attitude,
     wind_up,
 )
+from .grid_natural import natural_grid, topocentric
 from .orbits import Orbit
 from .polarization import polarization_sign
 from .rotators import rotation_angles
@@ -104,6 +106,10 @@ def _receivers(antennas):
         np.stack([np.stack(antenna.local_frame) for antenna in antennas]),
         [antenna.mount for antenna in antennas], [antenna.focus for antenna in antennas],
         [antenna.rotator for antenna in antennas])
+
+
+def _receivers_each(antennas):
+    return [_receivers([antenna]) for antenna in _check_antennas(antennas)]
 
 
 def receiver_arrays(antennas):
@@ -171,9 +177,10 @@ class _Grid(NamedTuple):
     min_sine: float
     shape: tuple
     rotation: np.ndarray = None  # (T, A) angles of 'series' rotators, or None
-    # For fixed natural sources: antenna index -> its directions (S, T, 3), made
-    # when needed (target is then None), so that no (T, A, S, 3) array is held.
-    per_antenna: object = None
+    # For fixed natural sources: their geocentric apparent directions (S, T, 3) and
+    # the geocentre's velocity (T, 3), shared by every antenna (target is then
+    # None: no (T, A, S, 3) array is held).
+    per_antenna: tuple = None
 
 
 def _check_targets_objects(targets):
@@ -266,6 +273,12 @@ def _source_directions(sources, antennas, epochs):
         for i, antenna in enumerate(antennas):
             out[:, i] = source_direction(sources, antenna.location, obstime[:, np.newaxis])
         return out
+    shared = _geocentric_directions(sources, epochs, None)
+    if shared is not None:  # the geocentric directions, each site's diurnal aberration
+        for i, antenna in enumerate(antennas):
+            out[:, i] = np.swapaxes(topocentric(*shared[:1], location_xyz(antenna.location),
+                                                shared[1]), 0, 1)
+        return out
     column = sources.reshape((n_s, 1))
     orientation = None
     if epochs.uses_nodes(column):  # every source at every epoch
@@ -280,27 +293,25 @@ def _source_directions(sources, antennas, epochs):
     return out
 
 
-def _antenna_directions(sources, antennas, epochs, masked):
-    """A function: antenna index -> directions (S, T, 3) of fixed natural sources, or None.
+def _geocentric_directions(sources, epochs, masked):
+    """Geocentric apparent directions (S, T, 3) of fixed natural sources and the
+    geocentre's velocity (T, 3) in units of c, or None.
 
-    None unless every source is fixed and the epochs' Earth orientation
-    serves them (`~astropy_feedrot.epochs.Epochs.uses_nodes`).
+    One set for every antenna (`~astropy_feedrot.grid_natural`): None for
+    moving sources, sources with a distance (their parallax differs between
+    sites), or where the epochs' Earth orientation does not serve them
+    (`~astropy_feedrot.epochs.Epochs.uses_nodes`). NaN at masked epochs.
     """
     if sources.ndim == 2:  # moving sources
         return None
     n_s = sources.shape[-1] if sources.ndim else 1
-    column = sources.reshape((n_s, 1))
-    if not epochs.uses_nodes(column):
+    icrs = sources.icrs
+    if not epochs.uses_nodes(sources.reshape((n_s, 1))) or not distance_less(icrs.data):
         return None
-    orientation, icrs, n_t = epochs.orientation, sources.icrs, epochs.size
-
-    def directions(i):
-        s = orientation.source_directions(icrs, antennas[i].location).reshape(n_s, n_t, 3)
-        if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
-            s[:, masked] = np.nan
-        return s
-
-    return directions
+    s = epochs.orientation.source_directions(icrs, None).reshape(n_s, epochs.size, 3)
+    if masked is not None:  # NaN directions: NaN feed rotation, not degenerate
+        s[:, masked] = np.nan
+    return s, epochs.orientation.geocentre_velocity()
 
 
 def _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy=False):
@@ -332,7 +343,7 @@ def _prepare(antennas, targets, obstime, polarization, form, min_elevation, lazy
         plain = all(antenna.rotator is None or antenna.rotator.mode != "series"
                     for antenna in antennas)
         if lazy and plain and not (masked is not None and masked.all()):
-            per_antenna = _antenna_directions(targets, antennas, epochs, masked)
+            per_antenna = _geocentric_directions(targets, epochs, masked)
         if per_antenna is not None:
             target = None
         elif masked is not None and masked.all():
@@ -458,17 +469,9 @@ def feed_rotation_grid(antennas, targets, obstime, *, polarization=None, form=No
     if grid.per_antenna is None:
         out, degenerate = grid_block(grid.target, grid.aligned, grid.transverse, grid.rotation,
                                      count=True, **_block_arguments(grid))
-    else:  # fixed natural sources: one antenna at a time, from the one Earth orientation
-        out = np.empty((int(np.prod(grid.shape[:-2])),) + grid.shape[-2:])
-        degenerate = 0
-        scale = grid.sign[0] * np.degrees(1.0)  # one hand for every natural source
-        for i, antenna in enumerate(_check_antennas(antennas)):
-            # The engine on (S, T) lines of sight of one antenna, contiguous as made.
-            s = grid.per_antenna(i)[:, :, np.newaxis, np.newaxis, :]
-            phase, below = engine.feed_rotation(_receivers([antenna]), s, form=grid.form,
-                                                min_sine=grid.min_sine)
-            degenerate += int(np.count_nonzero(engine.degenerate(phase, s, below)))
-            out[:, i, :] = phase[..., 0, 0].T * scale
+    else:  # fixed natural sources: shared directions, each antenna's aberration and angle
+        out, degenerate = natural_grid(*grid.per_antenna, _receivers_each(antennas), grid.sign[0],
+                                       grid.min_sine)
     engine.warn_degenerate(degenerate, out.size, points="grid points")
     return Angle(out.reshape(grid.shape), u.deg, copy=False)
 
@@ -537,7 +540,7 @@ def feed_rotation_rate_grid(antennas, sources, obstime, *, polarization=None,
     >>> rate.shape, rate.unit
     ((3, 2, 2), Unit("deg / s"))
     >>> one = antennas[1].feed_rotation_rate(sources[1], times)
-    >>> bool(np.allclose(rate[:, 1, 1], one, rtol=0, atol=1e-12 * u.deg / u.s))
+    >>> bool(np.allclose(rate[:, 1, 1], one, rtol=0, atol=1e-10 * u.deg / u.s))
     True
     """
     antennas = _check_antennas(antennas)
@@ -562,9 +565,13 @@ def feed_rotation_rate_grid(antennas, sources, obstime, *, polarization=None,
     sun = epochs.sun_position()[np.newaxis]
     out = np.empty((n_t, len(antennas), n_s))
     degenerate = 0
+    geocentric = _geocentric_directions(sources, epochs, epochs.mask)
     for i, antenna in enumerate(antennas):
-        s = source_direction(column, antenna.location, epochs)  # (S, T, 3)
         site = location_xyz(antenna.location)
+        if geocentric is None:
+            s = source_direction(column, antenna.location, epochs)  # (S, T, 3)
+        else:  # the shared directions, with this site's diurnal aberration
+            s = topocentric(geocentric[0], site, geocentric[1])
         s_rate = rates.source_direction_rate(s, pole, site, sun)
         rotation_rate = None
         if antenna.rotator is not None and antenna.rotator.mode == "series":

@@ -25,6 +25,11 @@ for a year). For each, the time per epoch, from `~astropy.time.Time` and
 * ``casacore``: python-casacore measures (the parallactic angle as CASA
   computes it: position angle of the pole in ``AZEL``), one epoch per
   ``do_frame``, as its API goes;
+* ``skyfield``: Skyfield's apparent position of a ``Star`` (JPL de421 and the
+  IERS finals with polar motion, both from ``skyfield-data``, offline) in its
+  ``itrs`` frame, and Eq 15 against the Earth-fixed pole and the geodetic
+  vertical: the pole ours measures from (Skyfield's ``hadec()`` measures from
+  the celestial intermediate pole, polar motion over cos(el) away);
 
 their ratios to the fast path, the largest angle differences against the
 rigorous path, the first call of a fresh process (beyond the import), and
@@ -76,6 +81,7 @@ from astropy.time import Time  # noqa: E402
 
 import astropy_feedrot  # noqa: E402
 from astropy_feedrot.earth import clear_orientation_cache  # noqa: E402
+from astropy_feedrot.engine import parallactic_angle  # noqa: E402
 from astropy_feedrot.eop import iers_context  # noqa: E402
 from astropy_feedrot.stations import get_antenna  # noqa: E402
 
@@ -112,14 +118,30 @@ except ImportError:  # pragma: no cover
     measures = quantity = casacore_version = None
 Time._get_delta_ut1_utc = _DELTA_UT1_UTC
 
+try:  # skyfield and skyfield-data (JPL's de421 and the IERS finals, offline) are in "bench"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # skyfield-data's "has expired": dates here are older
+        import skyfield
+        import skyfield_data
+        from skyfield.api import Loader, Star, wgs84
+        from skyfield.data import iers as skyfield_iers
+        from skyfield.framelib import itrs as skyfield_itrs
+except ImportError:  # pragma: no cover
+    skyfield = None
+
 SOURCE_RA, SOURCE_DEC = "03h19m48.16s", "+41d30m42.1s"  # 3C 84
 STATION = "WETTZ13S"
-PATHS = ("fast", "warm", "rigorous", "astroplan", "astropy+hd2pa", "erfa", "casacore")
+PATHS = ("fast", "warm", "rigorous", "astroplan", "astropy+hd2pa", "erfa", "casacore",
+         "skyfield")
 # Compared with the rigorous path for accuracy. casacore is timed only: CASA's
 # parallactic angle leaves out polar motion and diurnal aberration and uses the
 # geocentric vertical (0.3-5 arcsec off by design), and without its measures
 # data (not installed here) it falls back to its own approximations.
-COMPARED = ("fast", "warm", "astroplan", "astropy+hd2pa", "erfa")
+# Skyfield gives its apparent direction in ITRS (its polar motion installed from
+# the IERS finals of skyfield-data); the angle is then Eq 15 against the same
+# Earth-fixed pole and geodetic vertical as ours (its hadec() would measure
+# from the celestial intermediate pole instead).
+COMPARED = ("fast", "warm", "astroplan", "astropy+hd2pa", "erfa", "skyfield")
 # The paths that --max-slow caps.
 SLOW = ("rigorous", "astropy+hd2pa", "erfa", "casacore")
 # Paths computed one epoch per call of the peer (capped harder, --max-loop).
@@ -240,9 +262,38 @@ def run_casacore(antenna, source, times):
     return out * u.rad
 
 
+_SKYFIELD = {}
+
+
+def _skyfield():
+    """Skyfield's timescale (with polar motion) and JPL de421, from skyfield-data, once."""
+    if not _SKYFIELD:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # skyfield-data's "has expired"
+            load = Loader(skyfield_data.get_skyfield_data_path())
+            ts = load.timescale(builtin=True)
+            with load.open("finals2000A.all") as f:
+                finals = skyfield_iers.parse_x_y_dut1_from_finals_all(f)
+            skyfield_iers.install_polar_motion_table(ts, finals)
+            _SKYFIELD.update(ts=ts, earth=load("de421.bsp")["earth"])
+    return _SKYFIELD["ts"], _SKYFIELD["earth"]
+
+
+def run_skyfield(antenna, source, times):
+    """Skyfield: the apparent position in ITRS, then Eq 15 (z pole, geodetic vertical)."""
+    ts, earth = _skyfield()
+    lon, lat, height = antenna.location.to_geodetic("WGS84")
+    site = earth + wgs84.latlon(lat.deg, lon.deg, elevation_m=height.to_value(u.m))
+    star = Star(ra_hours=source.ra.hour, dec_degrees=source.dec.deg)
+    apparent = site.at(ts.from_astropy(times)).observe(star).apparent()
+    s = np.moveaxis(apparent.frame_xyz(skyfield_itrs).au, 0, -1)
+    s = s / np.linalg.norm(s, axis=-1, keepdims=True)
+    return parallactic_angle(s, antenna.local_frame.up) * u.rad
+
+
 RUNNERS = {"fast": run_fast, "warm": run_fast, "rigorous": run_rigorous,
            "astroplan": run_astroplan, "astropy+hd2pa": run_astropy, "erfa": run_erfa,
-           "casacore": run_casacore}
+           "casacore": run_casacore, "skyfield": run_skyfield}
 
 
 def degrees(angle):
@@ -352,8 +403,7 @@ def print_environment():
     print(f"erfa              pyerfa {erfa.__version__}, ERFA {erfa.version.erfa_version}")
     print(f"astroplan         {astroplan.__version__ if astroplan else 'not installed'}")
     print(f"casacore          {casacore_version or 'not installed'}")
-    print("skyfield          not run: it needs a JPL ephemeris file for apparent star "
-          "positions, which the benchmark does not download")
+    print(f"skyfield          {skyfield.__version__ + ' (de421 from skyfield-data)' if skyfield else 'not installed'}")
     print(f"astropy_feedrot   {astropy_feedrot.__version__} "
           f"({os.path.dirname(astropy_feedrot.__file__)})")
     print(f"platform          {platform.platform()}")
@@ -507,7 +557,8 @@ def main(argv=None):
 
     antenna = get_antenna(STATION)
     paths = [p for p in PATHS if (p != "astroplan" or Observer is not None)
-             and (p != "casacore" or measures is not None)]
+             and (p != "casacore" or measures is not None)
+             and (p != "skyfield" or skyfield is not None)]
     print(f"Antenna {antenna.name}: {antenna.mount!r}, {antenna.focus!r} at "
           f"lat {antenna.location.lat.deg:.4f} deg, lon {antenna.location.lon.deg:.4f} deg")
     print(f"Source 3C 84, ICRS {SOURCE_RA} {SOURCE_DEC}")
@@ -520,6 +571,8 @@ def main(argv=None):
     print("  erfa           erfa.atco13 from the Time (astropy's UT1 - UTC and polar motion), "
           "erfa.hd2pa")
     print("  casacore       measures: posangle of the pole in AZEL, one do_frame per epoch")
+    print("  skyfield       site.at(t).observe(Star).apparent() in ITRS (de421, polar motion), "
+          "Eq 15 against the Earth-fixed pole")
     print()
 
     first = None

@@ -489,11 +489,15 @@ def test_dask_equals_numpy(antennas, satellites, natural):
     assert lazy.chunks[0] == (13,) * 7 + (9,)
     values = lazy.compute()
     assert np.array_equal(np.isnan(values), np.isnan(eager.deg))
-    np.testing.assert_allclose(values, eager.deg, rtol=0, atol=1e-12)
+    # Natural sources: the same lines of sight, but the numpy grid takes the
+    # angle of most antennas from scalar products (grid_natural), the dask path
+    # from the engine: rounding, up to 1e-10 rad near the zenith and the pole.
+    atol = 1e-8 if natural else 1e-12
+    np.testing.assert_allclose(values, eager.deg, rtol=0, atol=atol)
     # Default chunks, and the scalar-time shape.
     np.testing.assert_allclose(feed_rotation_grid_dask(everyone, targets, TIMES).compute(),
                                feed_rotation_grid(everyone, targets, TIMES).deg,
-                               rtol=0, atol=1e-12)
+                               rtol=0, atol=atol)
     one = feed_rotation_grid_dask(everyone, targets, TIMES[3])
     assert one.shape == eager.shape[1:]
     # Rotation delays straight from the dask array (only two columns computed).

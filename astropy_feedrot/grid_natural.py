@@ -1,0 +1,415 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Natural sources on a grid: one set of apparent directions for every antenna.
+
+What the apparent direction of a source fixed in a celestial frame owes to
+the site is small: the diurnal aberration (the site's velocity
+:math:`\\Omega\\,\\hat{z}\\times\\vec{r}`, at most 465 m/s, moves it by up to
+0.32"), the parallax of the light deflection (below 1e-4 mas) and, for
+sources with a distance, the parallax (these are left to the per-site path).
+Everything else (precession-nutation, annual aberration, light deflection,
+the Earth's rotation and polar motion) is the same at every site. So a network
+computes the geocentric apparent directions once per epoch and source
+(`~astropy_feedrot.earth.EarthOrientation.source_directions` with no site),
+and each antenna adds its diurnal aberration:
+
+.. math::
+
+    \\hat{s}_\\mathrm{site} = \\hat{s}\\,(1 - k) + (1 - k_V/2)\\,\\vec{\\beta}
+    + (k/2)\\,\\vec{V}, \\qquad k = \\hat{s}\\cdot\\vec{\\beta},\\;
+    k_V = \\hat{s}\\cdot\\vec{V},\\;
+    \\vec{\\beta} = \\Omega\\,(\\hat{z}\\times\\vec{r}_\\mathrm{site}) / c,
+
+with :math:`\\vec{V}` the geocentre's barycentric velocity in units of c
+(`~astropy_feedrot.earth.EarthOrientation.geocentre_velocity`): the change of
+ERFA's relativistic aberration (``ab``) from :math:`\\vec{V}` to
+:math:`\\vec{V} + \\vec{\\beta}`, to first order in :math:`\\beta` and
+:math:`\\beta V` (the first order alone is off by up to 0.006 mas; this form
+by 1e-4 mas, of unit length to 1e-12). The axis of :math:`\\Omega` is taken
+as the Earth-fixed :math:`\\hat{z}` rather than the celestial pole (below
+1e-12 rad).
+
+For tracking antennas whose focus has a closed form (`feed_rotation_block`;
+fixed and sky rotators included),
+Eq 13 needs no line of sight at all, only its scalar products with a few
+vectors fixed at the site, :math:`\\hat{s}\\cdot(\\hat{a}\\times\\hat{z})`,
+:math:`\\hat{s}\\cdot\\hat{a}` and :math:`\\hat{s}\\cdot\\hat{z}` (and the
+site's east, north and up for a focus term or an elevation limit): one small
+matrix product per antenna and block of epochs, the diurnal aberration
+applied to the products. Other antennas (stationary dipoles, traced mirrors,
+rotators turned by a series) go through the engine on the corrected lines of sight.
+"""
+
+from typing import NamedTuple
+
+import erfa
+import numpy as np
+
+from . import engine, kernel
+from .grid_arrays import epoch_blocks
+from .instants import OMEGA
+
+__all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_rotation_block",
+           "fast_receiver", "engine_block", "natural_grid"]
+
+
+#: Products of near-polar lines of sight are checked again from their x and y
+#: components below this value of 1 - s_z**2 (the kernel's own test).
+_NEAR_POLE = 1e-10
+
+
+def diurnal_beta(xyz):
+    """The velocity of a site from the Earth's rotation, in units of c, in ITRS.
+
+    Parameters
+    ----------
+    xyz : array-like, shape (..., 3)
+        Geocentric ITRS positions in metres.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        :math:`\\Omega\\,(\\hat{z}\\times\\vec{r}) / c`, with :math:`\\Omega`
+        the rate of the Earth rotation angle (ERFA's value).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.grid_natural import diurnal_beta
+    >>> beta = diurnal_beta([6378137.0, 0.0, 0.0])  # on the equator
+    >>> float(beta[1] * 299792458.0)  # m/s  # doctest: +FLOAT_CMP
+    465.1013911634
+    """
+    xyz = np.asarray(xyz, dtype=float)
+    beta = np.zeros(xyz.shape)
+    beta[..., 0] = -xyz[..., 1]
+    beta[..., 1] = xyz[..., 0]
+    return beta * (OMEGA / erfa.CMPS)
+
+
+def topocentric(geocentric, xyz, velocity):
+    """Geocentric apparent directions moved to a site by its diurnal aberration.
+
+    Parameters
+    ----------
+    geocentric : ndarray, shape (..., 3)
+        Apparent unit vectors seen from the geocentre, in ITRS.
+    xyz : array-like, shape (3,)
+        The site's geocentric ITRS position in metres.
+    velocity : ndarray, shape (..., 3)
+        The geocentre's barycentric velocity in ITRS, in units of c
+        (broadcast with ``geocentric``).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        :math:`\\hat{s}(1 - k) + (1 - k_V/2)\\vec{\\beta} + (k/2)\\vec{V}`
+        (see the module's description), normalized (its length is 1 to
+        1e-12, which moves the elevation by microradians within an arcsecond
+        of the zenith).
+
+    Examples
+    --------
+    A source at the zenith of a site on the equator moves by its speed over
+    c, 465 m/s (0.32"), towards the east:
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.grid_natural import topocentric
+    >>> s = topocentric(np.array([1.0, 0.0, 0.0]), [6378137.0, 0, 0], np.zeros(3))
+    >>> float(np.degrees(s[1]) * 3600)  # arcsec  # doctest: +FLOAT_CMP
+    0.32000134
+    """
+    beta = diurnal_beta(xyz)
+    k = geocentric[..., 0] * beta[0] + geocentric[..., 1] * beta[1]  # beta has no z
+    g = 1.0 - 0.5 * np.einsum("...i,...i->...", geocentric, velocity)
+    s = (geocentric * (1.0 - k)[..., np.newaxis] + g[..., np.newaxis] * beta
+         + (0.5 * k)[..., np.newaxis] * velocity)
+    s /= np.sqrt(np.einsum("...i,...i->...", s, s))[..., np.newaxis]  # 1e-12 from unit
+    return s
+
+
+class SharedBlock(NamedTuple):
+    """What every antenna shares in a block of epochs (`shared_block`)."""
+
+    components: np.ndarray  # (3, S, t): x, y, z of the geocentric directions
+    g: np.ndarray  # (S, t): 1 - s.V / 2
+    half_velocity: np.ndarray  # (3, t): V / 2
+
+
+def shared_block(geocentric, velocity):
+    """The shared part of `feed_rotation_block` for a block of epochs.
+
+    Parameters
+    ----------
+    geocentric : ndarray, shape (S, t, 3)
+        Geocentric apparent unit vectors in ITRS.
+    velocity : ndarray, shape (t, 3)
+        The geocentre's barycentric velocity in ITRS, in units of c.
+
+    Returns
+    -------
+    SharedBlock
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.grid_natural import shared_block
+    >>> block = shared_block(np.array([[[0.0, 0.0, 1.0]]]), np.array([[0.0, 0.0, 1e-4]]))
+    >>> block.components.shape, float(block.g[0, 0])
+    ((3, 1, 1), 0.99995)
+    """
+    components = np.ascontiguousarray(np.moveaxis(geocentric, -1, 0))
+    half = 0.5 * np.ascontiguousarray(velocity.T)
+    g = components[0] * -half[0]
+    g -= components[1] * half[1]
+    g -= components[2] * half[2]
+    g += 1.0
+    return SharedBlock(components, g, half)
+
+
+def feed_rotation_block(block, receivers, *, min_sine=None):
+    """Feed rotation (RCP, radians) of one antenna from geocentric apparent directions.
+
+    Parameters
+    ----------
+    block : SharedBlock
+        The geocentric directions of S sources at t epochs (`shared_block`).
+    receivers : `~astropy_feedrot.engine.Receivers`
+        One tracking antenna whose focus has a closed form, without a
+        ``'series'`` rotator (`fast_receiver`).
+    min_sine : float, optional
+        NaN where the sine of the elevation is below this.
+
+    Returns
+    -------
+    phase : ndarray, shape (S, t)
+        As ``engine.feed_rotation(receivers, s)`` with the site's lines of
+        sight ``s = topocentric(geocentric, site, velocity)``: Eq 13 with the fixed
+        axis, plus the focus terms (Eqs 38-41), NaN where undefined or below
+        the limit.
+    below : ndarray of bool, shape (S, t), or None
+        Where the source is below the limit (None without one).
+
+    Raises
+    ------
+    ValueError
+        For receivers that `fast_receiver` refuses.
+
+    Notes
+    -----
+    The products are sums over the three rows, not a matrix product: a
+    multithreaded BLAS on a busy machine costs more than it saves here.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot import AltAzMount
+    >>> from astropy_feedrot.engine import Receivers, feed_rotation
+    >>> from astropy_feedrot.grid_natural import feed_rotation_block, shared_block, topocentric
+    >>> r = np.sqrt(0.5)
+    >>> enu = [[0, 1.0, 0], [-r, 0, r], [r, 0, r]]  # latitude 45 deg, longitude 0
+    >>> rx = Receivers.from_mounts([[4.5e6, 0, 4.5e6]], [enu], [AltAzMount()], [None])
+    >>> s = np.array([[[0.0, -1.0, 0.0], [0.6, 0.0, 0.8]]])  # 1 source, 2 epochs
+    >>> v = np.array([[1e-4, 0.0, 0.0], [0.0, 1e-4, 0.0]])
+    >>> phase, below = feed_rotation_block(shared_block(s, v), rx)
+    >>> site_s = topocentric(s, [4.5e6, 0, 4.5e6], v)
+    >>> engine_phase, _ = feed_rotation(rx, site_s[..., None, None, :])
+    >>> bool(np.allclose(phase, engine_phase[..., 0, 0], rtol=0, atol=1e-15))
+    True
+    """
+    if not fast_receiver(receivers):
+        raise ValueError(f"feed_rotation_block takes one tracking antenna with a closed-form "
+                         f"focus and no 'series' rotator, got {receivers!r}; use "
+                         "engine_block")
+    axis = receivers.fixed_axis[0]
+    east, north, up = receivers.station_axes[0]
+    m_e, m_a = receivers.focus_terms[0]
+    beta = diurnal_beta(receivers.station_xyz[0])
+    columns = [np.cross(axis, kernel.NORTH_POLE), axis]
+    gx, gy, gz = block.components
+    half = block.half_velocity
+
+    def product(c):  # the site's line of sight . c (the module's form)
+        value = gx * c[0]
+        value += gy * c[1]
+        if c[2]:
+            value += gz * c[2]
+        value *= f
+        value += block.g * (beta[0] * c[0] + beta[1] * c[1])  # beta has no z
+        value += k * (c[0] * half[0] + c[1] * half[1] + c[2] * half[2])
+        return value
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = gx * beta[0]
+        k += gy * beta[1]  # s . beta
+        f = 1.0 - k
+        num = product(columns[0])
+        along = product(columns[1])
+        tz = product(kernel.NORTH_POLE)
+        # |s|^2 - 1 of the site's line of sight (of order beta^2): the kernel's
+        # receiver_term does not assume unit lines, and near the pole or the
+        # fixed axis the angle turns with it.
+        long = block.g * block.g
+        long *= beta @ beta
+        long -= k * k
+        long += block.g * k * (2.0 * (beta[0] * half[0] + beta[1] * half[1]))
+        # a.z |P z|^2 - (s.z)(s.a - (s.z)(a.z)), Eq 13 as the kernel writes it
+        den = axis[2] * long
+        den += axis[2]
+        den -= tz * along
+        pole = (1.0 - tz) * (1.0 + tz)
+        pole += long
+        near = np.flatnonzero(pole < _NEAR_POLE)
+        if near.size:  # the exact |P z|^2 from the x and y components
+            x = product([1.0, 0.0, 0.0])[near]
+            y = product([0.0, 1.0, 0.0])[near]
+            pole[near] = x * x + y * y
+            den[near] = axis[2] * pole[near] - tz[near] * (axis[0] * x + axis[1] * y)
+        # Undefined (the kernel's receiver_term): the line of sight within about
+        # 0.2 mas of the pole or of the fixed axis.
+        tiny = kernel.DEGENERATE_NORM**2
+        defined = (pole >= tiny) & (num * num + den * den >= tiny * pole)
+        phase = np.arctan2(num, den)
+        phase[~defined] = np.nan
+        sine = None
+        if m_e or min_sine is not None:
+            sine = product(up)
+            sine *= 1.0 - 0.5 * long  # of the unit line of sight
+        if m_e or m_a:
+            if m_e:
+                phase += m_e * np.arcsin(np.clip(sine, -1.0, 1.0))
+            if m_a:
+                phase += m_a * np.mod(np.arctan2(product(east), product(north)), 2 * np.pi)
+            phase = kernel.wrap_phase(phase)
+        # Rotators (as the engine's): 'fixed' adds its angle; 'sky' holds the
+        # receiver term at its angle, and a natural source's transmitter term is
+        # 0 wherever the pole projects (NaN at the celestial pole).
+        angle = receivers.rotator_angle[0]
+        if receivers.fixed_index.size:
+            phase = kernel.wrap_phase(phase + angle)
+        elif receivers.sky_index.size:
+            phase = np.where(pole >= tiny, float(kernel.wrap_phase(angle)), np.nan)
+        below = None
+        if min_sine is not None:
+            below = sine < min_sine
+            phase[below] = np.nan
+    return phase, below
+
+
+def fast_receiver(receivers):
+    """Whether `feed_rotation_block` serves these receivers (one tracking antenna with a
+    closed-form focus, without a ``'series'`` rotator).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.engine import Receivers
+    >>> from astropy_feedrot.grid_natural import fast_receiver
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> fast_receiver(Receivers.from_arrays(receiver_arrays([get_antenna("WETTZ13S")])))
+    True
+    """
+    return (len(receivers) == 1 and not receivers.stationary[0]
+            and not receivers.traced_index.size and not receivers.series_index.size)
+
+
+def engine_block(geocentric, velocity, receivers, *, min_sine=None):
+    """`feed_rotation_block` for any antenna: the engine on the site's lines of sight.
+
+    Parameters
+    ----------
+    geocentric : ndarray, shape (S, t, 3)
+        Geocentric apparent unit vectors in ITRS.
+    velocity : ndarray, shape (t, 3)
+        The geocentre's barycentric velocity in ITRS, in units of c.
+    receivers : `~astropy_feedrot.engine.Receivers`
+        One antenna (without a ``'series'`` rotator).
+    min_sine : float, optional
+        As for `~astropy_feedrot.engine.feed_rotation`.
+
+    Returns
+    -------
+    phase, below : ndarray, shape (S, t), and ndarray or None
+        As `~astropy_feedrot.engine.feed_rotation`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.engine import Receivers
+    >>> from astropy_feedrot.grid_natural import engine_block
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> rx = Receivers.from_arrays(receiver_arrays([get_antenna("DBR205")]))
+    >>> phase, below = engine_block(np.array([[[0.6, 0.0, 0.8]]]), np.zeros((1, 3)), rx)
+    >>> phase.shape
+    (1, 1)
+    """
+    s = topocentric(geocentric, receivers.station_xyz[0], velocity)
+    phase, below = engine.feed_rotation(receivers, s[:, :, np.newaxis, np.newaxis, :],
+                                        min_sine=min_sine)
+    return phase[..., 0, 0], None if below is None else below[..., 0, 0]
+
+
+def natural_grid(geocentric, velocity, receivers, sign=1.0, min_sine=None):
+    """Feed rotation (T, A, S) in degrees of antennas from shared geocentric directions.
+
+    Blocks of epochs (`~astropy_feedrot.grid_arrays.epoch_blocks`), each
+    antenna in turn: `feed_rotation_block` where it serves (`fast_receiver`),
+    else `engine_block`.
+
+    Parameters
+    ----------
+    geocentric : ndarray, shape (S, T, 3)
+        Geocentric apparent unit vectors in ITRS (NaN at masked epochs).
+    velocity : ndarray, shape (T, 3)
+        The geocentre's barycentric velocity in ITRS, in units of c.
+    receivers : list of `~astropy_feedrot.engine.Receivers`
+        One per antenna (A), none with a ``'series'`` rotator.
+    sign : float, optional
+        +1 (RCP) or -1 (LCP).
+    min_sine : float, optional
+        NaN below this sine of the elevation.
+
+    Returns
+    -------
+    out : ndarray, shape (T, A, S)
+        Degrees.
+    degenerate : int
+        Grid points NaN for their geometry (not masked, not below the limit).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import Receivers
+    >>> from astropy_feedrot.grid import receiver_arrays
+    >>> from astropy_feedrot.grid_natural import natural_grid
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> rx = [Receivers.from_arrays(receiver_arrays([get_antenna(n)]))
+    ...       for n in ("WETTZ13S", "GGAO12M")]
+    >>> s = np.array([[[0.6, 0.0, 0.8], [0.0, 0.6, 0.8]]])  # 1 source, 2 epochs
+    >>> out, degenerate = natural_grid(s, np.zeros((2, 3)), rx)
+    >>> out.shape, degenerate
+    ((2, 2, 1), 0)
+    """
+    n_s, n_t = geocentric.shape[:2]
+    out = np.empty((n_t, len(receivers), n_s))
+    degenerate = 0
+    scale = sign * np.degrees(1.0)
+    # Blocks of a quarter of the engine's: the memory of the traced mirrors'
+    # temporaries stays below that of a loop over antennas.
+    for block in epoch_blocks(n_t, n_s * 4):
+        g, v = geocentric[:, block], velocity[block]  # (S, t, 3), (t, 3)
+        shared = shared_block(g, v)
+        valid = np.isfinite(shared.components[2])  # False at masked epochs
+        valid = None if valid.all() else valid
+        for i, rx in enumerate(receivers):
+            if fast_receiver(rx):
+                phase, below = feed_rotation_block(shared, rx, min_sine=min_sine)
+            else:
+                phase, below = engine_block(g, v, rx, min_sine=min_sine)
+            nan = np.isnan(phase)  # degenerate: NaN but neither masked nor below the limit
+            if below is not None:
+                nan &= ~below
+            if valid is not None:
+                nan &= valid
+            degenerate += int(np.count_nonzero(nan))
+            np.multiply(phase.T, scale, out=out[block, i])
+    return out, degenerate
