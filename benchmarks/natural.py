@@ -403,7 +403,9 @@ def print_environment():
     print(f"erfa              pyerfa {erfa.__version__}, ERFA {erfa.version.erfa_version}")
     print(f"astroplan         {astroplan.__version__ if astroplan else 'not installed'}")
     print(f"casacore          {casacore_version or 'not installed'}")
-    print(f"skyfield          {skyfield.__version__ + ' (de421 from skyfield-data)' if skyfield else 'not installed'}")
+    skyfield_text = (f"{skyfield.__version__} (de421 from skyfield-data)" if skyfield
+                     else "not installed")
+    print(f"skyfield          {skyfield_text}")
     print(f"astropy_feedrot   {astropy_feedrot.__version__} "
           f"({os.path.dirname(astropy_feedrot.__file__)})")
     print(f"platform          {platform.platform()}")
