@@ -48,8 +48,9 @@ def pole_context(pole="itrs"):
     >>> from astropy.coordinates.builtin_frames.utils import get_polar_motion
     >>> from astropy_feedrot.visibilities.poles import pole_context
     >>> with pole_context("casa"):
-    ...     get_polar_motion(Time("2023-01-25"))
-    (np.float64(0.0), np.float64(0.0))
+    ...     xp, yp = get_polar_motion(Time("2023-01-25"))
+    >>> float(xp), float(yp)
+    (0.0, 0.0)
     """
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES} ('itrs': the Earth-fixed z axis, with "
