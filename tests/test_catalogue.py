@@ -431,7 +431,8 @@ def test_cli_station_names(capsys):
             "--stop", "2024-01-01T01:00", "--step", "30min"]
     for name, match in [("EFFELSBURG", r"unknown antenna 'EFFELSBURG'.*nearest names: "
                                        r"EFLSBERG(, [^,]+){4}$"),
-                        ("KP", r"ambiguous antenna name 'KP'.*KP-VLBA.*KP12"),
+                        # in the command line's words: KP@EHT, not get_antenna(...)
+                        ("KP", r"ambiguous antenna name 'KP'.*KP-VLBA.*KP12.*e\.g\. KP@EHT$"),
                         ("KP@EHTT", r"unknown network 'EHTT'")]:
         assert cli_main(["natural", name, *span]) != 0
         error = capsys.readouterr().err.strip().splitlines()
@@ -507,6 +508,7 @@ def test_cli_coverage_station_names(capsys):
     assert cli_main(["coverage", "--stations", "KP", "EFLSBERG", *span]) != 0
     error = capsys.readouterr().err.strip().splitlines()
     assert len(error) == 1 and "ambiguous antenna name 'KP'" in error[0], error
+    assert error[0].endswith("e.g. KP@EHT"), error
 
 
 def test_meerkat_dishes():

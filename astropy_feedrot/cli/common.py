@@ -33,7 +33,8 @@ from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_cat
 __all__ = [
     "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",
     "one_line", "parse_quantity", "elevation_limit", "parse_time", "time_span", "parse_site",
-    "parse_antenna", "natural_target", "one_source", "read_path", "read_input",
+    "parse_antenna",
+    "catalogue_antenna", "natural_target", "one_source", "read_path", "read_input",
     "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
     "write_table", "add_time_options", "add_natural_options", "add_common_options",
     "examples", "PHASE_UNITS", "add_units_option", "in_units",
@@ -204,15 +205,28 @@ def parse_site(text):
     return lat, lon, height
 
 
+def catalogue_antenna(catalogue, text):
+    """The station ``NAME`` or ``NAME@NETWORK`` of a catalogue, its errors in the CLI's words.
+
+    ``NAME@NETWORK`` chooses among stations that share a name (``KP@EHT``).
+    """
+    name, _, network = text.strip().partition("@")
+    try:
+        return catalogue.get_antenna(name.strip(), network=network.strip() or None)
+    except ValueError as error:
+        # The library suggests get_antenna('KP', network='EHT'); here that is KP@EHT.
+        message = re.sub(r"get_antenna\('([^']*)', network='([^']*)'\)", r"\1@\2",
+                         str(error))
+        raise CommandError(message) from None
+
+
 def parse_antenna(text, args, catalogue):
     site = parse_site(text)
     if site is None:
         if args.mount is not None or args.focus is not None:
             raise CommandError(f"--mount and --focus go with a site LAT,LON,HEIGHT, not with the "
                                f"catalogue station {text!r}")
-        # NAME@NETWORK chooses among stations that share a name (KP@EHT).
-        name, _, network = text.strip().partition("@")
-        return catalogue.get_antenna(name.strip(), network=network.strip() or None)
+        return catalogue_antenna(catalogue, text)
     lat, lon, height = site
     location = EarthLocation.from_geodetic(lon * u.deg, lat * u.deg, height * u.m)
     try:

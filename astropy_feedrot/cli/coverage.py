@@ -19,6 +19,7 @@ from ..outputs import (
 )
 from .common import (
     add_time_options,
+    catalogue_antenna,
     elevation_limit,
     examples,
     figure_types,
@@ -58,8 +59,7 @@ def _run_coverage(args):
             except (KeyError, ValueError):
                 found = None
         if found is None:  # NAME@NETWORK chooses among stations sharing a name (KP@EHT)
-            station, _, network = name.partition("@")
-            found = [stations.get_antenna(station.strip(), network=network.strip() or None)]
+            found = [catalogue_antenna(stations.default_catalogue(), name)]
         for antenna in found:
             antennas.setdefault(antenna.name, antenna)
     sources = {}
