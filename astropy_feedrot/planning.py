@@ -23,6 +23,7 @@ from astropy.table import Table
 from .antenna import Antenna
 from .continuity import unwrap
 from .frames import as_elevation_limit
+from .epochs import Epochs
 from .grid import feed_rotation_grid
 from .inputs import as_time
 
@@ -198,7 +199,8 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     -----
     The feed rotation of every antenna, target and epoch comes from one call
     of `~astropy_feedrot.grid.feed_rotation_grid`; elevations from
-    `~astropy_feedrot.Antenna.altaz` (one call per antenna). The continuous
+    `~astropy_feedrot.Antenna.altaz` (one call per antenna, all sharing one
+    `~astropy_feedrot.Epochs`). The continuous
     series restarts after each time the target sets (each pass keeps its
     own first value, in (-180, 180] deg), and the range is the span of all
     its values, each pass after the first moved by whole turns to where it
@@ -232,10 +234,13 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     names_, coords = _targets(targets, names)
     times = _epochs(start, stop, step)
     limit = as_elevation_limit(min_elevation)
-    phi = feed_rotation_grid(antennas, coords, times)  # (T, A, S); checks the antennas
+    # The epochs converted once: one Epochs for the grid, one (T, 1) for the
+    # elevations, which every antenna shares.
+    phi = feed_rotation_grid(antennas, coords, Epochs(times))  # (T, A, S); checks antennas
+    column = Epochs(times[:, np.newaxis])
     above = np.empty(phi.shape, dtype=bool)
     for i, antenna in enumerate(antennas):
-        _, elevation = antenna.altaz(coords[np.newaxis, :], times[:, np.newaxis])
+        _, elevation = antenna.altaz(coords[np.newaxis, :], column)
         above[:, i] = elevation.rad >= limit
     if not above.any():
         raise ValueError(f"no antenna sees any target above {min_elevation} from "
