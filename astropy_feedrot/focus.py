@@ -355,6 +355,27 @@ def _as_vectors(values, name):
     return array
 
 
+def _split(v):
+    """The three components of vectors (..., 3)."""
+    return v[..., 0], v[..., 1], v[..., 2]
+
+
+def _components_dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _components_cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _components_unit(v):
+    """``v / |v|``, NaN where ``|v|`` is degenerate (as `~astropy_feedrot.kernel.unit`)."""
+    norm = np.sqrt(_components_dot(v, v))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        norm = np.where(norm < kernel.DEGENERATE_NORM, np.nan, norm)
+    return tuple(c / norm for c in v)
+
+
 class MirrorTrain(Focus):
     """A feed behind a train of mirrors, traced reflection by reflection (Eqs 42-45).
 
@@ -527,7 +548,16 @@ class MirrorTrain(Focus):
                 )
 
     def receiver_phase(self, s, t, axis, local):
-        """Phase at the feed, traced mirror by mirror (Eqs 42-45).
+        """Phase at the feed, traced through the mirrors (Eqs 42-45).
+
+        The waves after the first mirror are fixed in the frame
+        :math:`(\\hat{\\xi}, \\hat{\\eta}, \\hat{u})`, so the reflections
+        after the first are one constant matrix and, for a feed that turns
+        with the antenna, the read-out of Eq 45 two constant vectors; only the
+        first mirror (between :math:`-\\hat{s}` and :math:`\\hat{k}_2`) is
+        computed at each line of sight. This is the same trace as the kernel's
+        `~astropy_feedrot.kernel.trace_dipole` and
+        `~astropy_feedrot.kernel.feed_phase` wave by wave, to rounding.
 
         Parameters
         ----------
@@ -558,22 +588,60 @@ class MirrorTrain(Focus):
         >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
         -135.0
         """
-        s = np.asarray(s, dtype=float)
-        eta = kernel.unit(np.cross(axis, s))
-        xi = np.cross(eta, axis)
-
-        def in_local(c):
-            return c[0] * xi + c[1] * eta + c[2] * axis
-
-        waves = [-s] + [in_local(c) for c in self._k]
-        q = kernel.trace_dipole(t, waves)
+        s, t, axis = (np.asarray(v, dtype=float) for v in (s, t, axis))
+        # The frame (xi, eta, u) at each line of sight; the waves after the first
+        # mirror are fixed in it, so every mirror but the first is one constant
+        # matrix (`_fixed_mirrors`), and Eq 45 two constant vectors.
+        u = tuple(axis[..., i] for i in range(3))
+        eta = _components_unit(_components_cross(u, _split(s)))
+        xi = _components_cross(eta, u)
+        frame = (xi, eta, u)
+        s_f = [_components_dot(_split(s), c) for c in frame]
+        t_f = [_components_dot(_split(t), c) for c in frame]
+        # The first mirror, between -s and k_2 (Eqs 42-44): q = 2 (t.n) n / |n|^2 - t.
+        k = self._k[0]
+        n = [k[i] + s_f[i] for i in range(3)]
+        nn = _components_dot(n, n)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            scale = 2.0 * _components_dot(t_f, n) / np.where(
+                nn < kernel.DEGENERATE_NORM**2, np.nan, nn)
+        q = [scale * n[i] - t_f[i] for i in range(3)]
         if self._rotates:
-            ra, rt = in_local(self._fa), in_local(self._ft)
-        else:
-            ra, rt = (c[0] * local.east + c[1] * local.north + c[2] * local.up
-                      for c in (self._fa, self._ft))
-        phi = kernel.feed_phase(q, waves[-1], ra, rt)
+            a, b = self._read_out
+            num, den = _components_dot(q, a), _components_dot(q, b)
+        else:  # the feed's dipoles are fixed in east-north-up: in (xi, eta, u) here
+            m = self._fixed_mirrors
+            q = [m[i, 0] * q[0] + m[i, 1] * q[1] + m[i, 2] * q[2] for i in range(3)]
+            k_out = self._k[-1]
+            enu = [_split(d[0] * local.east + d[1] * local.north + d[2] * local.up)
+                   for d in (self._fa, self._ft)]
+            ra, rt = ([_components_dot(d, c) for c in frame] for d in enu)
+            kq = _components_cross(k_out, q)
+            num = _components_dot(ra, kq) + _components_dot(rt, q)
+            den = _components_dot(ra, q) - _components_dot(rt, kq)
+        defined = _components_dot(q, q) >= kernel.DEGENERATE_NORM**2
+        with np.errstate(invalid="ignore"):
+            phi = np.where(defined, np.arctan2(num, den), np.nan)
         return -phi if self.reflections % 2 else phi
+
+    @property
+    def _fixed_mirrors(self):
+        """The mirrors after the first as one matrix in (xi, eta, u) (Eqs 42-44)."""
+        m = np.eye(3)
+        for k_in, k_out in zip(self._k[:-1], self._k[1:]):
+            n = (k_out - k_in) / np.linalg.norm(k_out - k_in)
+            m = -(np.eye(3) - 2.0 * np.outer(n, n)) @ m
+        return m
+
+    @property
+    def _read_out(self):
+        """Eq 45 for a feed turning with the antenna: ``(a, b)`` with the phase
+        ``atan2(q1 . a, q1 . b)`` of the dipole ``q1`` after the first mirror."""
+        m, k_out = self._fixed_mirrors, self._k[-1]
+        # r_a . (k x q) + r_t . q = q . (r_a x k + r_t); r_a . q - r_t . (k x q) likewise
+        a = np.cross(self._fa, k_out) + self._ft
+        b = self._fa - np.cross(self._ft, k_out)
+        return m.T @ a, m.T @ b
 
     @classmethod
     def yebes40m(cls, band="X"):

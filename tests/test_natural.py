@@ -252,6 +252,70 @@ def test_mirror_train_on_another_mount():
         assert_allclose(abs(slope), 1.0, atol=1e-9)
 
 
+def literal_trace(train, s, t, axis, local):
+    """Eqs 42-45 as printed, wave by wave in ITRS: the kernel's mirror normal,
+    reflection and feed read-out, with the frame of Eq C15 at each line of sight."""
+    eta = k.unit(np.cross(axis, s))
+    xi = np.cross(eta, axis)
+
+    def in_local(c):
+        return c[0] * xi + c[1] * eta + c[2] * axis
+
+    waves = [-s] + [in_local(c) for c in train.wave_vectors]
+    q = k.trace_dipole(t, waves)
+    if train.feed_rotates:
+        ra, rt = in_local(train.feed_aligned), in_local(train.feed_transverse)
+    else:
+        ra, rt = (c[0] * local.east + c[1] * local.north + c[2] * local.up
+                  for c in (train.feed_aligned, train.feed_transverse))
+    phi = k.feed_phase(q, waves[-1], ra, rt)
+    return -phi if train.reflections % 2 else phi
+
+
+def random_train(rng, rotates):
+    """A train of 1-5 mirrors in random directions, its feed facing the last wave."""
+    waves = rng.normal(size=(rng.integers(1, 6), 3))
+    if not rotates:
+        waves[-1] = [0.0, 0.0, rng.choice([-1.0, 1.0])]
+    waves /= np.linalg.norm(waves, axis=-1, keepdims=True)
+    aligned = k.unit(np.cross(waves[-1], rng.normal(size=3)))
+    boresight = -waves[-1] if rotates else np.array([0.0, 0.0, 1.0])
+    transverse = np.cross(boresight, aligned)
+    if not rotates:  # fixed feed: dipoles in east-north-up, facing up the (vertical) axis
+        aligned = np.array([np.cos(0.4), np.sin(0.4), 0.0])
+        transverse = np.array([-np.sin(0.4), np.cos(0.4), 0.0])
+        if waves[-1][2] > 0:
+            aligned, transverse = transverse, aligned
+    return MirrorTrain(waves, aligned, transverse, feed_rotates=rotates)
+
+
+@pytest.mark.parametrize("rotates", [True, False])
+def test_mirror_train_equals_the_literal_trace(rotates):
+    # The traced phase is computed with the mirrors after the first combined
+    # into one matrix; the literal wave-by-wave trace of Eqs 42-45 must give the
+    # same angle (rounding only) for any train, line of sight and dipole t
+    # (a natural source's projected pole, or a satellite's transmitter dipole).
+    rng = np.random.default_rng(42)
+    local = local_frame(SITES["YEBES"])
+    for _ in range(20):
+        train = random_train(rng, rotates)
+        s = k.unit(rng.normal(size=(500, 3)))
+        t = rng.normal(size=(500, 3))
+        t -= k.dot(t, s)[:, None] * s  # perpendicular to s
+        for pole in (True, False):
+            dipole = k.project(k.NORTH_POLE, s) if pole else t
+            got = train.receiver_phase(s, dipole, local.up, local)
+            want = literal_trace(train, s, dipole, local.up, local)
+            assert np.array_equal(np.isnan(got), np.isnan(want))
+            assert max_angle_difference(got, want) < 1e-12
+    # and the degenerate lines of sight (along the fixed axis) are NaN in both
+    train = MirrorTrain.yebes40m("X")
+    s = np.array([local.up, -local.up])
+    got = train.receiver_phase(s, k.project(k.NORTH_POLE, s), local.up, local)
+    assert np.isnan(got).all()
+    assert np.isnan(literal_trace(train, s, k.project(k.NORTH_POLE, s), local.up, local)).all()
+
+
 @pytest.mark.parametrize("mount", [AltAzMount(), XYMount("east"), StationaryMount()])
 def test_lcp_is_negated(mount):
     antenna = Antenna(SITES["DBR205"], mount)
