@@ -588,16 +588,50 @@ class MirrorTrain(Focus):
         >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
         -135.0
         """
-        s, t, axis = (np.asarray(v, dtype=float) for v in (s, t, axis))
+        s, t = (_split(np.asarray(v, dtype=float)) for v in (s, t))
+        return self.receiver_phase_from_components(s, t, axis, local)
+
+    def receiver_phase_from_components(self, s, t, axis, local):
+        """`receiver_phase` with the lines of sight and dipoles given by components.
+
+        Parameters
+        ----------
+        s, t : tuple of 3 ndarray, each shape (...)
+            The x, y and z components (ITRS) of the unit lines of sight and of
+            the arriving effective dipoles.
+        axis : array-like, shape (3,)
+            The mount's fixed axis.
+        local : `~astropy_feedrot.frames.LocalFrame`
+            The site's east, north and up.
+
+        Returns
+        -------
+        ndarray, shape (...)
+            As `receiver_phase`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from astropy_feedrot import MirrorTrain
+        >>> from astropy_feedrot.frames import LocalFrame
+        >>> enu = LocalFrame(*np.eye(3))
+        >>> train = MirrorTrain([[0, -1, 0]], feed_aligned=[0, 0, 1],
+        ...                     feed_transverse=[1, 0, 0])
+        >>> r = np.sqrt(0.5)
+        >>> phi = train.receiver_phase_from_components((-r, 0.0, r), (r, 0.0, r), enu.up, enu)
+        >>> float(np.degrees(phi))  # doctest: +FLOAT_CMP
+        -135.0
+        """
+        axis = np.asarray(axis, dtype=float)
         # The frame (xi, eta, u) at each line of sight; the waves after the first
         # mirror are fixed in it, so every mirror but the first is one constant
         # matrix (`_fixed_mirrors`), and Eq 45 two constant vectors.
         u = tuple(axis[..., i] for i in range(3))
-        eta = _components_unit(_components_cross(u, _split(s)))
+        eta = _components_unit(_components_cross(u, s))
         xi = _components_cross(eta, u)
         frame = (xi, eta, u)
-        s_f = [_components_dot(_split(s), c) for c in frame]
-        t_f = [_components_dot(_split(t), c) for c in frame]
+        s_f = [_components_dot(s, c) for c in frame]
+        t_f = [_components_dot(t, c) for c in frame]
         # The first mirror, between -s and k_2 (Eqs 42-44): q = 2 (t.n) n / |n|^2 - t.
         k = self._k[0]
         n = [k[i] + s_f[i] for i in range(3)]

@@ -35,8 +35,11 @@ vectors fixed at the site, :math:`\\hat{s}\\cdot(\\hat{a}\\times\\hat{z})`,
 :math:`\\hat{s}\\cdot\\hat{a}` and :math:`\\hat{s}\\cdot\\hat{z}` (and the
 site's east, north and up for a focus term or an elevation limit): one small
 matrix product per antenna and block of epochs, the diurnal aberration
-applied to the products. Other antennas (stationary dipoles, traced mirrors,
-rotators turned by a series) go through the engine on the corrected lines of sight.
+applied to the products. Antennas behind a traced
+`~astropy_feedrot.MirrorTrain` (`traced_block`) take the site's lines of
+sight by their components, without a rotator. Other antennas (stationary
+dipoles, rotators turned by a series, optics of one's own) go through the
+engine on the corrected lines of sight.
 """
 
 from typing import NamedTuple
@@ -45,11 +48,13 @@ import erfa
 import numpy as np
 
 from . import engine, kernel
+from .focus import MirrorTrain
+from .frames import LocalFrame
 from .grid_arrays import epoch_blocks
 from .instants import OMEGA
 
 __all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_rotation_block",
-           "fast_receiver", "engine_block", "natural_grid"]
+           "fast_receiver", "traced_block", "traced_receiver", "engine_block", "natural_grid"]
 
 
 #: Products of near-polar lines of sight are checked again from their x and y
@@ -165,6 +170,44 @@ def shared_block(geocentric, velocity):
     return SharedBlock(components, g, half)
 
 
+def _dot(c, sx, sy, sz):
+    """A line of sight given by its components, dotted with a constant vector."""
+    value = sx * c[0]
+    value += sy * c[1]
+    if c[2]:
+        value += sz * c[2]
+    return value
+
+
+def _site_line(block, beta):
+    """The site's line of sight (the module's form, not normalized) from the shared
+    geocentric directions: its components ``sx, sy, sz`` and ``|s|^2 - 1``.
+
+    :math:`\\hat{s}(1 - k) + g\\vec{\\beta} + k\\vec{V}/2` with
+    :math:`k = \\hat{s}\\cdot\\vec{\\beta}` (``beta`` has no z) and
+    :math:`g = 1 - \\hat{s}\\cdot\\vec{V}/2`; ``|s|^2 - 1`` is of order
+    :math:`\\beta^2`, to second order.
+    """
+    gx, gy, gz = block.components
+    half = block.half_velocity
+    k = gx * beta[0]
+    k += gy * beta[1]
+    f = 1.0 - k
+    sx = gx * f
+    sx += block.g * beta[0]
+    sx += k * half[0]
+    sy = gy * f
+    sy += block.g * beta[1]
+    sy += k * half[1]
+    sz = gz * f
+    sz += k * half[2]
+    long = block.g * block.g
+    long *= beta @ beta
+    long -= k * k
+    long += block.g * k * (2.0 * (beta[0] * half[0] + beta[1] * half[1]))
+    return sx, sy, sz, long
+
+
 def feed_rotation_block(block, receivers, *, min_sine=None):
     """Feed rotation (RCP, radians) of one antenna from geocentric apparent directions.
 
@@ -223,34 +266,11 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
     east, north, up = receivers.station_axes[0]
     m_e, m_a = receivers.focus_terms[0]
     beta = diurnal_beta(receivers.station_xyz[0])
-    columns = [np.cross(axis, kernel.NORTH_POLE), axis]
-    gx, gy, gz = block.components
-    half = block.half_velocity
-
-    def product(c):  # the site's line of sight . c (the module's form)
-        value = gx * c[0]
-        value += gy * c[1]
-        if c[2]:
-            value += gz * c[2]
-        value *= f
-        value += block.g * (beta[0] * c[0] + beta[1] * c[1])  # beta has no z
-        value += k * (c[0] * half[0] + c[1] * half[1] + c[2] * half[2])
-        return value
-
+    across = np.cross(axis, kernel.NORTH_POLE)  # a x z (no z component)
     with np.errstate(invalid="ignore", divide="ignore"):
-        k = gx * beta[0]
-        k += gy * beta[1]  # s . beta
-        f = 1.0 - k
-        num = product(columns[0])
-        along = product(columns[1])
-        tz = product(kernel.NORTH_POLE)
-        # |s|^2 - 1 of the site's line of sight (of order beta^2): the kernel's
-        # receiver_term does not assume unit lines, and near the pole or the
-        # fixed axis the angle turns with it.
-        long = block.g * block.g
-        long *= beta @ beta
-        long -= k * k
-        long += block.g * k * (2.0 * (beta[0] * half[0] + beta[1] * half[1]))
+        sx, sy, tz, long = _site_line(block, beta)
+        num = _dot(across, sx, sy, tz)
+        along = _dot(axis, sx, sy, tz)
         # a.z |P z|^2 - (s.z)(s.a - (s.z)(a.z)), Eq 13 as the kernel writes it
         den = axis[2] * long
         den += axis[2]
@@ -259,10 +279,10 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
         pole += long
         near = np.flatnonzero(pole < _NEAR_POLE)
         if near.size:  # the exact |P z|^2 from the x and y components
-            x = product([1.0, 0.0, 0.0])[near]
-            y = product([0.0, 1.0, 0.0])[near]
-            pole[near] = x * x + y * y
-            den[near] = axis[2] * pole[near] - tz[near] * (axis[0] * x + axis[1] * y)
+            x, y = sx.ravel()[near], sy.ravel()[near]
+            pole.ravel()[near] = x * x + y * y
+            den.ravel()[near] = (axis[2] * pole.ravel()[near]
+                                 - tz.ravel()[near] * (axis[0] * x + axis[1] * y))
         # Undefined (the kernel's receiver_term): the line of sight within about
         # 0.2 mas of the pole or of the fixed axis.
         tiny = kernel.DEGENERATE_NORM**2
@@ -271,13 +291,14 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
         phase[~defined] = np.nan
         sine = None
         if m_e or min_sine is not None:
-            sine = product(up)
-            sine *= 1.0 - 0.5 * long  # of the unit line of sight
+            sine = along if np.array_equal(up, axis) else _dot(up, sx, sy, tz)
+            sine = sine * (1.0 - 0.5 * long)  # of the unit line of sight
         if m_e or m_a:
             if m_e:
                 phase += m_e * np.arcsin(np.clip(sine, -1.0, 1.0))
             if m_a:
-                phase += m_a * np.mod(np.arctan2(product(east), product(north)), 2 * np.pi)
+                phase += m_a * np.mod(np.arctan2(_dot(east, sx, sy, tz), _dot(north, sx, sy, tz)),
+                                      2 * np.pi)
             phase = kernel.wrap_phase(phase)
         # Rotators (as the engine's): 'fixed' adds its angle; 'sky' holds the
         # receiver term at its angle, and a natural source's transmitter term is
@@ -309,6 +330,91 @@ def fast_receiver(receivers):
     """
     return (len(receivers) == 1 and not receivers.stationary[0]
             and not receivers.traced_index.size and not receivers.series_index.size)
+
+
+def traced_block(block, receivers, *, min_sine=None):
+    """`feed_rotation_block` for one antenna whose `~astropy_feedrot.MirrorTrain` is traced.
+
+    Parameters
+    ----------
+    block : SharedBlock
+        The geocentric directions of S sources at t epochs (`shared_block`).
+    receivers : `~astropy_feedrot.engine.Receivers`
+        One tracking antenna with a traced `~astropy_feedrot.MirrorTrain` and
+        no rotator (`traced_receiver`).
+    min_sine : float, optional
+        NaN where the sine of the elevation is below this.
+
+    Returns
+    -------
+    phase : ndarray, shape (S, t)
+        As ``engine.feed_rotation(receivers, s)`` with the site's unit lines of
+        sight: the mirrors traced with the projected pole (Eqs 11, 42-45).
+    below : ndarray of bool, shape (S, t), or None
+        Where the source is below the limit (None without one).
+
+    Raises
+    ------
+    ValueError
+        For receivers that `traced_receiver` refuses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.engine import Receivers, feed_rotation
+    >>> from astropy_feedrot.frames import location_xyz
+    >>> from astropy_feedrot.grid_natural import shared_block, topocentric, traced_block
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> a = get_antenna("YEBES40M")
+    >>> xyz = location_xyz(a.location)
+    >>> rx = Receivers.from_mounts([xyz], [a.local_frame], [a.mount], [a.focus])
+    >>> s = np.array([[[0.6, 0.0, 0.8], [0.0, 0.6, 0.8]]])  # 1 source, 2 epochs
+    >>> v = np.array([[1e-4, 0.0, 0.0], [0.0, 1e-4, 0.0]])
+    >>> phase, below = traced_block(shared_block(s, v), rx)
+    >>> site_s = topocentric(s, rx.station_xyz[0], v)
+    >>> engine_phase, _ = feed_rotation(rx, site_s[..., None, None, :])
+    >>> bool(np.allclose(phase, engine_phase[..., 0, 0], rtol=0, atol=1e-12))
+    True
+    """
+    if not traced_receiver(receivers):
+        raise ValueError(f"traced_block takes one tracking antenna with a traced MirrorTrain "
+                         f"and no rotator, got {receivers!r}; use engine_block")
+    focus = receivers.traced[int(receivers.traced_index[0])]
+    east, north, up = receivers.station_axes[0]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sx, sy, sz, long = _site_line(block, diurnal_beta(receivers.station_xyz[0]))
+        norm = 1.0 - 0.5 * long  # 1 / |s| to second order in beta
+        sx *= norm
+        sy *= norm
+        sz *= norm
+        t = (-sz * sx, -sz * sy, (1.0 - sz) * (1.0 + sz))  # the projected pole, Eq 11
+        phase = focus.receiver_phase_from_components(
+            (sx, sy, sz), t, receivers.fixed_axis[0],
+            LocalFrame(east, north, up))
+        below = None
+        if min_sine is not None:
+            below = _dot(up, sx, sy, sz) < min_sine
+            phase[below] = np.nan
+    return phase, below
+
+
+def traced_receiver(receivers):
+    """Whether `traced_block` serves these receivers (one tracking antenna with a
+    traced `~astropy_feedrot.MirrorTrain`, no rotator).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.engine import Receivers
+    >>> from astropy_feedrot.frames import location_xyz
+    >>> from astropy_feedrot.grid_natural import traced_receiver
+    >>> from astropy_feedrot.stations import get_antenna
+    >>> a = get_antenna("WARK30M")
+    >>> xyz = location_xyz(a.location)
+    >>> traced_receiver(Receivers.from_mounts([xyz], [a.local_frame], [a.mount], [a.focus]))
+    True
+    """
+    return (len(receivers) == 1 and receivers.traced_index.size == 1 and not receivers.rotators
+            and isinstance(receivers.traced[int(receivers.traced_index[0])], MirrorTrain))
 
 
 def engine_block(geocentric, velocity, receivers, *, min_sine=None):
@@ -353,7 +459,8 @@ def natural_grid(geocentric, velocity, receivers, sign=1.0, min_sine=None):
 
     Blocks of epochs (`~astropy_feedrot.grid_arrays.epoch_blocks`), each
     antenna in turn: `feed_rotation_block` where it serves (`fast_receiver`),
-    else `engine_block`.
+    `traced_block` for a traced mirror train (`traced_receiver`), else
+    `engine_block`.
 
     Parameters
     ----------
@@ -403,6 +510,8 @@ def natural_grid(geocentric, velocity, receivers, sign=1.0, min_sine=None):
         for i, rx in enumerate(receivers):
             if fast_receiver(rx):
                 phase, below = feed_rotation_block(shared, rx, min_sine=min_sine)
+            elif traced_receiver(rx):
+                phase, below = traced_block(shared, rx, min_sine=min_sine)
             else:
                 phase, below = engine_block(g, v, rx, min_sine=min_sine)
             nan = np.isnan(phase)  # degenerate: NaN but neither masked nor below the limit

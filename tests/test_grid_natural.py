@@ -10,6 +10,7 @@ from astropy.time import Time
 
 from astropy_feedrot import (
     AltAzMount,
+    MirrorTrain,
     Antenna,
     BeamWaveguideFocus,
     EquatorialMount,
@@ -27,6 +28,8 @@ from astropy_feedrot.grid_natural import (
     feed_rotation_block,
     shared_block,
     topocentric,
+    traced_block,
+    traced_receiver,
 )
 
 MAS = np.radians(1 / 3.6e6)
@@ -110,6 +113,44 @@ def test_block_is_the_engine_on_the_site_lines_of_sight(mount, focus, rotator, m
         assert below is None and ref_below is None
     else:
         assert np.array_equal(below, ref_below[..., 0, 0])
+
+
+@pytest.mark.parametrize("focus", [MirrorTrain.yebes40m("X"), MirrorTrain.yebes40m("S"),
+                                   MirrorTrain.wark30m()])
+@pytest.mark.parametrize("min_sine", [None, 0.1])
+def test_traced_block_is_the_engine_on_the_site_lines_of_sight(focus, min_sine):
+    # Reference: the engine tracing the mirrors on the same topocentric
+    # directions; the block starts from the shared directions' components.
+    antenna = Antenna(SITE, AltAzMount(), focus)
+    rx = receivers_of([antenna])
+    assert traced_receiver(rx) and not fast_receiver(rx)
+    s = unit_sky(600).reshape(20, 30, 3)
+    s[0, 0] = [0.0, 0.0, 1.0]  # near the pole and the zenith (aberration moves them)
+    s[1, 0] = antenna.local_frame.up
+    v = np.tile([9.8e-5, -2.1e-5, -0.9e-5], (30, 1))
+    phase, below = traced_block(shared_block(s, v), rx, min_sine=min_sine)
+    lines = topocentric(s, rx.station_xyz[0], v)
+    lines /= np.linalg.norm(lines, axis=-1, keepdims=True)
+    reference, ref_below = feed_rotation(rx, lines[..., np.newaxis, np.newaxis, :],
+                                         min_sine=min_sine)
+    reference = reference[..., 0, 0]
+    assert np.array_equal(np.isnan(phase), np.isnan(reference))
+    difference = np.abs(np.angle(np.exp(1j * (phase - reference))))
+    assert np.nanmax(difference) < 1e-10
+    if min_sine is None:
+        assert below is None and ref_below is None
+    else:
+        assert np.array_equal(below, ref_below[..., 0, 0])
+
+
+def test_traced_block_refuses_what_it_cannot_do():
+    for antenna in (get_antenna("WETTZ13S"),  # a closed form: feed_rotation_block
+                    Antenna(SITE, AltAzMount(), MirrorTrain.wark30m(),
+                            rotator=Rotator("fixed", 10 * u.deg))):
+        rx = receivers_of([antenna])
+        assert not traced_receiver(rx)
+        with pytest.raises(ValueError, match="one tracking antenna with a traced MirrorTrain"):
+            traced_block(shared_block(np.array([[[0.6, 0.0, 0.8]]]), np.zeros((1, 3))), rx)
 
 
 def test_block_refuses_what_it_cannot_do():
