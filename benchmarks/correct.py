@@ -81,9 +81,17 @@ def _peak_rss():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
 
 
-def _measure(function, *args, **kwargs):
-    """(seconds, result) of a call, then (extra heap peak) of a second, traced call."""
+def _settle():
+    """Write out what earlier runs left in the page cache (and collect garbage), so that
+    no run pays for the write-back of another."""
     gc.collect()
+    if hasattr(os, "sync"):
+        os.sync()
+
+
+def _measure(function, *args, **kwargs):
+    """(seconds, result) of a call."""
+    _settle()
     start = time.perf_counter()
     result = function(*args, **kwargs)
     return time.perf_counter() - start, result
@@ -129,7 +137,7 @@ class _PeakRSS:
 
 def _rss(function, *args, **kwargs):
     """(seconds, peak extra resident bytes) of a call."""
-    gc.collect()
+    _settle()
     with _PeakRSS() as peak:
         start = time.perf_counter()
         function(*args, **kwargs)

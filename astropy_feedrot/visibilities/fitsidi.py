@@ -12,8 +12,8 @@ and Stokes codes) and their sources.
 """
 
 import os
-import shutil
 import tempfile
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -346,14 +346,14 @@ def _row_sources(plan, records, sources, name):
     return a1, a2, date + time, source
 
 
-def _angle_table(temporary, plan, antennas, sources, scale, frame, name, per_chunk):
+def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk):
     """The receptors' position angles of every row of one UV_DATA table, computed once
     per distinct epoch, source and antenna (the rows' few metadata bytes are read, a
     chunk mapped at a time)."""
     parts = []
     for start in range(0, plan.rows, per_chunk):
         stop = min(start + per_chunk, plan.rows)
-        records = np.memmap(temporary, dtype=plan.dtype, mode="r",
+        records = np.memmap(path, dtype=plan.dtype, mode="r",
                             offset=plan.offset + start * plan.dtype.itemsize,
                             shape=(stop - start,))
         try:
@@ -374,9 +374,10 @@ def _correct_chunk(records, plan, table, sources, name, direction):
     n = len(a1)
     theta1, theta2 = table(jd, source, a1), table(jd, source, a2)
     raw = records["FLUX"]
-    # Native single precision, as stored: the correction keeps float32 accuracy
-    # and the chunk's extra memory to about twice its size.
-    flux = raw.astype(np.float32).reshape((n,) + plan.shape)
+    # Swapped to native order where they lie and corrected there (the rows are this
+    # process's own buffer): single precision, as stored, and no copy of the chunk.
+    raw.byteswap(inplace=True)
+    flux = raw.view(raw.dtype.newbyteorder("=")).reshape((n,) + plan.shape)
     if plan.complex == 2:
         # (real, imaginary) pairs are complex64 as they lie: corrected in place.
         vis = flux.view(np.complex64)[..., 0]
@@ -399,33 +400,54 @@ def _correct_chunk(records, plan, table, sources, name, direction):
         elif plan.weight_column:
             weights = records[plan.weight_column]
             weights[bad] = 0
-    raw[...] = flux.reshape(raw.shape)
+    raw.byteswap(inplace=True)  # back to the file's order
     return int(np.count_nonzero(bad))
 
 
-def _chunk_task(temporary, plan, start, stop, table, sources, name, direction):
-    """Correct rows [start, stop) of one UV_DATA table of ``temporary`` in place, through
-    a memory map of their bytes only; the number of NaN rows. A dask task too: chunks
-    are disjoint byte ranges of the file."""
-    records = np.memmap(temporary, dtype=plan.dtype, mode="r+",
-                        offset=plan.offset + start * plan.dtype.itemsize, shape=(stop - start,))
-    try:
-        # No msync: the shared mapping's pages are the file's pages in the page cache,
-        # seen by every process, and written out by the kernel as a copy's are.
-        count = _correct_chunk(records, plan, table, sources, name, direction)
-    finally:
-        del records
+_BUFFERS = threading.local()
+
+
+def _buffer(dtype, rows):
+    """An array of ``rows`` records, in a buffer this thread keeps for its next chunks:
+    a new one for each chunk would be mapped and faulted in afresh (dask's workers set
+    glibc to return freed memory at once)."""
+    nbytes = dtype.itemsize * rows
+    buffer = getattr(_BUFFERS, "bytes", None)
+    if buffer is None or buffer.size < nbytes:
+        buffer = _BUFFERS.bytes = np.empty(nbytes, dtype=np.uint8)
+    return buffer[:nbytes].view(dtype)
+
+
+def _chunk_task(source, target, plan, start, stop, shift, table, sources, name, direction):
+    """Correct rows [start, stop) of one UV_DATA table: read from ``source``, corrected
+    in memory, written to the same rows of ``target``, ``shift`` bytes further (its
+    primary header is longer); the number of NaN rows. A dask task too: chunks are
+    disjoint byte ranges of the output."""
+    offset = plan.offset + start * plan.dtype.itemsize
+    records = _buffer(plan.dtype, stop - start)
+    with open(source, "rb") as fin:
+        fin.seek(offset)
+        if fin.readinto(records.view(np.uint8)) != records.nbytes:
+            raise FITSFormatError(name, plan.table, f"{records.nbytes} bytes of rows from "
+                                  f"byte {offset}", "fewer: the file changed while it was "
+                                  "read", None)
+    count = _correct_chunk(records, plan, table, sources, name, direction)
+    with open(target, "r+b") as fout:
+        fout.seek(offset + shift)
+        fout.write(records.view(np.uint8))
     return count
 
 
-def _chunks(work, client, temporary, tables, sources, name, direction):
+def _chunks(work, client, source, target, shift, tables, sources, name, direction):
     """The NaN rows of each chunk, corrected here or, with a client, on dask workers
-    (two chunks per worker at a time)."""
+    (two chunks per worker at a time; the angle tables sent to each worker once)."""
     if client is None:
         for plan, start, stop in work:
-            yield _chunk_task(temporary, plan, start, stop, tables[plan.index], sources, name,
-                              direction)
+            yield _chunk_task(source, target, plan, start, stop, shift, tables[plan.index],
+                              sources, name, direction)
         return
+    tables = {k: client.scatter(table, broadcast=True) for k, table in tables.items()}
+    sources = client.scatter(sources, broadcast=True)
     ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
     items, pending = iter(work), []
     while True:
@@ -434,8 +456,8 @@ def _chunks(work, client, temporary, tables, sources, name, direction):
             if item is None:
                 break
             plan, start, stop = item
-            pending.append(client.submit(_chunk_task, temporary, plan, start, stop,
-                                         tables[plan.index], sources, name, direction,
+            pending.append(client.submit(_chunk_task, source, target, plan, start, stop,
+                                         shift, tables[plan.index], sources, name, direction,
                                          pure=False))
         if not pending:
             return
@@ -461,24 +483,44 @@ def _check_paths(path, output, overwrite):
     return source, target
 
 
-def _copy(source, target, header, header_end):
-    """Write ``header`` then the bytes of ``source`` after ``header_end`` to ``target``."""
-    with open(source, "rb") as fin, open(target, "wb") as fout:
-        fout.write(header.tostring().encode("ascii"))
+def _copy_around(source, target, header, header_end, rows):
+    """Write ``header``, then the bytes of ``source`` after ``header_end`` but those of
+    ``rows`` (byte ranges of the source, which the chunks write), to ``target``."""
+    size = os.path.getsize(source)
+    shift = len(header) - header_end
+    with open(source, "rb") as fin, open(target, "r+b") as fout:  # r+: mkstemp made it
+        fout.write(header)
+        position = header_end
+        for begin, end in sorted(rows) + [(size, size)]:
+            _copy_range(fin, fout, position, begin, shift)
+            position = max(position, end)
+        fout.truncate(size + shift)  # the rows' bytes until the chunks write them
+    return shift
+
+
+def _copy_range(fin, fout, begin, end, shift):
+    """Bytes [begin, end) of ``fin`` to the same place in ``fout``, ``shift`` further."""
+    fout.seek(begin + shift)
+    fout.flush()
+    offset = begin
+    try:  # in the kernel where it can (Linux), as shutil.copyfile does
+        while offset < end:
+            sent = os.sendfile(fout.fileno(), fin.fileno(), offset, min(end - offset, 2**30))
+            if sent == 0:
+                break
+            offset += sent
+    except (AttributeError, OSError):
+        pass
+    if offset < end:  # elsewhere (or what sendfile left)
+        fout.seek(offset + shift)
+        fin.seek(offset)
+        while offset < end:
+            data = fin.read(min(end - offset, 16 * 2**20))
+            if not data:
+                raise OSError(f"{fin.name!r} ended at byte {offset}, before {end}")
+            fout.write(data)
+            offset += len(data)
         fout.flush()
-        fin.seek(header_end)
-        try:  # in the kernel where it can (Linux), as shutil.copyfile does
-            offset, size = header_end, os.fstat(fin.fileno()).st_size
-            while offset < size:
-                sent = os.sendfile(fout.fileno(), fin.fileno(), offset, min(size - offset,
-                                                                            2**30))
-                if sent == 0:
-                    break
-                offset += sent
-        except (AttributeError, OSError):
-            fin.seek(header_end)
-            fout.seek(0, os.SEEK_END)
-            shutil.copyfileobj(fin, fout, 16 * 2**20)
 
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
@@ -563,9 +605,10 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     Notes
     -----
     The input is copied to a temporary file beside ``output``, with one
-    HISTORY card added to the primary header; the ``UV_DATA`` rows are then
-    corrected in place through `numpy.memmap`, ``chunk_bytes`` at a time,
-    and the copy is renamed to ``output``. Everything but ``FLUX`` (and the
+    HISTORY card added to the primary header, all but the ``UV_DATA`` rows;
+    these are read ``chunk_bytes`` at a time, corrected in memory and
+    written to their place in the copy, which is then renamed to
+    ``output``. Everything but ``FLUX`` (and the
     weights of NaN rows) is byte for byte the input. FITS-IDI stores the
     complex conjugate of :math:`\\langle v_1 v_2^* \\rangle` (casacore's
     ``FitsIDItoMS.cc`` and DiFX's ``fitsUV.c``, see :doc:`/fitsidi`), so the
@@ -610,9 +653,11 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                                          suffix=".part")
     os.close(handle)
     try:
-        _copy(source, temporary, new_header, header_end)
-        with open_fits(temporary) as copy:
-            plans = [_Plan(copy, index, source) for index in indices]
+        with open_fits(source) as hdul:
+            plans = [_Plan(hdul, index, source) for index in indices]
+        shift = _copy_around(source, temporary, new_header.tostring().encode("ascii"),
+                             header_end, [(plan.offset, plan.offset + plan.rows
+                                           * plan.dtype.itemsize) for plan in plans])
         work = []
         for plan in plans:
             per_chunk = max(1, chunk_bytes // max(plan.dtype.itemsize, 1))
@@ -621,13 +666,13 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         nan_rows = 0
         total_rows = sum(plan.rows for plan in plans)
         with pole_context(pole):
-            tables = {plan.index: _angle_table(temporary, plan, antennas, sources, scale,
+            tables = {plan.index: _angle_table(source, plan, antennas, sources, scale,
                                                frame, source,
                                                max(1, chunk_bytes // plan.dtype.itemsize))
                       for plan in plans if plan.rows}
         with progress_steps(progress, len(work)) as step:
-            for count in _chunks(work, client, temporary, tables, sources, source,
-                                 direction):
+            for count in _chunks(work, client, source, temporary, shift, tables, sources,
+                                 source, direction):
                 nan_rows += count
                 step()
         publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
