@@ -206,7 +206,7 @@ def register(commands):
     correct = commands.add_parser(
         "correct", help="remove (or apply) the feed rotation of a visibility file",
         description="Remove the feed rotation from every visibility (or, with --apply, "
-        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (memory-mapped) and every "
+        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (a chunk at a time) and every "
         "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
         ".ms), the input never modified; or a Measurement Set in place (--in-place), from "
         "one column into another (python-casacore), every other column left as it was.",

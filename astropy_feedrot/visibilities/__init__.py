@@ -15,7 +15,7 @@ One module per format, on shared steps:
 * `~astropy_feedrot.visibilities.history`: the one history mark
   (`HISTORY_MARK`, `APPLY_MARK`);
 * formats: `~astropy_feedrot.visibilities.fitsidi` (FITS-IDI, astropy,
-  memory-mapped), `~astropy_feedrot.visibilities.uvfits` (UVFITS antenna
+  in chunks), `~astropy_feedrot.visibilities.uvfits` (UVFITS antenna
   tables), `~astropy_feedrot.visibilities.ms` (Measurement Sets in place,
   python-casacore), `~astropy_feedrot.visibilities.uvdata` (everything
   pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the

@@ -6,7 +6,7 @@ used by ``feedrot antennas`` and ``feedrot correct``:
 
 * FITS-IDI files are read and corrected with astropy alone
   (`~astropy_feedrot.visibilities.fitsidi_antennas`,
-  `~astropy_feedrot.visibilities.correct_fitsidi`), memory-mapped;
+  `~astropy_feedrot.visibilities.correct_fitsidi`), in chunks;
 * UVFITS antenna tables are read with astropy alone
   (`~astropy_feedrot.visibilities.uvfits_antennas`);
 * everything pyuvdata reads (UVFITS, uvh5, Measurement Sets through

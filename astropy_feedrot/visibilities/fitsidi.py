@@ -4,7 +4,7 @@
 * `fitsidi_antennas` reads the ``ARRAY_GEOMETRY`` and ``ANTENNA`` tables into
   `~astropy_feedrot.Antenna` objects (positions, mounts, receptors).
 * `correct_fitsidi` writes a copy of a file whose ``UV_DATA`` visibilities
-  have the feed rotation of both antennas removed, row by row, memory-mapped
+  have the feed rotation of both antennas removed, row by row, a chunk at a time
   so that files larger than memory work.
 
 :doc:`/fitsidi` gives the conventions (visibility conjugation, time, baseline

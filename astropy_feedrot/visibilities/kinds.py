@@ -13,7 +13,7 @@ __all__ = ["FILE_KINDS", "file_kind", "existing_path"]
 #: `astropy_feedrot.visibilities` that reads and corrects each (with the
 #: library it needs).
 FILE_KINDS = {
-    "fits-idi": "fitsidi (astropy, memory-mapped)",
+    "fits-idi": "fitsidi (astropy, in chunks)",
     "uvfits": "uvfits for antennas (astropy), uvdata for visibilities (pyuvdata)",
     "uvh5": "uvdata (pyuvdata)",
     "ms": "ms (python-casacore, in place) or uvdata (pyuvdata, a copy)",
