@@ -351,25 +351,7 @@ def parse_feeds(text):
     >>> parse_feeds("R,L").types
     'RL'
     """
-    usage = ("give the feeds as two letters with optional angles in degrees, e.g. 'R,L', "
-             "'X,Y' or 'X:45,Y:135'")
-    parts = [p.strip() for p in str(text).split(",")]
-    if len(parts) != 2:
-        raise ValueError(f"feeds {text!r}: {usage}")
-    types, angles = "", []
-    for part in parts:
-        letter, _, angle = part.partition(":")
-        letter = letter.strip().upper()
-        if letter not in ("R", "L", "X", "Y"):
-            raise ValueError(f"feeds {text!r}: unknown receptor {letter!r}; {usage}")
-        try:
-            value = float(angle) if angle.strip() else (90.0 if letter == "Y" else 0.0)
-        except ValueError:
-            raise ValueError(f"feeds {text!r}: angle {angle!r} is not a number; "
-                             f"{usage}") from None
-        types += letter
-        angles.append(value)
-    return Receptors(types, angles * u.deg)
+    return Receptors.from_text(text, "feeds")
 
 
 def with_receptors(antennas, receptors, *, replace=False):
