@@ -525,9 +525,9 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
                 text = ",".join(f"{t}:{a:g}" for t, a in zip(receptors.types,
                                                           receptors.angles.value))
                 cited.setdefault((text, source), []).append(
-                    f"{number} ({antenna.name} as {station})")
+                    f"{number} ({str(antenna.name).strip()} as {station})")
         if why is not None:
-            refused[number] = f"{number} ({antenna.name or 'no name'}: {why})"
+            refused[number] = f"{number} ({str(antenna.name or 'no name').strip()}: {why})"
     if cited:
         warn_caller("receptors from the station catalogue for antennas the file gives none: "
                     + "; ".join(f"{', '.join(labels)}: {text} ({source})"
