@@ -522,8 +522,8 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
                 why = f"the catalogue's {station} states no receptors"
             else:
                 given[number] = receptors
-                text = ",".join(f"{t}:{a:g}" for t, a in zip(receptors.types,
-                                                          receptors.angles.value))
+                pairs = zip(receptors.types, receptors.angles.value)
+                text = ",".join(f"{t}:{a:g}" for t, a in pairs)
                 cited.setdefault((text, source), []).append(
                     f"{number} ({str(antenna.name).strip()} as {station})")
         if why is not None:
