@@ -40,7 +40,7 @@ from astropy.time import Time
 from .antenna import Antenna
 from .data import sample_file
 from .frames import check_station_xyz
-from .focus import FOCUS_NAMES, focus_from_name
+from .focus_names import FOCUS_NAMES, focus_from_name
 from .labels import mount_from_label
 from .receptors import Receptors
 from .rotators import Rotator
