@@ -25,7 +25,12 @@ from .correction import (
 )
 from .eop import earth_orientation_status
 from .epochs import Epochs
-from .exceptions import DegenerateGeometryWarning, OrbitWarning, StaleEarthOrientationWarning
+from .exceptions import (
+    CatalogueReceptorsWarning,
+    DegenerateGeometryWarning,
+    OrbitWarning,
+    StaleEarthOrientationWarning,
+)
 from .focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
@@ -132,6 +137,7 @@ __all__ = [
     "DegenerateGeometryWarning",
     "StaleEarthOrientationWarning",
     "OrbitWarning",
+    "CatalogueReceptorsWarning",
     "ContinuityWarning",
     "FileFormatError",
 ]

@@ -9,7 +9,7 @@ import warnings
 from astropy.utils.exceptions import AstropyUserWarning
 
 __all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning",
-           "warn_caller"]
+           "CatalogueReceptorsWarning", "warn_caller"]
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
@@ -97,5 +97,22 @@ class StaleEarthOrientationWarning(AstropyUserWarning):
     --------
     >>> from astropy_feedrot import StaleEarthOrientationWarning
     >>> issubclass(StaleEarthOrientationWarning, UserWarning)
+    True
+    """
+
+
+class CatalogueReceptorsWarning(AstropyUserWarning):
+    """Receptors a visibility file lacks were taken from the station catalogue.
+
+    Emitted once per correction, naming the antennas, the catalogue's
+    stations they were matched to (by name, and within
+    `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of their position),
+    the receptors and the source the catalogue cites. Information, not a
+    fault: give the feeds yourself (``feeds=``, ``--feeds``) to silence it.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import CatalogueReceptorsWarning
+    >>> issubclass(CatalogueReceptorsWarning, UserWarning)
     True
     """

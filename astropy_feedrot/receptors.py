@@ -179,6 +179,59 @@ class Receptors:
                                  "cannot be separated")
         self.angles = angles
 
+    @classmethod
+    def from_text(cls, text, what="receptors"):
+        """Receptors from a text: ``'R,L'``, ``'X,Y'`` or ``'X:45,Y:135'``.
+
+        The form of ``feedrot correct --feeds`` and of the station
+        catalogue's ``receptors`` column.
+
+        Parameters
+        ----------
+        text : str
+            Two receptor letters separated by a comma, each optionally
+            followed by ``:angle`` in degrees (default 0 for R, L and X, 90
+            for Y).
+        what : str, optional
+            What the text is, for error messages.
+
+        Returns
+        -------
+        `Receptors`
+
+        Raises
+        ------
+        ValueError
+            For anything else, with the accepted forms.
+
+        Examples
+        --------
+        >>> from astropy_feedrot.receptors import Receptors
+        >>> Receptors.from_text("X:45,Y:135")
+        Receptors('XY', [45.0, 135.0] * u.deg)
+        >>> Receptors.from_text("R,L").types
+        'RL'
+        """
+        usage = ("give two letters with optional angles in degrees, e.g. 'R,L', 'X,Y' or "
+                 "'X:45,Y:135'")
+        parts = [p.strip() for p in str(text).split(",")]
+        if len(parts) != 2:
+            raise ValueError(f"{what} {text!r}: {usage}")
+        types, angles = "", []
+        for part in parts:
+            letter, _, angle = part.partition(":")
+            letter = letter.strip().upper()
+            if letter not in ("R", "L", "X", "Y"):
+                raise ValueError(f"{what} {text!r}: unknown receptor {letter!r}; {usage}")
+            try:
+                value = float(angle) if angle.strip() else (90.0 if letter == "Y" else 0.0)
+            except ValueError:
+                raise ValueError(f"{what} {text!r}: angle {angle!r} is not a number; "
+                                 f"{usage}") from None
+            types += letter
+            angles.append(value)
+        return cls(types, angles * u.deg)
+
     def __repr__(self):
         angles = ", ".join(repr(float(a)) for a in self.angles.value)
         return f"Receptors({self.types!r}, [{angles}] * u.deg)"

@@ -40,15 +40,9 @@ from astropy.time import Time
 from .antenna import Antenna
 from .data import sample_file
 from .frames import check_station_xyz
-from .focus import (
-    BeamWaveguideFocus,
-    CassegrainFocus,
-    GregorianFocus,
-    MirrorTrain,
-    NasmythFocus,
-    PrimeFocus,
-)
+from .focus_names import FOCUS_NAMES, focus_from_name
 from .labels import mount_from_label
+from .receptors import Receptors
 from .rotators import Rotator
 
 __all__ = [
@@ -65,22 +59,6 @@ __all__ = [
 
 #: Columns every catalogue must have.
 REQUIRED_COLUMNS = ("name", "x", "y", "z", "mount")
-
-#: Values of the ``focus`` column and the focus each stands for.
-FOCUS_NAMES = {
-    "": None,
-    "prime": PrimeFocus,
-    "cassegrain": CassegrainFocus,
-    "gregorian": GregorianFocus,
-    "nasmyth-right": functools.partial(NasmythFocus, "right"),
-    "nasmyth-left": functools.partial(NasmythFocus, "left"),
-    "bwg-right": functools.partial(BeamWaveguideFocus, "right"),
-    "bwg-left": functools.partial(BeamWaveguideFocus, "left"),
-    "yebes40m-S": functools.partial(MirrorTrain.yebes40m, "S"),
-    "yebes40m-C": functools.partial(MirrorTrain.yebes40m, "C"),
-    "yebes40m-X": functools.partial(MirrorTrain.yebes40m, "X"),
-    "wark30m": MirrorTrain.wark30m,
-}
 
 #: Largest station velocity a catalogue may give. Tectonic plates move by
 #: less than 0.2 m/yr (the fastest, near the Tonga trench, about 0.24 m/yr),
@@ -112,39 +90,6 @@ def _key(name):
     return re.sub(r"[^0-9A-Z]", "", str(name).upper())
 
 
-def focus_from_name(value, where="focus"):
-    """The focus named by a value of the catalogue's ``focus`` column.
-
-    Parameters
-    ----------
-    value : str or None
-        One of `FOCUS_NAMES` (case-insensitive); empty or None for none.
-    where : str, optional
-        What to name in an error message.
-
-    Returns
-    -------
-    `~astropy_feedrot.focus.Focus` or None
-
-    Raises
-    ------
-    ValueError
-        For an unknown name (listing the known ones).
-
-    Examples
-    --------
-    >>> from astropy_feedrot.stations import focus_from_name
-    >>> focus_from_name("nasmyth-right")
-    NasmythFocus(handedness='right')
-    """
-    value = "" if value is None or np.ma.is_masked(value) else str(value).strip()
-    for known, make in FOCUS_NAMES.items():
-        if value.lower() == known.lower():
-            return None if make is None else make()
-    choices = ", ".join(k for k in FOCUS_NAMES if k)
-    raise ValueError(f"{where}: unknown focus {value!r}; expected one of {choices}, or empty")
-
-
 class StationCatalogue:
     """A table of antennas by name, as read from an ECSV file.
 
@@ -162,8 +107,11 @@ class StationCatalogue:
         `~astropy_feedrot.rotators.Rotator`, ``'sky'`` or ``'fixed'``, or empty
         for none), ``feed_offset`` (an angle unit: the feed's constant angle in
         the cabin, such as eht-imaging's ``FR_OFFSET``; a fixed rotator at that
-        angle, or the angle of the ``rotator`` column's mode), ``source`` or ``position_source``,
-        ``mount_source``, ``focus_source`` and ``rotator_source``
+        angle, or the angle of the ``rotator`` column's mode), ``receptors``
+        (``'R:0,L:0'``, ``'X:45,Y:135'``: the text of
+        `~astropy_feedrot.Receptors.from_text`; empty where no source states
+        them), ``source`` or ``position_source``, ``mount_source``,
+        ``focus_source``, ``rotator_source`` and ``receptors_source``
         (citations). Other columns are kept and ignored.
     origin : str, optional
         Where the table came from, for error messages.
@@ -224,6 +172,7 @@ class StationCatalogue:
             if np.any(self._velocity[row].value != 0) and np.isnan(self._epoch[row]):
                 raise ValueError(f"{where}: a velocity needs the epoch (MJD) of the position")
             self._mount_and_focus(row)
+            self._receptors(row)
             if _key(name) in self._index:
                 other = table["name"][self._index[_key(name)]]
                 raise ValueError(f"{where}: the name {str(name).strip()!r} is also used by "
@@ -367,6 +316,63 @@ class StationCatalogue:
     def table(self):
         """`~astropy.table.Table`: A copy of the catalogue's table."""
         return self._table.copy()
+
+    def stations_named(self, name):
+        """The stations a name or alias stands for: one, several (a shared name) or none.
+
+        Parameters
+        ----------
+        name : str
+            Station name or alias (case and punctuation do not matter).
+
+        Returns
+        -------
+        list of str
+            The stations' names, in catalogue order.
+
+        Examples
+        --------
+        >>> from astropy_feedrot.stations import default_catalogue
+        >>> default_catalogue().stations_named("kp")
+        ['KP-VLBA', 'KP12']
+        >>> default_catalogue().stations_named("nowhere")
+        []
+        """
+        key = _key(name)
+        rows = [self._index[key]] if key in self._index else self._ambiguous.get(key, [])
+        return [self.names[row] for row in sorted(rows)]
+
+    def receptors(self, name, network=None):
+        """The receptors of a station, and the source that states them.
+
+        Parameters
+        ----------
+        name, network : str
+            As `get_antenna`.
+
+        Returns
+        -------
+        receptors : `~astropy_feedrot.Receptors` or None
+            None where the catalogue states none.
+        source : str
+            The ``receptors_source`` column (empty with no receptors).
+
+        Raises
+        ------
+        TypeError, ValueError
+            As `get_antenna`.
+
+        Examples
+        --------
+        >>> from astropy_feedrot.stations import default_catalogue
+        >>> default_catalogue().receptors("FD-VLBA")[0]
+        Receptors('RL', [0.0, 0.0] * u.deg)
+        """
+        row = self._row(name, network)
+        receptors, source = self._receptors(row), ""
+        if receptors is not None and "receptors_source" in self._table.colnames:
+            source = self._table["receptors_source"][row]
+        return receptors, "" if np.ma.is_masked(source) else str(source).strip()
 
     def _row(self, name, network=None):
         if not isinstance(name, str):
@@ -578,6 +584,8 @@ class StationCatalogue:
         Returns
         -------
         `~astropy_feedrot.Antenna`
+            With the catalogue's receptors where it states them (see
+            `receptors`).
 
         Raises
         ------
@@ -597,7 +605,18 @@ class StationCatalogue:
         mount, catalogue_focus = self._mount_and_focus(row)
         return Antenna(self.location(self.names[row], epoch), mount,
                        focus if focus is not None else catalogue_focus,
-                       name=str(self._table["name"][row]), rotator=self._rotator(row))
+                       name=str(self._table["name"][row]), rotator=self._rotator(row),
+                       receptors=self._receptors(row))
+
+    def _receptors(self, row):
+        """The Receptors of a row's ``receptors`` column, or None where it is empty."""
+        text = self._table["receptors"][row] if "receptors" in self._table.colnames else ""
+        if np.ma.is_masked(text) or not str(text).strip():
+            return None
+        try:
+            return Receptors.from_text(str(text).strip())
+        except ValueError as error:
+            raise ValueError(f"{self._origin}, station {self.names[row]}: {error}") from None
 
     def _rotator(self, row):
         """The Rotator of a row's ``rotator`` and ``feed_offset`` columns, or None.

@@ -68,9 +68,11 @@ from readers import (
     read_ms_mounts,
     read_paper,
     read_planner,
+    read_pyuvdata_telescopes,
     read_sched_stations,
     validate_axistypes,
 )
+from station_receptors import receptor_statements
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -635,6 +637,8 @@ def to_table(rows):
     table["feed_offset_source"] = [row.get("feed_offset_source", "") for row in rows]
     table["rotator"] = [ROTATORS.get(row["name"], ("", ""))[0] for row in rows]
     table["rotator_source"] = [ROTATORS.get(row["name"], ("", ""))[1] for row in rows]
+    table["receptors"] = [row.get("receptors", "") for row in rows]
+    table["receptors_source"] = [row.get("receptors_source", "") for row in rows]
     table["crosschecks"] = [",".join(row["refs"]) for row in rows]
     table["largest_difference"] = np.round(
         [w["distance"] if w else math.nan for w in worst], 3) * u.m
@@ -656,6 +660,10 @@ def to_table(rows):
         "feed_offset_source": "where the feed offset comes from",
         "rotator": "field rotator mode (sky: the feed keeps its angle on the sky), or empty",
         "rotator_source": "where the rotator comes from",
+        "receptors": "the receptors and their angles in the antenna (deg), as "
+                     "Receptors.from_text reads them ('R:0,L:0'); empty where no source "
+                     "states them",
+        "receptors_source": "where the receptors come from",
         "crosschecks": "the other sources that hold the station (tag:key, comma-separated; "
                        "see catalogue/build_stations.py SOURCE_TAGS)",
         "largest_difference": "largest distance to another source's position at 2020.0 "
@@ -688,6 +696,14 @@ def report(rows, left_out, no_mount, axis_checks):
               for (s, t), (limit, why) in sorted(REFERENCE_POINTS.items())]
     lines += ["", "Mount and focus statements not followed (station, source: reason):"]
     lines += [f"  {s:10s} {t:10s} {why}" for (s, t), why in sorted(MOUNT_EXCEPTIONS.items())]
+    lines += ["", "Receptors (receptors: stations; source):"]
+    stated = {}
+    for row in rows:
+        if row.get("receptors"):
+            stated.setdefault((row["receptors"], row["receptors_source"]), []).append(row["name"])
+    lines += [f"  {text}: {len(names)} stations ({', '.join(sorted(names)[:6])}"
+              f"{', ...' if len(names) > 6 else ''}); {source}"
+              for (text, source), names in sorted(stated.items())]
     lines += ["", "Every comparison (station, source, kind, distance in m, status):"]
     for row in sorted(rows, key=lambda r: r["name"]):
         for c in row["checks"]:
@@ -733,6 +749,12 @@ def main(argv=None):
             row["mount"] = "AZEL"
             row["mount_source"] = f"{ALMA_MS}: MOUNT 'ALT-AZ' for its antennas DA41, DA42"
     failed = failures(rows)
+    statements, disagree = receptor_statements(
+        rows, SOURCES, read_pyuvdata_telescopes(SOURCES / "pyuvdata" / "telescopes.py"),
+        PYUVDATA_ARRAYS, PYUVDATA)
+    failed += disagree
+    for row in rows:
+        row["receptors"], row["receptors_source"] = statements.get(row["name"], ("", ""))
     kept = {row["name"] for row in rows}
     failed += [f"{name}: left out, but the catalogue must hold it (REQUIRED)"
                for name in sorted(REQUIRED - kept)]

@@ -214,12 +214,54 @@ def read_ms_mounts(path):
         return sorted(set(tab.getcol("MOUNT")))
 
 
+def read_ms_feeds(path):
+    """The receptors of a Measurement Set's FEED table (python-casacore).
+
+    Returns the distinct (POLARIZATION_TYPE, RECEPTOR_ANGLE in degrees) of its
+    rows, sorted, and the number of antennas they describe.
+    """
+    from casacore.tables import table  # optional: python-casacore
+
+    with table(str(path), ack=False) as tab:
+        found = {(tuple(str(t) for t in row["POLARIZATION_TYPE"]),
+                  tuple(round(math.degrees(float(a)), 9) for a in row["RECEPTOR_ANGLE"]))
+                 for row in tab}
+        return sorted(found), len(set(tab.getcol("ANTENNA_ID").tolist()))
+
+
+def read_miriad_observatories(path):
+    """Miriad's ``observatories.dat``: (observatory, parameter) -> (value text, line)."""
+    found = {}
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        fields = line.split()
+        if fields and not line.startswith("#") and len(fields) >= 3:
+            found[(fields[0], fields[1])] = (" ".join(fields[2:]), number)
+    return found
+
+
+def _number(node):
+    """The value of a numeric literal such as ``np.pi / 2`` (no code is run)."""
+    import ast
+
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+        return float(node.value)
+    if isinstance(node, ast.Attribute) and node.attr == "pi":
+        return math.pi
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        return -_number(node.operand)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.Mult)):
+        left, right = _number(node.left), _number(node.right)
+        return left / right if isinstance(node.op, ast.Div) else left * right
+    raise ValueError(f"not a number: {ast.dump(node)}")
+
+
 def read_pyuvdata_telescopes(path):
     """pyuvdata's ``KNOWN_TELESCOPES`` (its ``telescopes.py``), read without running it.
 
     Returns name -> dict with ``lat``, ``lon`` (angle strings as written),
     ``height`` (m) where the entry gives a location, ``mount_type``,
-    ``citation`` and ``line``.
+    ``citation``, ``line``, and ``feed_array`` (letters) with ``feed_angle``
+    (radians) where the entry gives its feeds.
     """
     import ast
 
@@ -234,6 +276,10 @@ def read_pyuvdata_telescopes(path):
             for field, item in zip(value.keys, value.values):
                 if isinstance(item, ast.Constant):
                     entry[field.value] = item.value
+                elif field.value == "feed_array":
+                    entry["feed_array"] = [str(e.value) for e in item.elts]
+                elif field.value == "feed_angle":
+                    entry["feed_angle"] = [_number(e) for e in item.elts]
                 elif field.value == "location":
                     for keyword in item.keywords:
                         if keyword.arg in ("lat", "lon"):

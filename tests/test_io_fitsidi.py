@@ -22,7 +22,7 @@ from astropy.coordinates import ICRS, AltAz, EarthLocation, SkyCoord
 from fitsidi_writer import START, STATIONS, station_xyz, write_fitsidi
 
 from astropy_feedrot import AltAzMount, NasmythFocus, XYMount
-from astropy_feedrot.exceptions import DegenerateGeometryWarning
+from astropy_feedrot.exceptions import CatalogueReceptorsWarning, DegenerateGeometryWarning
 from astropy_feedrot.io import FileFormatError
 from astropy_feedrot.visibilities import (
     HISTORY_MARK,
@@ -551,6 +551,31 @@ def test_not_a_fits_file(tmp_path):
 
 def test_stations_used_by_the_writer_are_in_the_catalogue():
     assert [name for name, _, _ in STATIONS] == ["FD-VLBA", "EFLSBERG", "YEBES40M", "WETTZ13S"]
+
+
+def test_receptors_from_the_catalogue_where_the_antenna_table_has_none(tmp_path):
+    # Antenna 1 (FD-VLBA) loses its ANTENNA rows: the station catalogue gives
+    # it R and L at 0 deg (VLBA Observational Status Summary), the receptors of
+    # the writer's model, and says so once; with catalogue=False it has none.
+    source, info = run(tmp_path)
+
+    def edit(hdul):
+        table = hdul["ANTENNA"]
+        keep = table.data["ANTENNA_NO"] != 1
+        hdul["ANTENNA"] = fits.BinTableHDU(table.data[keep], header=table.header,
+                                           name="ANTENNA")
+
+    bad = rewrite(source, tmp_path / "nofeed.idifits", edit)
+    with pytest.raises(ValueError, match=r"antenna 1 \(FD-VLBA\) has no receptors: .*--feeds "
+                                         r"R,L on the command line\)$"):
+        correct_fitsidi(bad, tmp_path / "out.idifits", catalogue=False)
+    with pytest.warns(CatalogueReceptorsWarning, match=r"^receptors from the station catalogue "
+                      r"for antennas the file gives none: 1 \(FD-VLBA as FD-VLBA\): R:0,L:0 "
+                      r"\(VLBA Observational Status Summary"):
+        correct_fitsidi(bad, tmp_path / "out.idifits")
+    got = corrected_products(tmp_path / "out.idifits", info)
+    np.testing.assert_allclose(got, np.broadcast_to(info["expected"][:, None, None, :],
+                                                    got.shape), atol=2e-6)
 
 
 def test_feeds_given_where_the_antenna_table_has_none(tmp_path):

@@ -229,7 +229,9 @@ def register(commands):
     correct.add_argument("--feeds", metavar="R,L|X,Y",
                          help="receptors for antennas the file gives none (ATCA Miriad, old "
                          "UVFITS): two letters with optional angles in degrees, e.g. "
-                         "X:0,Y:90")
+                         "X:0,Y:90; without it, such antennas take the station catalogue's "
+                         "receptors where it states them for a station of their name within "
+                         "100 m (said in a warning)")
     correct.add_argument("--redo", action="store_true",
                          help="correct data whose history says they were corrected in the "
                          "same direction already")

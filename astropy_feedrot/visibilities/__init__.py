@@ -10,8 +10,9 @@ One module per format, on shared steps:
   source) to the feed rotation of both antennas (`feed_rotation_rows`);
 * `~astropy_feedrot.visibilities.receptors`: the receptor step, from feed
   rotation to the sky position angle of each receptor
-  (`receptor_position_angles`), and receptors given by the user
-  (`with_receptors`, `parse_feeds`);
+  (`receptor_position_angles`), receptors given by the user
+  (`with_receptors`, `parse_feeds`) or by the station catalogue
+  (`catalogue_receptors`);
 * `~astropy_feedrot.visibilities.history`: the one history mark
   (`HISTORY_MARK`, `APPLY_MARK`);
 * formats: `~astropy_feedrot.visibilities.fitsidi` (FITS-IDI, astropy,
@@ -41,7 +42,9 @@ from .kinds import FILE_KINDS, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
 from .poles import POLES, pole_context
 from .receptors import (
+    CATALOGUE_TOLERANCE,
     ReceptorAngleTable,
+    catalogue_receptors,
     check_receptors,
     parse_feeds,
     receptor_position_angles,
@@ -78,6 +81,8 @@ __all__ = [
     "check_receptors",
     "with_receptors",
     "parse_feeds",
+    "catalogue_receptors",
+    "CATALOGUE_TOLERANCE",
     "HISTORY_MARK",
     "APPLY_MARK",
     "fitsidi_antennas",

@@ -208,7 +208,7 @@ def check_output_format(kind, output):
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
                  progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
-                 client=None):
+                 client=None, catalogue=None):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -241,6 +241,13 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
     client : `dask.distributed.Client`, optional
         For FITS-IDI, correct the chunks of rows on its workers.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        Where antennas that neither the file nor ``feeds`` give receptors
+        take theirs: the station catalogue's receptors of the station of
+        the antenna's name, if the antenna lies within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of it
+        (`~astropy_feedrot.visibilities.catalogue_receptors`). The embedded
+        catalogue by default, another one, or False for none.
 
     Returns
     -------
@@ -253,7 +260,14 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         For a missing input, an existing output without ``overwrite``, the
         input as output, or data that cannot be corrected (see
         `~astropy_feedrot.visibilities.correct_uvdata` and
-        `~astropy_feedrot.visibilities.correct_fitsidi`).
+        `~astropy_feedrot.visibilities.correct_fitsidi`); an antenna
+        without receptors is named, with what the station catalogue found.
+
+    Warns
+    -----
+    CatalogueReceptorsWarning
+        Once, naming the antennas, their stations and the source, if some
+        took their receptors from the station catalogue.
 
     Notes
     -----
@@ -277,13 +291,13 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
                         vertical=vertical, direction=direction, feeds=feeds, redo=redo,
-                        pole=pole, client=client)
+                        pole=pole, client=client, catalogue=catalogue)
         return target
 
     uv = read_uvdata(source)
     with pole_context(pole):
         correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
-                       direction=direction, feeds=feeds, redo=redo)
+                       direction=direction, feeds=feeds, redo=redo, catalogue=catalogue)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -29,7 +29,7 @@ from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, with_receptors
+from .receptors import ReceptorAngleTable, catalogue_receptors, with_receptors
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -346,7 +346,7 @@ def _row_sources(plan, records, sources, name):
     return a1, a2, date + time, source
 
 
-def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk):
+def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, note=""):
     """The receptors' position angles of every row of one UV_DATA table, computed once
     per distinct epoch, source and antenna (the rows' few metadata bytes are read, a
     chunk mapped at a time)."""
@@ -365,7 +365,7 @@ def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk):
         antennas, jd, source, a1, a2, sources, lambda t: Time(t, format="jd", scale=scale),
         products=plan.products, frame=frame, where=f"{name}, table UV_DATA",
         hint="the ANTENNA table has no row for it; give the feeds (feeds=Receptors(...), "
-             "or --feeds R,L on the command line)")
+             "or --feeds R,L on the command line)" + (f"; {note}" if note else ""))
 
 
 def _correct_chunk(records, plan, table, sources, name, direction):
@@ -525,7 +525,7 @@ def _copy_range(fin, fout, begin, end, shift):
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
                     software=None, vertical="geodetic", chunk_bytes=None, direction="remove",
-                    feeds=None, redo=False, pole="itrs", client=None):
+                    feeds=None, redo=False, pole="itrs", client=None, catalogue=None):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -571,6 +571,10 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers (each maps and writes its own rows
         of the copy); the output is bit for bit the serial one.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        Where antennas that neither the file nor ``feeds`` give receptors
+        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`):
+        the embedded station catalogue by default, another, or False.
 
     Returns
     -------
@@ -601,6 +605,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         Once, with the number of rows, if the feed rotation is undefined in
         some rows (an alt-az antenna at the zenith): their ``FLUX`` is set
         to NaN and their weight to 0.
+    CatalogueReceptorsWarning
+        Once, naming them, if antennas took their receptors from the
+        station catalogue.
 
     Notes
     -----
@@ -645,6 +652,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     antennas = fitsidi_antennas(source, vertical=vertical, software=software)
     if feeds is not None:
         antennas = with_receptors(antennas, feeds)
+    antennas, note = catalogue_receptors(antennas, catalogue)
     new_header.add_history(history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row", frame=frame_name, vertical=vertical))
@@ -668,7 +676,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         with pole_context(pole):
             tables = {plan.index: _angle_table(source, plan, antennas, sources, scale,
                                                frame, source,
-                                               max(1, chunk_bytes // plan.dtype.itemsize))
+                                               max(1, chunk_bytes // plan.dtype.itemsize),
+                                               note)
                       for plan in plans if plan.rows}
         with progress_steps(progress, len(work)) as step:
             for count in _chunks(work, client, source, temporary, shift, tables, sources,

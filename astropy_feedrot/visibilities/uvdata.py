@@ -39,7 +39,7 @@ from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
-from .receptors import receptor_position_angles, with_receptors
+from .receptors import catalogue_receptors, receptor_position_angles, with_receptors
 
 __all__ = [
     "antennas_from_uvdata",
@@ -231,7 +231,7 @@ def antennas_from_uvdata(uv, *, vertical="geodetic"):
 # --- position angles of the receptors ----------------------------------------------
 
 
-def _position_angles(uv, antennas, frame, vertical):
+def _position_angles(uv, antennas, frame, vertical, note=""):
     """Sky position angles (deg) of the receptors of ant_1 and ant_2, (Nblts, 2) each.
 
     Returns (theta1, theta2, basis, undefined) with the last axis in the order
@@ -263,7 +263,8 @@ def _position_angles(uv, antennas, frame, vertical):
         antennas, ant1, ant2, Time(uv.time_array, format="jd", scale="utc"), sources,
         np.asarray(uv.phase_center_id_array), products=products, frame=frame,
         hint="the data give no telescope.feed_array/feed_angle; set them, or pass "
-             "antennas= with Receptors (or feeds=, --feeds R,L on the command line)")
+             "antennas= with Receptors (or feeds=, --feeds R,L on the command line)"
+             + (f"; {note}" if note else ""))
     if unprojected:
         # An alt-az antenna pointing at the zenith has no defined orientation.
         altaz = np.array([isinstance(antennas[int(n)].mount, AltAzMount) for n in used])
@@ -413,7 +414,8 @@ def _chunk_rows(uv):
 
 @iers_context()
 def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", antennas=None,
-                   progress=False, direction="remove", feeds=None, redo=False):
+                   progress=False, direction="remove", feeds=None, redo=False,
+                   catalogue=None):
     """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
 
     Parameters
@@ -447,6 +449,11 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     redo : bool, optional
         Correct data whose history says they were corrected in the same
         direction already.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        Where antennas that neither the data nor ``feeds`` give receptors
+        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
+        by name and position): the embedded station catalogue by default,
+        another one, or False for none.
 
     Returns
     -------
@@ -477,6 +484,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     DegenerateGeometryWarning
         Once, with the count, if the feed rotation is undefined in some
         baseline-times: their data are set to NaN and flagged.
+    CatalogueReceptorsWarning
+        Once, naming them, if antennas took their receptors from the
+        station catalogue.
 
     Notes
     -----
@@ -519,13 +529,19 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     direction = check_direction(direction)
     names, basis = _product_names(uv)
     check_history(uv.history, direction, "these data", redo=redo)
-    if feeds is not None:
-        used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
-        antennas = with_receptors(_antennas(uv, vertical, used) if antennas is None
-                                  else antennas, feeds)
     if uv.data_array is None:
         raise ValueError("uv has no data_array (metadata only); read the data too")
-    theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical)
+    note = ""
+    if (feeds is not None or catalogue is not False) and \
+            (antennas is None or hasattr(antennas, "items")):
+        used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
+        if antennas is None:
+            antennas = _antennas(uv, vertical, used)
+        if feeds is not None:
+            antennas = with_receptors(antennas, feeds)
+        antennas, note = catalogue_receptors(antennas, catalogue, numbers=used)
+    theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
+                                                              note)
     if basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
