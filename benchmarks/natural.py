@@ -147,7 +147,7 @@ PATHS = ("fast", "warm", "rigorous", "astroplan", "astropy+hd2pa", "erfa", "casa
 # from the celestial intermediate pole instead).
 COMPARED = ("fast", "warm", "astroplan", "astropy+hd2pa", "erfa", "skyfield")
 # The paths that --max-slow caps.
-SLOW = ("rigorous", "astropy+hd2pa", "erfa", "casacore")
+SLOW = ("rigorous", "astropy+hd2pa", "erfa", "casacore", "skyfield")
 # Paths computed one epoch per call of the peer (capped harder, --max-loop).
 LOOPED = ("casacore",)
 WARMUP_EPOCHS = 64
