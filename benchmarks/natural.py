@@ -524,7 +524,7 @@ def parse_args(argv=None):
                                  f"{k + 1} = {n}" for k, n in enumerate(names)))
     parser.add_argument("--max-slow", type=lambda s: int(float(s)), default=2 * 10**6,
                         help="largest number of epochs at which the slow paths (rigorous, "
-                             "astropy+hd2pa, erfa) run; larger regimes run them on every "
+                             "astropy+hd2pa, erfa, skyfield) run; larger regimes run them on every "
                              "k-th epoch and extrapolate the time per epoch (default 2e6: "
                              "everything; 1e5 makes the run a few times shorter)")
     parser.add_argument("--max-loop", type=lambda s: int(float(s)), default=2000,
