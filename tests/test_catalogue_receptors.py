@@ -39,7 +39,7 @@ VLBA_NAMES = ["BR-VLBA", "FD-VLBA", "HN-VLBA", "KP-VLBA", "LA-VLBA", "MK-VLBA", 
 def test_the_column_is_read_and_every_value_cites_its_source():
     table = default_catalogue().table
     stated = [row for row in table if row["receptors"]]
-    assert len(stated) == 130  # 10 VLBA + the VLA and its 71 pads + 45 ATCA + ATA, OVRO-LWA, MWA
+    assert len(stated) == 131  # 10 VLBA + the VLA and its 72 pads + 45 ATCA + ATA, OVRO-LWA, MWA
     assert all(row["receptors_source"] for row in stated)
     assert not any(row["receptors_source"] for row in table if not row["receptors"])
 
