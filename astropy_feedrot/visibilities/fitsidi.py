@@ -27,9 +27,10 @@ from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
+from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, catalogue_receptors, with_receptors
+from .receptors import ReceptorAngleTable, with_receptors
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
