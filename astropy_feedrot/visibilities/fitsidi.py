@@ -574,8 +574,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         of the copy); the output is bit for bit the serial one.
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
-        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`):
-        the embedded station catalogue by default, another, or False.
+        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
+        by name, else by position): the embedded station catalogue by
+        default, another, or False.
 
     Returns
     -------
