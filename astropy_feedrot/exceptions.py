@@ -105,9 +105,11 @@ class CatalogueReceptorsWarning(AstropyUserWarning):
     """Receptors a visibility file lacks were taken from the station catalogue.
 
     Emitted once per correction, naming the antennas, the catalogue's
-    stations they were matched to (by name, and within
-    `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of their position),
-    the receptors and the source the catalogue cites. Information, not a
+    stations they were matched to (by name, within
+    `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of their position;
+    or by position alone, within
+    `~astropy_feedrot.visibilities.PAD_TOLERANCE`, with the distance), the
+    receptors and the source the catalogue cites. Information, not a
     fault: give the feeds yourself (``feeds=``, ``--feeds``) to silence it.
 
     Examples

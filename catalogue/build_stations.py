@@ -336,11 +336,13 @@ def build():
     by_key = {name_key(name): name for name in rows}
     for name, loc in locations.items():
         array = PADS.get(loc["frame"])
-        if array is None or name in rows:
+        if array is None:
             continue
         network, station = array
-        if name_key(name) in by_key:  # the pad is a geodetic station (VLA-N8): one row
-            rows[by_key[name_key(name)]]["networks"].add(network)
+        # A pad that is also a station (VLA_E8, SCHED's VLA1; VLA-N8, a geodetic
+        # station): one row, in the array's network too.
+        if name in rows or name_key(name) in by_key:
+            rows[name if name in rows else by_key[name_key(name)]]["networks"].add(network)
             continue
         rows[name] = dict(
             name=name, aliases=[], networks={network}, xyz=loc["xyz"], vel=loc["vel"],

@@ -39,7 +39,7 @@ VLBA_NAMES = ["BR-VLBA", "FD-VLBA", "HN-VLBA", "KP-VLBA", "LA-VLBA", "MK-VLBA", 
 def test_the_column_is_read_and_every_value_cites_its_source():
     table = default_catalogue().table
     stated = [row for row in table if row["receptors"]]
-    assert len(stated) == 130  # 10 VLBA + the VLA and its 71 pads + 45 ATCA + ATA, OVRO-LWA, MWA
+    assert len(stated) == 131  # 10 VLBA + the VLA and its 72 pads + 45 ATCA + ATA, OVRO-LWA, MWA
     assert all(row["receptors_source"] for row in stated)
     assert not any(row["receptors_source"] for row in table if not row["receptors"])
 
@@ -121,7 +121,8 @@ def bare(name, offset_m=0.0, station=None):
 
 
 def test_catalogue_receptors_by_name_and_position():
-    antennas = {1: bare("FD"), 2: bare("KP", station="KP-VLBA"), 3: bare("XX", station="LA-VLBA"),
+    antennas = {1: bare("FD"), 2: bare("KP", station="KP-VLBA"),
+                3: bare("XX", offset_m=10.0, station="LA-VLBA"),
                 4: bare("LA", offset_m=150.0), 5: bare("EFLSBERG"),
                 6: Antenna(get_antenna("BR-VLBA").location, AltAzMount(), name="BR",
                            receptors=Receptors("RL", [10, 10] * u.deg))}
@@ -131,14 +132,19 @@ def test_catalogue_receptors_by_name_and_position():
     assert given[1].receptors == given[2].receptors == Receptors("RL", [0, 0] * u.deg)
     assert given[6].receptors == Receptors("RL", [10, 10] * u.deg)  # the file's own wins
     assert [given[n].receptors for n in (3, 4, 5)] == [None] * 3
+    # An unknown name 10 m from any station, and a known one too far from it,
+    # are matched by position neither: no station with receptors within 5 m.
     assert note == ("the station catalogue gave receptors to antennas 1 (FD as FD-VLBA), 2 (KP "
-                    "as KP-VLBA), not to 3 (XX: its name is not in the catalogue); 4 (LA: the "
-                    "catalogue's LA-VLBA 150.0 m away, beyond 100 m); 5 (EFLSBERG: the "
+                    "as KP-VLBA), not to 3 (XX: its name is not in the catalogue, and no "
+                    "station within 5 m states receptors (nearest: LA-VLBA, 10.0 m)); 4 (LA: "
+                    "the catalogue's LA-VLBA 150.0 m away, beyond 100 m, and no station within "
+                    "5 m states receptors (nearest: LA-VLBA, 150.0 m)); 5 (EFLSBERG: the "
                     "catalogue's EFLSBERG states no receptors)")
     # Only the antennas asked for; none from catalogue=False.
     assert catalogue_receptors(antennas, numbers=[3, 6]) == (
         antennas, "the station catalogue gave receptors to antennas none, not to 3 (XX: its "
-                  "name is not in the catalogue)")
+                  "name is not in the catalogue, and no station within 5 m states receptors "
+                  "(nearest: LA-VLBA, 10.0 m))")
     assert catalogue_receptors(antennas, False) == (antennas, "")
     assert CATALOGUE_TOLERANCE == 100 * u.m
 
@@ -147,7 +153,8 @@ def test_a_shared_name_far_from_both_stations():
     far = bare("KP", offset_m=5000.0, station="KP-VLBA")
     _, note = catalogue_receptors({1: far})
     assert note.endswith(r"not to 1 (KP: the catalogue's KP-VLBA 5000.0 m away, KP12 "
-                         f"{far_from('KP12', far):.1f} m away, beyond 100 m)")
+                         f"{far_from('KP12', far):.1f} m away, beyond 100 m, and no station "
+                         "within 5 m states receptors (nearest: KP-VLBA, 5000.0 m))")
 
 
 def far_from(station, antenna):
@@ -209,21 +216,31 @@ def moved(uv, name, metres):
     return out
 
 
-def test_an_unknown_name_is_refused_naming_what_the_catalogue_found(vlba):
-    _, stripped = vlba
+def test_an_unknown_name_is_matched_by_position_or_refused(vlba):
+    uv, stripped = vlba
+    # AIPS put LA 0.21 m from the catalogue's LA-VLBA: renamed, it is matched there.
+    with pytest.warns(CatalogueReceptorsWarning, match=r"5 \(XX as LA-VLBA by position, "
+                      r"0\.21 m\)"):
+        renamed_data = correct_uvdata(renamed(stripped, "LA", "XX"))
+    np.testing.assert_array_equal(renamed_data.data_array, correct_uvdata(uv).data_array)
+    # Renamed and 10 m away from it, it is refused, with what the catalogue found.
     with pytest.warns(CatalogueReceptorsWarning), \
             pytest.raises(ValueError, match=r"antenna 5 \(XX\) has no receptors: the data give "
                           r"no telescope.feed_array/feed_angle.*--feeds R,L on the command "
                           r"line\); the station catalogue gave receptors to antennas 1 \(BR as "
-                          r"BR-VLBA\), .*, not to 5 \(XX: its name is not in the catalogue\)$"):
-        correct_uvdata(renamed(stripped, "LA", "XX"))
+                          r"BR-VLBA\), .*, not to 5 \(XX: its name is not in the catalogue, and "
+                          r"no station within 5 m states receptors \(nearest: LA-VLBA, "
+                          r"10\.\d m\)\)$"):
+        correct_uvdata(renamed(moved(stripped, "LA", 10.0), "LA", "XX"))
 
 
 def test_a_station_too_far_from_its_namesake_is_refused(vlba):
     _, stripped = vlba
     with pytest.warns(CatalogueReceptorsWarning), \
             pytest.raises(ValueError, match=r"antenna 5 \(LA *\) has no receptors: .*not to 5 "
-                          r"\(LA: the catalogue's LA-VLBA 2\d\d\.\d m away, beyond 100 m\)$"):
+                          r"\(LA: the catalogue's LA-VLBA 2\d\d\.\d m away, beyond 100 m, and no "
+                          r"station within 5 m states receptors \(nearest: LA-VLBA, "
+                          r"2\d\d\.\d m\)\)$"):
         correct_uvdata(moved(stripped, "LA", 200.0))
     with pytest.raises(ValueError, match=r"antenna 1 \(BR *\) has no receptors: .*command line\)$"):
         correct_uvdata(stripped, catalogue=False)

@@ -11,7 +11,9 @@ One module per format, on shared steps:
 * `~astropy_feedrot.visibilities.receptors`: the receptor step, from feed
   rotation to the sky position angle of each receptor
   (`receptor_position_angles`), receptors given by the user
-  (`with_receptors`, `parse_feeds`) or by the station catalogue
+  (`with_receptors`, `parse_feeds`);
+* `~astropy_feedrot.visibilities.catalogue`: receptors from the station
+  catalogue for antennas a file gives none, matched by name or by position
   (`catalogue_receptors`);
 * `~astropy_feedrot.visibilities.history`: the one history mark
   (`HISTORY_MARK`, `APPLY_MARK`);
@@ -29,6 +31,7 @@ pyuvdata and python-casacore are optional and imported on first use.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
+from .catalogue import CATALOGUE_TOLERANCE, PAD_TOLERANCE, catalogue_receptors
 from .files import (
     FITSIDI_EXTENSIONS,
     antenna_table,
@@ -42,9 +45,7 @@ from .kinds import FILE_KINDS, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
 from .poles import POLES, pole_context
 from .receptors import (
-    CATALOGUE_TOLERANCE,
     ReceptorAngleTable,
-    catalogue_receptors,
     check_receptors,
     parse_feeds,
     receptor_position_angles,
@@ -83,6 +84,7 @@ __all__ = [
     "parse_feeds",
     "catalogue_receptors",
     "CATALOGUE_TOLERANCE",
+    "PAD_TOLERANCE",
     "HISTORY_MARK",
     "APPLY_MARK",
     "fitsidi_antennas",

@@ -245,7 +245,9 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs: the station catalogue's receptors of the station of
         the antenna's name, if the antenna lies within
-        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of it
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of it, else of
+        the station with receptors within
+        `~astropy_feedrot.visibilities.PAD_TOLERANCE` of the antenna
         (`~astropy_feedrot.visibilities.catalogue_receptors`). The embedded
         catalogue by default, another one, or False for none.
 

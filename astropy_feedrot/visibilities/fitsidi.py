@@ -27,9 +27,10 @@ from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
+from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, catalogue_receptors, with_receptors
+from .receptors import ReceptorAngleTable, with_receptors
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -573,8 +574,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         of the copy); the output is bit for bit the serial one.
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
-        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`):
-        the embedded station catalogue by default, another, or False.
+        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
+        by name, else by position): the embedded station catalogue by
+        default, another, or False.
 
     Returns
     -------

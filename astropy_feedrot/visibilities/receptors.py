@@ -16,8 +16,8 @@ known, one basis per baseline) and says which antenna lacks what.
 
 `with_receptors` gives receptors to antennas whose file has none (ATCA
 Miriad files, old UVFITS files): ``feedrot correct --feeds X,Y``; where
-none are given, `catalogue_receptors` takes those the station catalogue
-states for a station of the antenna's name at the antenna's position.
+none are given, `~astropy_feedrot.visibilities.catalogue_receptors` takes
+those of the station catalogue (`~astropy_feedrot.visibilities.catalogue`).
 """
 
 import warnings
@@ -27,22 +27,14 @@ from astropy import units as u
 from astropy.time import Time
 
 from ..antenna import Antenna
-from ..exceptions import CatalogueReceptorsWarning, DegenerateGeometryWarning, warn_caller
+from ..exceptions import DegenerateGeometryWarning
 from ..frames import local_frame
 from ..mounts import FixedAxisMount
 from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
-from ..stations import StationCatalogue, default_catalogue, read_catalogue
 from .rows import feed_rotation_rows
 
 __all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
-           "parse_feeds", "catalogue_receptors", "CATALOGUE_TOLERANCE"]
-
-#: Largest distance between an antenna of a file and the catalogue's station of
-#: its name for the station to lend the antenna its receptors
-#: (`catalogue_receptors`): the station itself, not a neighbour (pads of an
-#: array lie tens of metres apart, the telescopes of an observatory hundreds;
-#: a file and the catalogue agree on a station to well under a metre).
-CATALOGUE_TOLERANCE = 100 * u.m
+           "parse_feeds"]
 
 _POLCONVERT = ("a baseline between linear and circular feeds is not supported (convert one "
                "of them first, e.g. with PolConvert)")
@@ -413,130 +405,3 @@ def with_receptors(antennas, receptors, *, replace=False):
             antenna = _given(antenna, new)
         out[number] = antenna
     return out
-
-
-def _as_catalogue(catalogue):
-    if catalogue is None:
-        return default_catalogue()
-    return catalogue if isinstance(catalogue, StationCatalogue) else read_catalogue(catalogue)
-
-
-def _station_of(antenna, catalogue, tolerance):
-    """The catalogue's station of an antenna, and None; or None and why not."""
-    if not antenna.name:
-        return None, "it has no name"
-    stations = catalogue.stations_named(antenna.name)
-    if not stations:
-        return None, "its name is not in the catalogue"
-    xyz = np.array([getattr(antenna.location, c).to_value(u.m) for c in "xyz"])
-    distance = {}
-    for station in stations:
-        place = catalogue.location(station)
-        distance[station] = float(np.linalg.norm(
-            xyz - [getattr(place, c).to_value(u.m) for c in "xyz"]))
-    near = [station for station in stations if distance[station] <= tolerance.to_value(u.m)]
-    limit = f"{tolerance.to_value(u.m):g} m"
-    if len(near) != 1:
-        far = ", ".join(f"{station} {distance[station]:.1f} m away" for station in stations)
-        return None, (f"the catalogue's {far}, beyond {limit}" if not near else
-                      f"it names {', '.join(near)}, all within {limit}")
-    return near[0], None
-
-
-def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
-                        tolerance=CATALOGUE_TOLERANCE):
-    """The antennas, given the station catalogue's receptors where they have none.
-
-    An antenna without receptors takes those the catalogue states for the
-    station of its name (`~astropy_feedrot.stations.StationCatalogue.stations_named`;
-    of the stations a shared name stands for, the one near the antenna) if
-    the antenna lies within ``tolerance`` of it: a name alone could be
-    another telescope's, a position alone a neighbour's.
-
-    Parameters
-    ----------
-    antennas : mapping
-        ``{antenna number: Antenna}``, as read from a file.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, str, path-like or False, optional
-        The catalogue (default: the embedded one; a path: an ECSV file to
-        read); False for none (the antennas are returned as they are).
-    numbers : iterable of int, optional
-        Only these antennas (those the data use); default all.
-    tolerance : `~astropy.units.Quantity`, optional
-        Largest distance between an antenna and its station
-        (`CATALOGUE_TOLERANCE`).
-
-    Returns
-    -------
-    antennas : dict
-        A new ``{antenna number: Antenna}``.
-    note : str
-        What the catalogue gave and to which antennas it gave nothing, and
-        why, for the message of an antenna left without receptors; empty if
-        no antenna lacked them or ``catalogue`` is False.
-
-    Raises
-    ------
-    TypeError, ValueError, FileNotFoundError
-        For a catalogue that cannot be read, as
-        `~astropy_feedrot.stations.read_catalogue`.
-
-    Warns
-    -----
-    CatalogueReceptorsWarning
-        Once, if some antennas were given receptors: which, as which
-        stations, and the source the catalogue cites.
-
-    Examples
-    --------
-    The VLBA's Fort Davis antenna as a file without receptors gives it:
-
-    >>> import warnings
-    >>> from astropy_feedrot import Antenna, get_antenna
-    >>> from astropy_feedrot.visibilities import catalogue_receptors
-    >>> fd = get_antenna("FD-VLBA")
-    >>> bare = {1: Antenna(fd.location, fd.mount, name="FD")}
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     antennas, note = catalogue_receptors(bare)
-    >>> antennas[1].receptors, note
-    (Receptors('RL', [0.0, 0.0] * u.deg), '')
-    >>> print(str(caught[0].message)[:75])
-    receptors from the station catalogue for antennas the file gives none: 1 (F
-    """
-    if catalogue is False:
-        return dict(antennas), ""
-    wanted = None if numbers is None else {int(n) for n in numbers}
-    lacking = [n for n, antenna in antennas.items() if isinstance(antenna, Antenna)
-               and antenna.receptors is None and (wanted is None or int(n) in wanted)]
-    if not lacking:
-        return dict(antennas), ""
-    catalogue = _as_catalogue(catalogue)
-    given, refused, cited = {}, {}, {}
-    for number in lacking:
-        antenna = antennas[number]
-        station, why = _station_of(antenna, catalogue, tolerance)
-        if station is not None:
-            receptors, source = catalogue.receptors(station)
-            if receptors is None:
-                why = f"the catalogue's {station} states no receptors"
-            else:
-                given[number] = receptors
-                pairs = zip(receptors.types, receptors.angles.value)
-                text = ",".join(f"{t}:{a:g}" for t, a in pairs)
-                cited.setdefault((text, source), []).append(
-                    f"{number} ({str(antenna.name).strip()} as {station})")
-        if why is not None:
-            refused[number] = f"{number} ({str(antenna.name or 'no name').strip()}: {why})"
-    if cited:
-        warn_caller("receptors from the station catalogue for antennas the file gives none: "
-                    + "; ".join(f"{', '.join(labels)}: {text} ({source})"
-                                for (text, source), labels in cited.items())
-                    + "; give feeds= (--feeds) to choose others", CatalogueReceptorsWarning)
-    note = ""
-    if refused:
-        found = ", ".join(label for labels in cited.values() for label in labels)
-        note = (f"the station catalogue gave receptors to antennas {found or 'none'}, "
-                f"not to {'; '.join(refused[n] for n in sorted(refused)[:10])}"
-                + (f" and {len(refused) - 10} more" if len(refused) > 10 else ""))
-    return with_receptors(antennas, given), note

@@ -37,9 +37,10 @@ from ..mounts import AltAzMount
 from ..outputs import publish
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
+from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
-from .receptors import catalogue_receptors, receptor_position_angles, with_receptors
+from .receptors import receptor_position_angles, with_receptors
 
 __all__ = [
     "antennas_from_uvdata",

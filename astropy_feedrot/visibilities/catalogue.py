@@ -1,0 +1,233 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Receptors from the station catalogue, for antennas a file gives none.
+
+An antenna of a visibility file is matched to a station of the catalogue
+(:doc:`/stations`) in two ways, the second only where the first finds no
+station:
+
+* by name: the station of the antenna's name (or alias) within
+  `CATALOGUE_TOLERANCE` of the antenna (the VLBA's ``FD``, ``PT``);
+* by position: the one station with receptors within `PAD_TOLERANCE` of
+  the antenna, whatever the antenna's name. Connected arrays name their
+  antennas for themselves or for their pads in their own way (the VLA's
+  ``W09``, ``E18``, ``N72``; the catalogue's ``VLA_W9``...), or not at all
+  (pyuvdata names the antennas of a Miriad file by their numbers).
+
+`catalogue_receptors` gives each antenna the receptors of its station and
+says which antennas it matched, how, and why not the others.
+"""
+
+import numpy as np
+from astropy import units as u
+
+from ..antenna import Antenna
+from ..exceptions import CatalogueReceptorsWarning, warn_caller
+from ..stations import StationCatalogue, default_catalogue, read_catalogue
+from .receptors import with_receptors
+
+__all__ = ["catalogue_receptors", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE"]
+
+#: Largest distance between an antenna of a file and the catalogue's station of
+#: its name for the station to lend the antenna its receptors
+#: (`catalogue_receptors`): the station itself, not a neighbour (pads of an
+#: array lie tens of metres apart, the telescopes of an observatory hundreds;
+#: a file and the catalogue agree on a station to well under a metre).
+CATALOGUE_TOLERANCE = 100 * u.m
+
+#: Largest distance between an antenna that no station's name matches and
+#: the station with receptors that lends it them by position
+#: (`catalogue_receptors`). A third of the closest spacing of two catalogue
+#: stations with receptors (the ATCA's pads, 15.3 m apart; the VLA's at least
+#: 39.9 m), so that one antenna never lies this close to two pads; ten times
+#: the distance of the VLA Measurement Set's antennas from the catalogue's
+#: pads (0.42 to 0.45 m) and beyond the 3.4 m by which SCHED's ATCA pads,
+#: reckoned from W104, depart over 6 km from the layout a Miriad file of the
+#: ATCA records (:doc:`/correcting`).
+PAD_TOLERANCE = 5 * u.m
+
+
+def _as_catalogue(catalogue):
+    if catalogue is None:
+        return default_catalogue()
+    return catalogue if isinstance(catalogue, StationCatalogue) else read_catalogue(catalogue)
+
+
+def _xyz(location):
+    """Geocentric metres of an EarthLocation, shape (3,)."""
+    return np.array([getattr(location, c).to_value(u.m) for c in "xyz"])
+
+
+def _text(receptors):
+    """Receptors as ``--feeds`` writes them: ``'R:0,L:0'``."""
+    return ",".join(f"{t}:{a:g}" for t, a in zip(receptors.types, receptors.angles.value))
+
+
+def _station_of(antenna, catalogue, tolerance):
+    """The catalogue's station of an antenna's name, and None; or None and why not."""
+    if not antenna.name:
+        return None, "it has no name"
+    stations = catalogue.stations_named(antenna.name)
+    if not stations:
+        return None, "its name is not in the catalogue"
+    xyz = _xyz(antenna.location)
+    distance = {station: float(np.linalg.norm(xyz - _xyz(catalogue.location(station))))
+                for station in stations}
+    near = [station for station in stations if distance[station] <= tolerance.to_value(u.m)]
+    limit = f"{tolerance.to_value(u.m):g} m"
+    if len(near) != 1:
+        far = ", ".join(f"{station} {distance[station]:.1f} m away" for station in stations)
+        return None, (f"the catalogue's {far}, beyond {limit}" if not near else
+                      f"it names {', '.join(near)}, all within {limit}")
+    return near[0], None
+
+
+class _Stations:
+    """The catalogue's stations that state receptors: names, positions and receptors."""
+
+    def __init__(self, catalogue):
+        self.names, xyz, self.receptors = [], [], []
+        for name in catalogue.names:
+            receptors, _ = catalogue.receptors(name)
+            if receptors is not None:
+                self.names.append(name)
+                xyz.append(_xyz(catalogue.location(name)))
+                self.receptors.append(receptors)
+        self.xyz = np.reshape(xyz, (-1, 3))
+
+    def near(self, antenna, tolerance):
+        """The station with receptors near an antenna and its distance (m), or None and why."""
+        limit = f"{tolerance.to_value(u.m):g} m"
+        if not self.names:
+            return None, "no station of the catalogue states receptors"
+        distance = np.linalg.norm(self.xyz - _xyz(antenna.location), axis=-1)
+        order = np.argsort(distance, kind="stable")
+        near = [k for k in order if distance[k] <= tolerance.to_value(u.m)]
+        if not near:
+            k = order[0]
+            return None, (f"no station within {limit} states receptors (nearest: "
+                          f"{self.names[k]}, {distance[k]:.1f} m)")
+        if len({_text(self.receptors[k]) for k in near}) > 1:
+            return None, (f"stations with different receptors lie within {limit}: "
+                          + ", ".join(f"{self.names[k]} ({_text(self.receptors[k])}, "
+                                      f"{distance[k]:.1f} m)" for k in near))
+        return near[0], float(distance[near[0]])
+
+
+def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
+                        tolerance=CATALOGUE_TOLERANCE, pad_tolerance=PAD_TOLERANCE):
+    """The antennas, given the station catalogue's receptors where they have none.
+
+    An antenna without receptors takes those the catalogue states for the
+    station of its name (`~astropy_feedrot.stations.StationCatalogue.stations_named`;
+    of the stations a shared name stands for, the one near the antenna) if
+    the antenna lies within ``tolerance`` of it: a name alone could be
+    another telescope's. Where its name gives no station (no name, a name
+    the catalogue does not hold, stations of that name all farther than
+    ``tolerance`` or several within it), the antenna takes the receptors of
+    the station with receptors within ``pad_tolerance`` of it, the pad it
+    stands on (the VLA's ``W09`` on ``VLA_W9``); if stations with
+    different receptors lie that close, none.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{antenna number: Antenna}``, as read from a file.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, str, path-like or False, optional
+        The catalogue (default: the embedded one; a path: an ECSV file to
+        read); False for none (the antennas are returned as they are).
+    numbers : iterable of int, optional
+        Only these antennas (those the data use); default all.
+    tolerance : `~astropy.units.Quantity`, optional
+        Largest distance between an antenna and the station of its name
+        (`CATALOGUE_TOLERANCE`).
+    pad_tolerance : `~astropy.units.Quantity`, optional
+        Largest distance between an antenna that no station's name matches
+        and the station it takes its receptors from (`PAD_TOLERANCE`).
+
+    Returns
+    -------
+    antennas : dict
+        A new ``{antenna number: Antenna}``.
+    note : str
+        What the catalogue gave and to which antennas it gave nothing, and
+        why, for the message of an antenna left without receptors; empty if
+        no antenna lacked them or ``catalogue`` is False.
+
+    Raises
+    ------
+    TypeError, ValueError, FileNotFoundError
+        For a catalogue that cannot be read, as
+        `~astropy_feedrot.stations.read_catalogue`.
+
+    Warns
+    -----
+    CatalogueReceptorsWarning
+        Once, if some antennas were given receptors: which, as which
+        stations (``by position`` and the distance for those matched by
+        position), and the source the catalogue cites.
+
+    Examples
+    --------
+    The VLBA's Fort Davis antenna as a file without receptors gives it, and
+    a VLA antenna named as the VLA names it, ``W09``, standing on the
+    catalogue's pad ``VLA_W9``:
+
+    >>> import warnings
+    >>> from astropy_feedrot import Antenna, get_antenna
+    >>> from astropy_feedrot.visibilities import catalogue_receptors
+    >>> fd, w9 = get_antenna("FD-VLBA"), get_antenna("VLA_W9")
+    >>> bare = {1: Antenna(fd.location, fd.mount, name="FD"),
+    ...         2: Antenna(w9.location, w9.mount, name="W09")}
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     antennas, note = catalogue_receptors(bare)
+    >>> antennas[1].receptors, antennas[2].receptors, note
+    (Receptors('RL', [0.0, 0.0] * u.deg), Receptors('RL', [0.0, 0.0] * u.deg), '')
+    >>> print(str(caught[0].message)[:75])
+    receptors from the station catalogue for antennas the file gives none: 1 (F
+    >>> "2 (W09 as VLA_W9 by position, 0.00 m)" in str(caught[0].message)
+    True
+    """
+    if catalogue is False:
+        return dict(antennas), ""
+    wanted = None if numbers is None else {int(n) for n in numbers}
+    lacking = [n for n, antenna in antennas.items() if isinstance(antenna, Antenna)
+               and antenna.receptors is None and (wanted is None or int(n) in wanted)]
+    if not lacking:
+        return dict(antennas), ""
+    catalogue = _as_catalogue(catalogue)
+    given, refused, cited, stations = {}, {}, {}, None
+    for number in lacking:
+        antenna = antennas[number]
+        name = str(antenna.name).strip() if antenna.name else "no name"
+        station, why = _station_of(antenna, catalogue, tolerance)
+        how = ""
+        if station is None:
+            stations = stations if stations is not None else _Stations(catalogue)
+            k, found = stations.near(antenna, pad_tolerance)
+            if k is None:
+                why = f"{why}, and {found}"
+            else:
+                station, why, how = stations.names[k], None, f" by position, {found:.2f} m"
+        if station is not None:
+            receptors, source = catalogue.receptors(station)
+            if receptors is None:
+                why = f"the catalogue's {station} states no receptors"
+            else:
+                given[number] = receptors
+                cited.setdefault((_text(receptors), source), []).append(
+                    f"{number} ({name} as {station}{how})")
+        if why is not None:
+            refused[number] = f"{number} ({name}: {why})"
+    if cited:
+        warn_caller("receptors from the station catalogue for antennas the file gives none: "
+                    + "; ".join(f"{', '.join(labels)}: {text} ({source})"
+                                for (text, source), labels in cited.items())
+                    + "; give feeds= (--feeds) to choose others", CatalogueReceptorsWarning)
+    note = ""
+    if refused:
+        found = ", ".join(label for labels in cited.values() for label in labels)
+        note = (f"the station catalogue gave receptors to antennas {found or 'none'}, "
+                f"not to {'; '.join(refused[n] for n in sorted(refused)[:10])}"
+                + (f" and {len(refused) - 10} more" if len(refused) > 10 else ""))
+    return with_receptors(antennas, given), note
