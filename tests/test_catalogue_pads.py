@@ -238,11 +238,12 @@ ATCA_SOURCE = SkyCoord(35 * u.deg, -40 * u.deg)
 STOKES = model.stokes_from_evpa(0.3, 25.0)
 
 
-def atca_uv():
-    """CA01..CA06 on the 6C pads, X at 45 deg and Y at 135 deg, a polarized source."""
+def atca_uv(north=0.0):
+    """CA01..CA06 on the 6C pads (or ``north`` m north of them), X at 45 deg and Y at
+    135 deg, a polarized source."""
     pyuvdata = pytest.importorskip("pyuvdata")  # optional: imported when the test runs
     centre = get_antenna("AT_W104").location
-    positions = np.array([xyz(get_antenna(pad).location) for pad in ATCA_6C]) + JITTER
+    positions = np.array([xyz(at(pad, north=north).location) for pad in ATCA_6C]) + JITTER
     tel = pyuvdata.Telescope.new(
         name="ATCA", instrument="ATCA", location=centre,
         antenna_positions=positions - xyz(centre),
@@ -282,6 +283,64 @@ def test_an_atca_miriad_file_corrected_from_the_catalogue(tmp_path, capsys):
         out, feeds = (read_uvdata(tmp_path / name) for name in ("out.uvfits", "given.uvfits"))
     np.testing.assert_array_equal(out.data_array, feeds.data_array)
     # The independent model (tests/uvdata_model.py): X north, Y east on the sky.
+    for channel in range(2):
+        assert np.allclose(out.data_array[:, channel, :], expected, atol=1e-5)
+    assert np.allclose(model.evpa(out), 25.0, atol=0.01)
+
+
+# --- the file's telescope --------------------------------------------------------------
+
+
+def test_antennas_off_their_pads_take_the_telescopes_receptors():
+    # As in Miriad's files of the ATCA: numbers for names, positions that are not
+    # the pads' (here 20 m north of the track). Every ATCA station states X 45,
+    # Y 135 (Miriad's observatories.dat, catalogue/sources/miriad).
+    antennas = {k: at(pad, name=str(k), north=20.0) for k, pad in enumerate(ATCA_6C)}
+    out, note, message = given(antennas)
+    assert note.startswith("the station catalogue gave receptors to antennas none")
+    assert all(out[k].receptors is None for k in antennas)
+    assert "no station within 5 m states receptors" in note
+    out, note, message = given(antennas, telescope="ATCA")
+    assert note == "" and all(out[k].receptors == ATCA_RECEPTORS for k in antennas)
+    assert "0 (0 by the telescope ATCA, network ATCA: every station states these)" in message
+
+
+def test_the_telescope_does_not_lend_what_it_cannot():
+    far = {1: at("FD-VLBA", name="1", north=20.0)}  # not at the ATCA
+    out, note, _ = given(far, telescope="ATCA")
+    assert out[1].receptors is None
+    assert re.search(r"it lies \d+\.\d km from the nearest station of the telescope 'ATCA', "
+                     r"beyond 50 km", note)
+    near = {1: at("AT_W104", name="1", north=20.0)}
+    out, note, _ = given(near, telescope="NO SUCH ARRAY")
+    assert out[1].receptors is None
+    assert "the catalogue has no network or station 'NO SUCH ARRAY'" in note
+    # The EHT: its stations state no receptors (none of the sources does), so
+    # what one of them might state would say nothing of another's.
+    smt = {1: at("SMT", name="1", north=20.0)}
+    out, note, _ = given(smt, telescope="EHT")
+    assert out[1].receptors is None
+    assert re.search(r"\d+ of the \d+ stations of the telescope 'EHT' \(network EHT\) state "
+                     r"no receptors", note)
+
+
+def test_an_atca_miriad_file_off_its_pads_corrected_by_its_telescope(tmp_path, capsys):
+    # The antennas 20 m from every pad (as Miriad's positions are, in other ways):
+    # the file's telescope, ATCA, lends them its stations' receptors.
+    uv = atca_uv(north=20.0)
+    expected = model.sky_data(uv, STOKES)
+    uv.telescope.feed_array = uv.telescope.feed_angle = None
+    uv.telescope.Nfeeds = None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        uv.write_miriad(tmp_path / "atca.uv")
+    assert main(["correct", str(tmp_path / "atca.uv"), "-o", str(tmp_path / "out.uvfits"),
+                 "--quiet"]) == 0
+    assert "1 (CA01 by the telescope ATCA, network ATCA: every station states these)" \
+        in capsys.readouterr().err
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out = read_uvdata(tmp_path / "out.uvfits")
     for channel in range(2):
         assert np.allclose(out.data_array[:, channel, :], expected, atol=1e-5)
     assert np.allclose(model.evpa(out), 25.0, atol=0.01)

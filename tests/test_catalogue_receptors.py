@@ -223,25 +223,39 @@ def test_an_unknown_name_is_matched_by_position_or_refused(vlba):
                       r"0\.21 m\)"):
         renamed_data = correct_uvdata(renamed(stripped, "LA", "XX"))
     np.testing.assert_array_equal(renamed_data.data_array, correct_uvdata(uv).data_array)
-    # Renamed and 10 m away from it, it is refused, with what the catalogue found.
+    # Renamed and 10 m away from it, it takes the receptors that every station of
+    # the data's telescope, the VLBA, states.
+    far = renamed(moved(stripped, "LA", 10.0), "LA", "XX")
+    with pytest.warns(CatalogueReceptorsWarning, match=r"5 \(XX by the telescope VLBA, "
+                      r"network VLBA: every station states these\)"):
+        telescope_data = correct_uvdata(far)
+    np.testing.assert_allclose(telescope_data.data_array, correct_uvdata(uv).data_array,
+                               atol=1e-4)  # 10 m further: a few microradians
+    # With a telescope the catalogue does not know, it is refused, with what the
+    # catalogue found.
+    far.telescope.name = "ELSEWHERE"
     with pytest.warns(CatalogueReceptorsWarning), \
             pytest.raises(ValueError, match=r"antenna 5 \(XX\) has no receptors: the data give "
                           r"no telescope.feed_array/feed_angle.*--feeds R,L on the command "
                           r"line\); the station catalogue gave receptors to antennas 1 \(BR as "
                           r"BR-VLBA\), .*, not to 5 \(XX: its name is not in the catalogue, and "
                           r"no station within 5 m states receptors \(nearest: LA-VLBA, "
-                          r"10\.\d m\)\)$"):
-        correct_uvdata(renamed(moved(stripped, "LA", 10.0), "LA", "XX"))
+                          r"10\.\d m\), and the catalogue has no network or station "
+                          r"'ELSEWHERE'\)$"):
+        correct_uvdata(far)
 
 
 def test_a_station_too_far_from_its_namesake_is_refused(vlba):
     _, stripped = vlba
+    away = moved(stripped, "LA", 200.0)
+    away.telescope.name = "ELSEWHERE"
     with pytest.warns(CatalogueReceptorsWarning), \
             pytest.raises(ValueError, match=r"antenna 5 \(LA *\) has no receptors: .*not to 5 "
                           r"\(LA: the catalogue's LA-VLBA 2\d\d\.\d m away, beyond 100 m, and no "
                           r"station within 5 m states receptors \(nearest: LA-VLBA, "
-                          r"2\d\d\.\d m\)\)$"):
-        correct_uvdata(moved(stripped, "LA", 200.0))
+                          r"2\d\d\.\d m\), and the catalogue has no network or station "
+                          r"'ELSEWHERE'\)$"):
+        correct_uvdata(away)
     with pytest.raises(ValueError, match=r"antenna 1 \(BR *\) has no receptors: .*command line\)$"):
         correct_uvdata(stripped, catalogue=False)
 

@@ -31,7 +31,7 @@ pyuvdata and python-casacore are optional and imported on first use.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
-from .catalogue import CATALOGUE_TOLERANCE, PAD_TOLERANCE, catalogue_receptors
+from .catalogue import ARRAY_TOLERANCE, CATALOGUE_TOLERANCE, PAD_TOLERANCE, catalogue_receptors
 from .files import (
     FITSIDI_EXTENSIONS,
     antenna_table,
@@ -85,6 +85,7 @@ __all__ = [
     "catalogue_receptors",
     "CATALOGUE_TOLERANCE",
     "PAD_TOLERANCE",
+    "ARRAY_TOLERANCE",
     "HISTORY_MARK",
     "APPLY_MARK",
     "fitsidi_antennas",

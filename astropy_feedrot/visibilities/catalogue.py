@@ -11,7 +11,13 @@ station:
   the antenna, whatever the antenna's name. Connected arrays name their
   antennas for themselves or for their pads in their own way (the VLA's
   ``W09``, ``E18``, ``N72``; the catalogue's ``VLA_W9``...), or not at all
-  (pyuvdata names the antennas of a Miriad file by their numbers).
+  (pyuvdata names the antennas of a Miriad file by their numbers);
+* by the file's telescope: where neither finds a station, the receptors
+  that every station of the telescope's network (or of the telescope's
+  name) states, all alike, for an antenna within `ARRAY_TOLERANCE` of one
+  of them. Miriad records the ATCA's antennas at positions that are not
+  their pads' (antenna 1 at the array's reference pad, heights at sea
+  level: :doc:`/correcting`), but every ATCA pad states the same feeds.
 
 `catalogue_receptors` gives each antenna the receptors of its station and
 says which antennas it matched, how, and why not the others.
@@ -25,7 +31,7 @@ from ..exceptions import CatalogueReceptorsWarning, warn_caller
 from ..stations import StationCatalogue, default_catalogue, read_catalogue
 from .receptors import with_receptors
 
-__all__ = ["catalogue_receptors", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE"]
+__all__ = ["catalogue_receptors", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE", "ARRAY_TOLERANCE"]
 
 #: Largest distance between an antenna of a file and the catalogue's station of
 #: its name for the station to lend the antenna its receptors
@@ -44,6 +50,12 @@ CATALOGUE_TOLERANCE = 100 * u.m
 #: reckoned from W104, depart over 6 km from the layout a Miriad file of the
 #: ATCA records (:doc:`/correcting`).
 PAD_TOLERANCE = 5 * u.m
+
+#: Largest distance between an antenna matched by the file's telescope and the
+#: nearest station of that telescope (`catalogue_receptors`): the antenna
+#: belongs to that observatory (the VLA's arms reach 21 km from its centre),
+#: not to another that a mislabelled file would name.
+ARRAY_TOLERANCE = 50 * u.km
 
 
 def _as_catalogue(catalogue):
@@ -113,8 +125,39 @@ class _Stations:
         return near[0], float(distance[near[0]])
 
 
+def _telescope_receptors(telescope, catalogue):
+    """The receptors every station of a telescope states alike, its stations' positions
+    and a label; or None, None and why not."""
+    name = str(telescope).strip()
+    try:
+        names = catalogue.network_names(name)
+        label = f"network {name}"
+    except ValueError:
+        names = catalogue.stations_named(name)
+        label = f"station {', '.join(names)}"
+    if not names:
+        return None, None, f"the catalogue has no network or station {name!r}"
+    stated, silent = {}, []
+    for station in names:
+        receptors, _ = catalogue.receptors(station)
+        if receptors is None:
+            silent.append(station)
+        else:
+            stated.setdefault(_text(receptors), []).append(station)
+    if silent:  # what some stations state says nothing of the others'
+        return None, None, (f"{len(silent)} of the {len(names)} stations of the telescope "
+                            f"{name!r} ({label}) state no receptors")
+    if len(stated) != 1:
+        return None, None, (f"the stations of the telescope {name!r} state different "
+                            f"receptors ({', '.join(stated)})")
+    stations = next(iter(stated.values()))
+    xyz = np.array([_xyz(catalogue.location(station)) for station in stations])
+    return catalogue.receptors(stations[0]), xyz, label
+
+
 def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
-                        tolerance=CATALOGUE_TOLERANCE, pad_tolerance=PAD_TOLERANCE):
+                        tolerance=CATALOGUE_TOLERANCE, pad_tolerance=PAD_TOLERANCE,
+                        telescope=None, array_tolerance=ARRAY_TOLERANCE):
     """The antennas, given the station catalogue's receptors where they have none.
 
     An antenna without receptors takes those the catalogue states for the
@@ -126,7 +169,10 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     ``tolerance`` or several within it), the antenna takes the receptors of
     the station with receptors within ``pad_tolerance`` of it, the pad it
     stands on (the VLA's ``W09`` on ``VLA_W9``); if stations with
-    different receptors lie that close, none.
+    different receptors lie that close, none. Where that finds none either,
+    and the file names its ``telescope``, the antenna takes the receptors
+    that every station of that network (or of that name) states alike, if
+    it lies within ``array_tolerance`` of one of them.
 
     Parameters
     ----------
@@ -143,6 +189,12 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     pad_tolerance : `~astropy.units.Quantity`, optional
         Largest distance between an antenna that no station's name matches
         and the station it takes its receptors from (`PAD_TOLERANCE`).
+    telescope : str, optional
+        The file's telescope (pyuvdata's ``telescope.name``, FITS-IDI's
+        ``TELESCOP``), e.g. ``'ATCA'``.
+    array_tolerance : `~astropy.units.Quantity`, optional
+        Largest distance between an antenna matched by ``telescope`` and the
+        nearest of that telescope's stations (`ARRAY_TOLERANCE`).
 
     Returns
     -------
@@ -196,7 +248,7 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     if not lacking:
         return dict(antennas), ""
     catalogue = _as_catalogue(catalogue)
-    given, refused, cited, stations = {}, {}, {}, None
+    given, refused, cited, stations, array = {}, {}, {}, None, None
     for number in lacking:
         antenna = antennas[number]
         name = str(antenna.name).strip() if antenna.name else "no name"
@@ -209,6 +261,24 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
                 why = f"{why}, and {found}"
             else:
                 station, why, how = stations.names[k], None, f" by position, {found:.2f} m"
+        if station is None and telescope:
+            if array is None:
+                array = _telescope_receptors(telescope, catalogue)
+            stated, xyz, label = array
+            if stated is None:
+                why = f"{why}, and {label}"
+            else:
+                distance = float(np.min(np.linalg.norm(xyz - _xyz(antenna.location), axis=-1)))
+                if distance > array_tolerance.to_value(u.m):
+                    why = (f"{why}, and it lies {distance / 1e3:.1f} km from the nearest "
+                           f"station of the telescope {telescope!r}, beyond "
+                           f"{array_tolerance.to(u.km).value:g} km")
+                else:
+                    receptors, source = stated
+                    given[number], why = receptors, None
+                    cited.setdefault((_text(receptors), source), []).append(
+                        f"{number} ({name} by the telescope {str(telescope).strip()}, "
+                        f"{label}: every station states these)")
         if station is not None:
             receptors, source = catalogue.receptors(station)
             if receptors is None:

@@ -654,7 +654,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     antennas = fitsidi_antennas(source, vertical=vertical, software=software)
     if feeds is not None:
         antennas = with_receptors(antennas, feeds)
-    antennas, note = catalogue_receptors(antennas, catalogue)
+    antennas, note = catalogue_receptors(antennas, catalogue,
+                                         telescope=str(primary.get("TELESCOP", "")).strip())
     new_header.add_history(history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row", frame=frame_name, vertical=vertical))

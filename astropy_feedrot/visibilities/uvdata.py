@@ -453,8 +453,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the data nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
-        by name and position): the embedded station catalogue by default,
-        another one, or False for none.
+        by name, by position, or by ``telescope.name``): the embedded
+        station catalogue by default, another one, or False for none.
 
     Returns
     -------
@@ -540,7 +540,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
             antennas = _antennas(uv, vertical, used)
         if feeds is not None:
             antennas = with_receptors(antennas, feeds)
-        antennas, note = catalogue_receptors(antennas, catalogue, numbers=used)
+        antennas, note = catalogue_receptors(antennas, catalogue, numbers=used,
+                                             telescope=uv.telescope.name)
     theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
                                                               note)
     if basis_feeds != basis:
