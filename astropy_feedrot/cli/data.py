@@ -230,8 +230,9 @@ def register(commands):
                          help="receptors for antennas the file gives none (ATCA Miriad, old "
                          "UVFITS): two letters with optional angles in degrees, e.g. "
                          "X:0,Y:90; without it, such antennas take the station catalogue's "
-                         "receptors where it states them for a station of their name within "
-                         "100 m (said in a warning)")
+                         "receptors where it states them: for the station of their name "
+                         "within 100 m, else for the pad within 5 m, else for every station "
+                         "of the file's telescope alike (said in a warning)")
     correct.add_argument("--redo", action="store_true",
                          help="correct data whose history says they were corrected in the "
                          "same direction already")

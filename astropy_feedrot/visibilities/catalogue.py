@@ -139,11 +139,11 @@ def _telescope_receptors(telescope, catalogue):
         return None, None, f"the catalogue has no network or station {name!r}"
     stated, silent = {}, []
     for station in names:
-        receptors, _ = catalogue.receptors(station)
+        receptors, source = catalogue.receptors(station)
         if receptors is None:
             silent.append(station)
         else:
-            stated.setdefault(_text(receptors), []).append(station)
+            stated.setdefault(_text(receptors), []).append((station, (receptors, source)))
     if silent:  # what some stations state says nothing of the others'
         return None, None, (f"{len(silent)} of the {len(names)} stations of the telescope "
                             f"{name!r} ({label}) state no receptors")
@@ -151,8 +151,8 @@ def _telescope_receptors(telescope, catalogue):
         return None, None, (f"the stations of the telescope {name!r} state different "
                             f"receptors ({', '.join(stated)})")
     stations = next(iter(stated.values()))
-    xyz = np.array([_xyz(catalogue.location(station)) for station in stations])
-    return catalogue.receptors(stations[0]), xyz, label
+    xyz = np.array([_xyz(catalogue.location(station)) for station, _ in stations])
+    return stations[0][1], xyz, label
 
 
 def catalogue_receptors(antennas, catalogue=None, *, numbers=None,

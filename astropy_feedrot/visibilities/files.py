@@ -247,7 +247,9 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         the antenna's name, if the antenna lies within
         `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of it, else of
         the station with receptors within
-        `~astropy_feedrot.visibilities.PAD_TOLERANCE` of the antenna
+        `~astropy_feedrot.visibilities.PAD_TOLERANCE` of the antenna, else
+        those every station of the file's telescope states alike, within
+        `~astropy_feedrot.visibilities.ARRAY_TOLERANCE`
         (`~astropy_feedrot.visibilities.catalogue_receptors`). The embedded
         catalogue by default, another one, or False for none.
 

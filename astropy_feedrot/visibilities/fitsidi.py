@@ -575,8 +575,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
-        by name, else by position): the embedded station catalogue by
-        default, another, or False.
+        by name, else by position, else by the primary header's
+        ``TELESCOP``): the embedded station catalogue by default, another,
+        or False.
 
     Returns
     -------
