@@ -149,7 +149,7 @@ def _client(workers):
     import distributed
 
     cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
-                                       dashboard_address=None)
+                                       dashboard_address=":0")
     client = distributed.Client(cluster)
     # Start-up apart: the workers import the package (and astropy's tables) first.
     client.run(lambda: __import__("astropy_feedrot.visibilities"))

@@ -23,7 +23,7 @@ from astropy_feedrot.visibilities import correct_fitsidi, correct_ms  # noqa: E4
 @pytest.fixture(scope="module")
 def client():
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
+                                  dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         yield client
 
