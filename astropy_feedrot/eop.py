@@ -41,7 +41,7 @@ import astropy
 import erfa
 import numpy as np
 from astropy import units as u
-from astropy.config import get_cache_dir
+from astropy.config import get_cache_dir, get_config
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time, update_leap_seconds
 from astropy.utils import iers
@@ -54,6 +54,7 @@ __all__ = [
     "EarthOrientationStatus",
     "earth_orientation_status",
     "iers_context",
+    "downloads_allowed",
     "utc_earth_orientation",
     "table_arrays",
     "table_in_use",
@@ -162,8 +163,21 @@ class TableArrays(NamedTuple):
     predictive_mjd: float
 
 
-def _downloads():
-    """Whether downloads are allowed (read once per outermost `iers_context`)."""
+def downloads_allowed():
+    """Whether astropy may download IERS tables here (read once per outermost `iers_context`).
+
+    Returns
+    -------
+    bool
+        ``astropy_feedrot.conf.iers_auto_download``, as the outermost
+        `iers_context` read it.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.eop import downloads_allowed
+    >>> downloads_allowed()
+    False
+    """
     scope = _SCOPE.get()
     return conf.iers_auto_download if scope is None else scope.downloads
 
@@ -189,7 +203,7 @@ def table_in_use():
     ...     table_in_use() is b
     True
     """
-    if _downloads():
+    if downloads_allowed():
         return _table()
     value = getattr(iers.earth_orientation_table, "_value", None)
     if value is not None:
@@ -326,7 +340,7 @@ def utc_earth_orientation(jd1, jd2):
     # which a Time cannot hold.
     tai1, tai2, _ = erfa.ufunc.utctai(jd1, jd2)
     tt1, tt2, _ = erfa.ufunc.taitt(tai1, tai2)
-    if _downloads():  # astropy's own route, which may refresh its tables
+    if downloads_allowed():  # astropy's own route, which may refresh its tables
         t = Time(jd1, jd2, format="jd", scale="utc")
         ut1 = t.ut1
         xp, yp = get_polar_motion(t)
@@ -556,24 +570,27 @@ def _message(f, stale):
 
 
 class _Scope:
-    """The epochs seen by the nested contexts of one call."""
+    """The epochs seen by the nested contexts of one call.
+
+    The contexts of one call are mostly given the same `~astropy.time.Time`
+    objects: each is kept once (by identity) and its span read when the
+    outermost context ends.
+    """
 
     def __init__(self):
-        self.low = np.inf
-        self.high = -np.inf
+        self._times = {}
         # Read once per call: the configuration costs microseconds a read.
         self.downloads = conf.iers_auto_download
 
     def add(self, obstime):
-        span = _mjd_range(obstime)
-        if span is not None:
-            self.low = min(self.low, span[0])
-            self.high = max(self.high, span[1])
+        self._times.setdefault(id(obstime), obstime)
 
-    def epochs(self):
-        if self.high < self.low:
+    def span(self):
+        """(first, last) MJD of all the epochs, or None."""
+        spans = [s for s in map(_mjd_range, self._times.values()) if s is not None]
+        if not spans:
             return None
-        return Time([self.low, self.high], format="mjd", scale="utc")
+        return min(s[0] for s in spans), max(s[1] for s in spans)
 
 
 _SCOPE = contextvars.ContextVar("astropy_feedrot_eop_scope", default=None)
@@ -613,10 +630,8 @@ def iers_context(obstime=None):
             scope.add(obstime)
         yield
         return
-    outermost = True
-    if outermost:
-        scope = _Scope()
-        token = _SCOPE.set(scope)
+    scope = _Scope()
+    token = _SCOPE.set(scope)
     if obstime is not None:
         scope.add(obstime)
     try:
@@ -624,17 +639,14 @@ def iers_context(obstime=None):
             with iers.conf.set_temp("auto_download", True):
                 yield
         else:
-            with contextlib.ExitStack() as stack:
-                for name, value in _OFFLINE:  # set_temp only where needed: it costs 9 us
-                    if getattr(iers.conf, name) != value:
-                        stack.enter_context(iers.conf.set_temp(name, value))
-                stack.enter_context(_quiet())
+            with _offline(), _quiet():
                 yield
     finally:
-        if outermost:
-            _SCOPE.reset(token)
-    if outermost and scope.high >= scope.low and not _covered(scope.low, scope.high):
-        message = earth_orientation_status(scope.epochs()).message
+        _SCOPE.reset(token)
+    span = scope.span()
+    if span is not None and not _covered(*span):
+        message = earth_orientation_status(
+            Time(list(span), format="mjd", scale="utc")).message
         if message is not None:
             warn_caller(message, StaleEarthOrientationWarning)
 
@@ -642,6 +654,48 @@ def iers_context(obstime=None):
 # Astropy's IERS settings inside iers_context when downloads are off.
 _OFFLINE = (("auto_download", False), ("auto_max_age", None),
             ("iers_degraded_accuracy", "ignore"))
+_ABSENT = object()
+
+
+def _offline_items():
+    """Astropy's configuration items of `_OFFLINE` and their values, validated once."""
+    items = []
+    for name, value in _OFFLINE:
+        item = getattr(type(iers.conf), name)
+        items.append((item, item._validate_val(value)))
+    return tuple(items)
+
+
+_OFFLINE_ITEMS = _offline_items()
+
+
+@contextlib.contextmanager
+def _offline():
+    """Astropy's IERS settings `_OFFLINE` inside, and exactly what was there after.
+
+    The values are put into astropy's configuration sections as
+    ``ConfigItem.set_temp`` puts them, without validating them again on every
+    entry (they were validated once, at import): set_temp reads, validates and
+    writes each item twice, about 16 us an item, which was a tenth of a call
+    with ten epochs. An item that has aliases takes astropy's own route.
+    """
+    saved = []
+    with contextlib.ExitStack() as stack:
+        try:
+            for item, value in _OFFLINE_ITEMS:
+                if item.aliases:
+                    stack.enter_context(item.set_temp(value))
+                    continue
+                section = get_config(item.module, rootname=item.rootname)
+                saved.append((section, item.name, section.get(item.name, _ABSENT)))
+                section[item.name] = value
+            yield
+        finally:
+            for section, name, old in reversed(saved):
+                if old is not _ABSENT:
+                    section[name] = old
+                elif name in section:
+                    del section[name]
 
 
 @contextlib.contextmanager

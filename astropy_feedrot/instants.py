@@ -11,10 +11,13 @@ would at that instant. `~astropy_feedrot.earth.EarthOrientation` is built on
 them.
 """
 
+import collections
+import threading
+
 import erfa
 import numpy as np
 
-from .eop import iers_context, utc_earth_orientation
+from .eop import downloads_allowed, iers_context, table_arrays, utc_earth_orientation
 
 __all__ = ["UtcDays", "Instants", "distinct", "terrestrial", "ERA_RATE", "OMEGA"]
 
@@ -109,30 +112,66 @@ class UtcDays:
     def _tables(self):
         # Values at the start of each day and of the next one: within a UTC day
         # they are linear, and continuous across midnights (a leap second is
-        # spread over its day).
-        days = self.days
-        starts = np.union1d(days, days + 1)
-        this, following = np.searchsorted(starts, days), np.searchsorted(starts, days + 1)
-        tt1, tt2, ut11, ut12, xp, yp = utc_earth_orientation(
-            self.ref1 + starts, np.full(starts.shape, self.ref2))
-        # TT is counted in days from the start of the first day of the tables.
-        self.tt1, self.tt2 = float(tt1[0]), float(tt2[0])
-        self.tt0 = ((tt1 - self.tt1) + (tt2 - self.tt2))[this]
-        self.tt_rate = _length(tt1, tt2, this, following)
-        era = erfa.ufunc.era00(ut11, ut12)
-        self.era0 = era[this]
-        self.era_rate = ERA_RATE * _length(ut11, ut12, this, following)
-        gmst = erfa.ufunc.gmst82(ut11, ut12)
-        self.gmst0 = gmst[this]
-        # GMST turns by a little more than 2 pi in a day.
-        self.gmst_rate = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
-        self.xp0, self.xp_rate = xp[this], xp[following] - xp[this]
-        self.yp0, self.yp_rate = yp[this], yp[following] - yp[this]
-        self.sp = erfa.ufunc.sp00(tt1[this], tt2[this])
+        # spread over its day). They depend on nothing but the days and the
+        # IERS table, so the last few sets are kept (a scan, a source, a call
+        # per epoch asks for the same days again).
+        key = arrays = None
+        if self.days.size <= _KEPT_DAYS and not downloads_allowed():
+            arrays = table_arrays()
+            key = (self.ref1, self.days.tobytes())
+            with _DAY_TABLES_LOCK:
+                hit = _DAY_TABLES.get(key)
+                if hit is not None and hit[0] is arrays:
+                    _DAY_TABLES.move_to_end(key)
+            if hit is not None and hit[0] is arrays:
+                self.__dict__.update(hit[1])
+                return
+        tables = _day_tables(self.ref1, self.ref2, self.days)
+        self.__dict__.update(tables)
+        if key is not None:
+            with _DAY_TABLES_LOCK:
+                _DAY_TABLES[key] = (arrays, tables)
+                while len(_DAY_TABLES) > DAY_TABLES_CACHE_SIZE:
+                    _DAY_TABLES.popitem(last=False)
 
     def at(self, slot, frac):
         """The quantities at instants given by day slots and fractions of day."""
         return Instants(self, slot, frac)
+
+
+#: How many sets of days `UtcDays` keeps the tables of, and the most days a set kept.
+DAY_TABLES_CACHE_SIZE = 16
+_KEPT_DAYS = 4096
+_DAY_TABLES = collections.OrderedDict()
+_DAY_TABLES_LOCK = threading.Lock()
+
+
+def _day_tables(ref1, ref2, days):
+    """TT, the Earth rotation angle, GMST, polar motion and s' at the start of each
+    day (UTC midnights ``ref1 + ref2 + days``) and their change over it (read-only)."""
+    starts = np.union1d(days, days + 1)
+    this, following = np.searchsorted(starts, days), np.searchsorted(starts, days + 1)
+    tt1, tt2, ut11, ut12, xp, yp = utc_earth_orientation(
+        ref1 + starts, np.full(starts.shape, ref2))
+    t = {}
+    # TT is counted in days from the start of the first day of the tables.
+    t["tt1"], t["tt2"] = float(tt1[0]), float(tt2[0])
+    t["tt0"] = ((tt1 - t["tt1"]) + (tt2 - t["tt2"]))[this]
+    t["tt_rate"] = _length(tt1, tt2, this, following)
+    era = erfa.ufunc.era00(ut11, ut12)
+    t["era0"] = era[this]
+    t["era_rate"] = ERA_RATE * _length(ut11, ut12, this, following)
+    gmst = erfa.ufunc.gmst82(ut11, ut12)
+    t["gmst0"] = gmst[this]
+    # GMST turns by a little more than 2 pi in a day.
+    t["gmst_rate"] = 2 * np.pi + np.mod(gmst[following] - gmst[this], 2 * np.pi)
+    t["xp0"], t["xp_rate"] = xp[this], xp[following] - xp[this]
+    t["yp0"], t["yp_rate"] = yp[this], yp[following] - yp[this]
+    t["sp"] = erfa.ufunc.sp00(tt1[this], tt2[this])
+    for value in t.values():
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    return t
 
 
 def _length(jd1, jd2, this, following):

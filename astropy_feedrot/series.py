@@ -12,6 +12,7 @@ Plain numpy on floats; nothing here knows about time scales or frames.
 """
 
 import concurrent.futures
+import functools
 import hashlib
 import math
 import os
@@ -47,17 +48,24 @@ def lagrange_weights(xi, offsets):
     >>> float((w @ np.array([-1.0, 0.0, 1.0, 2.0]) ** 3)[0])  # a cubic is reproduced
     0.125
     """
-    n = offsets.size
-    b = np.array([(-1) ** k * math.comb(n - 1, k) for k in range(n)], dtype=float)
+    b = _barycentric(offsets.size)
     distance = xi[:, np.newaxis] - offsets
     with np.errstate(divide="ignore", invalid="ignore"):
         weights = b / distance
         weights /= weights.sum(axis=1, keepdims=True)
-    on_node = distance == 0
-    rows = np.any(on_node, axis=1)
-    if np.any(rows):
+    if not np.isfinite(weights).all():  # an instant on a node: that node's value
+        on_node = distance == 0
+        rows = np.any(on_node, axis=1)
         weights[rows] = on_node[rows]
     return weights
+
+
+@functools.lru_cache(maxsize=None)
+def _barycentric(n):
+    """The barycentric weights (-1)**k binomial(n - 1, k) of n consecutive integers."""
+    b = np.array([(-1) ** k * math.comb(n - 1, k) for k in range(n)], dtype=float)
+    b.flags.writeable = False
+    return b
 
 
 def combine(values, start, weights):
@@ -225,8 +233,13 @@ class Series:
             return self.evaluate(self.tt1, self.tt2 + tt)
         x = (tt + self.shift) / self.spacing
         j = np.floor(x)
-        intervals, slot = np.unique(j, return_inverse=True)
-        needed = np.unique(intervals[:, np.newaxis] + self.offsets)
+        low = j.min()
+        if low == j.max():  # one interval (a few epochs, a scan): no sorting
+            intervals, slot = j[:1], np.zeros(j.size, dtype=np.intp)
+            needed = low + self.offsets
+        else:
+            intervals, slot = np.unique(j, return_inverse=True)
+            needed = np.unique(intervals[:, np.newaxis] + self.offsets)
         if tt.size <= needed.size and not ready:
             return self.evaluate(self.tt1, self.tt2 + tt)
         values = self.nodes(needed)
@@ -505,12 +518,17 @@ class KeptSeries(Series):
     def nodes(self, needed):
         """Values at whole days ``needed`` (from `KEPT_ORIGIN`), from the kept chunks."""
         needed = np.asarray(needed, dtype=np.int64)
-        chunks = np.unique(needed // KEPT_CHUNK)
+        which = needed // KEPT_CHUNK
+        if which.size and which.min() == which.max():  # one chunk (one year)
+            chunk = int(which[0])
+            if chunk not in _KEPT_CHUNKS:
+                return self._computed(needed)
+            return self._chunk(chunk)[needed - chunk * KEPT_CHUNK]
+        chunks = np.unique(which)
         if not all(int(c) in _KEPT_CHUNKS for c in chunks):
             return self._computed(needed)
         tables = {int(c): self._chunk(int(c)) for c in chunks}
         out = np.empty((needed.size, next(iter(tables.values())).shape[-1]))
-        which = needed // KEPT_CHUNK
         for c, table in tables.items():
             here = which == c
             out[here] = table[needed[here] - c * KEPT_CHUNK]

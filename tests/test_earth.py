@@ -216,3 +216,56 @@ def test_orientation_of_is_shared_and_follows_the_tables():
     masked = times.copy()
     masked[3] = np.ma.masked
     assert orientation_of(masked) is not orientation_of(masked)  # never cached
+
+
+def test_day_tables_are_kept_and_follow_the_tables():
+    # The tables of a set of days are kept between calls; they are those a new
+    # computation gives, and another IERS table gives others (UT1 - UTC shifted
+    # by 0.5 s: the ERA at midnight leads by 0.5 s of rotation, ERFA era00).
+    from astropy.utils import iers
+
+    from astropy_feedrot import instants
+
+    times = Time("2023-01-25T03:00") + np.arange(5) * u.h
+    instants._DAY_TABLES.clear()
+    first = instants.UtcDays(times)
+    kept = instants.UtcDays(times)
+    assert kept.era0 is first.era0  # from the cache
+    fresh = instants._day_tables(first.ref1, first.ref2, first.days)
+    for name, value in fresh.items():
+        assert np.array_equal(getattr(kept, name), value), name
+    assert not kept.era0.flags.writeable
+    shifted = iers.IERS_Auto.open().copy()
+    shifted["UT1_UTC"] = shifted["UT1_UTC"] + 0.5 * u.s
+    with iers.earth_orientation_table.set(shifted):
+        other = instants.UtcDays(times)
+    lead = np.angle(np.exp(1j * (other.era0 - first.era0)))
+    assert np.allclose(lead, 0.5 * 7.2921151467e-5, rtol=1e-6)
+
+
+def test_series_in_one_interval_as_in_several():
+    # Instants within one day take the path without sorting; each value is the
+    # same Lagrange polynomial through the same nodes as when instants of
+    # another day come with them, bit for bit.
+    from astropy_feedrot.earth import EarthOrientation
+
+    times = Time("2023-01-25T03:00") + np.arange(4) * u.h
+    orientation = EarthOrientation(times)
+    tt = orientation._at_epochs().tt
+    for series in (orientation._cip, orientation._velocity):
+        alone = series.at(tt)
+        together = series.at(np.concatenate([tt, tt[:1] + 3.0]))[:tt.size]
+        assert np.array_equal(alone, together)
+
+
+def test_kept_nodes_in_one_chunk_as_across_chunks():
+    # Nodes of one year are read from its chunk alone; across a year's end the
+    # same values come from both chunks.
+    from astropy_feedrot.earth import EarthOrientation
+    from astropy_feedrot.series import KEPT_CHUNK
+
+    series = EarthOrientation(Time(["2023-01-25T03:00"]))._cip
+    needed = np.arange(5 * KEPT_CHUNK - 8, 5 * KEPT_CHUNK + 8)
+    both = series.nodes(needed)
+    assert np.array_equal(series.nodes(needed[:8]), both[:8])
+    assert np.array_equal(series.nodes(needed[8:]), both[8:])

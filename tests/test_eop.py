@@ -202,6 +202,29 @@ def test_context_restores_astropy_settings():
     assert (iers.conf.auto_max_age, iers.conf.iers_degraded_accuracy) == before
 
 
+def test_context_puts_back_exactly_what_astropy_had():
+    # The settings are written into astropy's configuration section directly:
+    # an item the section lacked is absent again afterwards, one it held has
+    # its value again, also when the code inside fails.
+    from astropy.config import get_config
+
+    section = get_config(type(iers.conf).auto_max_age.module, rootname="astropy")
+    held = {name: section.get(name, "absent") for name in
+            ("auto_download", "auto_max_age", "iers_degraded_accuracy")}
+    section.pop("iers_degraded_accuracy", None)
+    try:
+        with pytest.raises(ZeroDivisionError), iers_context():
+            assert iers.conf.auto_download is False
+            assert iers.conf.iers_degraded_accuracy == "ignore"
+            raise ZeroDivisionError
+        assert "iers_degraded_accuracy" not in section
+        assert section.get("auto_max_age", "absent") == held["auto_max_age"]
+        assert section.get("auto_download", "absent") == held["auto_download"]
+    finally:
+        if held["iers_degraded_accuracy"] != "absent":
+            section["iers_degraded_accuracy"] = held["iers_degraded_accuracy"]
+
+
 def test_nested_contexts_warn_once_at_the_end(stale_tables):
     def work():
         with iers_context(LATER):
