@@ -14,6 +14,8 @@ import sys
 import erfa
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from astropy import units as u
 from astropy.coordinates import CIRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
 from astropy.time import Time
@@ -269,3 +271,18 @@ def test_kept_nodes_in_one_chunk_as_across_chunks():
     both = series.nodes(needed)
     assert np.array_equal(series.nodes(needed[:8]), both[:8])
     assert np.array_equal(series.nodes(needed[8:]), both[8:])
+
+
+@given(st.lists(st.integers(-10**6, 10**6), min_size=1, max_size=300),
+       st.integers(0, 5))
+def test_unique_integers_is_numpys_unique(values, spread):
+    # The table of the range (short spans) and the sort (long ones) give
+    # numpy's unique values and inverse, whatever the spread of the values.
+    from astropy_feedrot.series import _unique_integers
+
+    values = np.asarray(values, dtype=float) // 10**spread
+    distinct, inverse = _unique_integers(values, values.min())
+    expected, expected_inverse = np.unique(values, return_inverse=True)
+    assert np.array_equal(distinct, expected)
+    assert np.array_equal(inverse, expected_inverse.reshape(-1))
+    assert np.array_equal(_unique_integers(values, values.min(), inverse=False)[0], expected)
