@@ -611,7 +611,7 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
         # data (visibility files) take single-precision factors, so that the
         # multiplication needs no wider copy.
         factor = np.stack(np.broadcast_arrays(*factors), axis=-1)
-        if values.dtype == np.complex64:
+        if values.dtype.itemsize == 8:  # complex64, in either byte order
             factor = factor.astype(np.complex64)
         np.multiply(values, factor, out=out, casting="same_kind")
         return _finish(out, values.dtype, unit, mask)

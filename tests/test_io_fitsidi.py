@@ -301,6 +301,46 @@ def test_apply_then_remove_gives_the_input_back(tmp_path, products, angles):
         correct_fitsidi(source, tmp_path / "x.idifits", direction="forward")
 
 
+def _double_precision(source, target):
+    """A copy of a FITS-IDI file with FLUX stored in double precision (format D)."""
+    with fits.open(source) as hdul:
+        hdu = hdul["UV_DATA"]
+        values = np.asarray(hdu.data["FLUX"], dtype=np.float64)
+        columns = [fits.Column("FLUX", f"{values.shape[1]}D", unit=c.unit, array=values)
+                   if c.name == "FLUX" else c for c in hdu.columns]
+        hdul["UV_DATA"] = fits.BinTableHDU.from_columns(columns, header=hdu.header,
+                                                        name="UV_DATA")
+        hdul.writeto(target)
+
+
+@pytest.mark.parametrize("products, angles, complex_length", [
+    (("RR", "LL", "RL", "LR"), CIRCULAR_ANGLES, 2),
+    (("RR", "LL", "RL", "LR"), CIRCULAR_ANGLES, 3),
+    (("XX", "YY", "XY", "YX"), LINEAR_ANGLES, 2)])
+def test_double_precision_flux_is_corrected_in_double_precision(
+        tmp_path, products, angles, complex_length):
+    # FLUX in format D is corrected as complex128: removing then applying gives
+    # the input back to double-precision rounding (single precision would leave
+    # 1e-7), and it agrees with the same file in format E to the latter's
+    # precision (the tests above check E against the writer's model).
+    source, info = run(tmp_path, products=products, angles=angles,
+                       complex_length=complex_length)
+    double = tmp_path / "double.idifits"
+    _double_precision(source, double)
+    removed, applied = tmp_path / "removed.idifits", tmp_path / "applied.idifits"
+    correct_fitsidi(double, removed)
+    correct_fitsidi(removed, applied, direction="apply")
+    single = tmp_path / "single.idifits"
+    correct_fitsidi(source, single)
+    with fits.open(double) as a, fits.open(applied) as b, fits.open(removed) as r, \
+            fits.open(single) as e:
+        assert r["UV_DATA"].columns["FLUX"].format.format == "D"
+        np.testing.assert_allclose(b["UV_DATA"].data["FLUX"], a["UV_DATA"].data["FLUX"],
+                                   rtol=0, atol=1e-13)
+        np.testing.assert_allclose(r["UV_DATA"].data["FLUX"], e["UV_DATA"].data["FLUX"],
+                                   rtol=0, atol=2e-6)
+
+
 def test_paths(tmp_path):
     source, _ = run(tmp_path)
     output = tmp_path / "out.idifits"

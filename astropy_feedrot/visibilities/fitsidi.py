@@ -374,16 +374,16 @@ def _correct_chunk(records, plan, table, sources, name, direction):
     a1, a2, jd, source = _row_sources(plan, records, sources, name)
     n = len(a1)
     theta1, theta2 = table(jd, source, a1), table(jd, source, a2)
-    raw = records["FLUX"]
-    # Swapped to native order where they lie and corrected there (the rows are this
-    # process's own buffer): single precision, as stored, and no copy of the chunk.
-    raw.byteswap(inplace=True)
-    flux = raw.view(raw.dtype.newbyteorder("=")).reshape((n,) + plan.shape)
+    # Corrected where they lie, in the file's byte order (the rows are this thread's
+    # own buffer): numpy's loops swap the bytes of a block at a time in the cache,
+    # in the precision stored, and the chunk is neither copied nor swapped.
+    flux = records["FLUX"].reshape((n,) + plan.shape)
     if plan.complex == 2:
-        # (real, imaginary) pairs are complex64 as they lie: corrected in place.
-        vis = flux.view(np.complex64)[..., 0]
+        # (real, imaginary) pairs are complex numbers as they lie, corrected in place
+        # (E: complex64, D: complex128).
+        vis = flux.view(np.dtype(f">c{2 * flux.dtype.itemsize}"))[..., 0]
     else:
-        vis = np.empty(flux.shape[:-1], dtype=np.complex64)
+        vis = np.empty(flux.shape[:-1], dtype=np.result_type(flux.dtype, np.complex64))
         vis.real, vis.imag = flux[..., 0], flux[..., 1]
     axis = plan.stokes_axis + 1
     moved = np.moveaxis(vis, axis, -1)
@@ -401,7 +401,6 @@ def _correct_chunk(records, plan, table, sources, name, direction):
         elif plan.weight_column:
             weights = records[plan.weight_column]
             weights[bad] = 0
-    raw.byteswap(inplace=True)  # back to the file's order
     return int(np.count_nonzero(bad))
 
 
