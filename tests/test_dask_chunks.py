@@ -65,3 +65,27 @@ def test_command_with_workers(tmp_path, capsys):
     assert "--dask and --workers exclude each other" in capsys.readouterr().err
     assert main(["correct", str(ms), "--in-place", "--workers", "0", "--redo"]) == 1
     assert "--workers must be at least 1, got 0" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("chunk_rows, data_column, corrected_column", [
+    (7, "DATA", "CORRECTED_DATA"),    # chunks across the tiles of the column
+    (13, "DATA", "DATA"),             # in place: the column read is the one written
+])
+def test_ms_workers_writing_rows_of_shared_tiles(tmp_path, client, chunk_rows, data_column,
+                                                 corrected_column):
+    # The workers write their chunks themselves under casacore's table lock; chunks of
+    # a few rows share tiles of the output column with the chunks of the other worker,
+    # and the result is still the serial one, bit for bit. The workers close the
+    # table at the end: the set is not left locked.
+    serial = unpack(tmp_path / "a")
+    fill_model(serial)
+    parallel = unpack(tmp_path / "b")
+    fill_model(parallel)
+    columns = dict(data_column=data_column, corrected_column=corrected_column)
+    correct_ms(serial, chunk_rows=chunk_rows, **columns)
+    correct_ms(parallel, chunk_rows=chunk_rows, client=client, **columns)
+    with table(str(serial), ack=False) as a, table(str(parallel), ack=False) as b:
+        np.testing.assert_array_equal(a.getcol(corrected_column),
+                                      b.getcol(corrected_column))
+        assert "FEEDROT_PARTIAL" not in b.getcolkeywords(corrected_column)
+    correct_ms(parallel, chunk_rows=chunk_rows, redo=True, **columns)  # not locked

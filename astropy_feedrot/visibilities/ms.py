@@ -20,6 +20,7 @@ python-casacore is an optional dependency (``pip install
 import contextlib
 import fcntl
 import os
+import time
 from pathlib import Path
 
 import numpy as np
@@ -28,13 +29,14 @@ from astropy.coordinates import FK4, FK5, ICRS, EarthLocation, SkyCoord
 from astropy.time import Time
 
 from ..antenna import Antenna
-from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..labels import mount_from_label
 from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
+from .ms_chunks import Block, locked, results, serial_writer
+from .ms_chunks import tables as _tables
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
 
@@ -43,8 +45,6 @@ __all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
 #: The casacore ``Stokes`` codes of ``CORR_TYPE`` that are correlations of
 #: receptors (casacore ``Stokes.h``).
 CORR_TYPES = {5: "RR", 6: "RL", 7: "LR", 8: "LL", 9: "XX", 10: "XY", 11: "YX", 12: "YY"}
-
-_EXTRA = "pip install 'astropy_feedrot[ms]'"
 
 # Bytes of the data column read at once.
 _CHUNK_BYTES = 32 * 2**20
@@ -68,15 +68,6 @@ class MSError(ValueError):
     """
 
 
-def _tables():
-    """casacore.tables, or an ImportError naming the extra."""
-    try:
-        from casacore import tables  # optional: only Measurement Sets need it
-    except ImportError:
-        raise ImportError(f"Measurement Sets need python-casacore: {_EXTRA}") from None
-    return tables
-
-
 def _ms_path(ms):
     path = existing_path(ms, "Measurement Set")
     if not path.is_dir() or file_kind(path) != "ms":
@@ -86,10 +77,12 @@ def _ms_path(ms):
 
 
 @contextlib.contextmanager
-def _open(path, *, write=False):
+def _open(path, *, write=False, shared=False):
+    """The main table; ``shared``: written by other processes too (casacore user locks,
+    taken by `_locked` around each write)."""
     tables = _tables()
-    table = tables.table(str(path), readonly=not write, ack=False,
-                         lockoptions="permanent" if write else "auto")
+    locking = {"option": "usernoread"} if shared else "permanent" if write else "auto"
+    table = tables.table(str(path), readonly=not write, ack=False, lockoptions=locking)
     try:
         yield table
     finally:
@@ -505,9 +498,11 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
                           "DATA_DESCRIPTION table lacks")
         spw, products = descriptions[dd]
         rows = np.flatnonzero(ddid == dd)
-        time = meta["TIME"][rows]
-        k1 = feeds.keys(feeds.antennas, meta["ANTENNA1"][rows], meta["FEED1"][rows], spw, time)
-        k2 = feeds.keys(feeds.antennas, meta["ANTENNA2"][rows], meta["FEED2"][rows], spw, time)
+        epochs = meta["TIME"][rows]
+        k1 = feeds.keys(feeds.antennas, meta["ANTENNA1"][rows], meta["FEED1"][rows], spw,
+                        epochs)
+        k2 = feeds.keys(feeds.antennas, meta["ANTENNA2"][rows], meta["FEED2"][rows], spw,
+                        epochs)
         feeds.check(np.concatenate([k1, k2]), products, dd)
         if basis_of(products) == "linear":
             lacking = sorted(set(("XX", "XY", "YX", "YY")) - set(products))
@@ -519,74 +514,11 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
                               "twice the feed rotation after imaging instead")
         with pole_context(pole):
             angles = ReceptorAngleTable(
-                feeds.virtual, time, meta["FIELD_ID"][rows], k1, k2, fields,
+                feeds.virtual, epochs, meta["FIELD_ID"][rows], k1, k2, fields,
                 lambda t: Time(t / 86400.0, format="mjd", scale="utc"), products=products,
                 frame=frame, where=str(path))
         plans.append((dd, rows, products, k1, k2, angles))
     return plans
-
-
-class _Block:
-    """One chunk of rows and its receptors' position angles; picklable, for dask."""
-
-    def __init__(self, rows, products, theta1, theta2):
-        self.rows, self.products, self.theta1, self.theta2 = rows, products, theta1, theta2
-
-
-def _corrected(data, block, direction):
-    """``data`` (rows, channels, products) corrected in place; the NaN rows."""
-    theta1, theta2 = block.theta1, block.theta2
-    # One angle pair per row, for every channel.
-    correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
-                                  block.products, out=data, direction=direction)
-    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
-    if bad.any():
-        data[bad] = np.nan
-    return int(np.count_nonzero(bad))
-
-
-@contextlib.contextmanager
-def _selection(table, rows):
-    """(table, start, count) of the rows: the table itself for a contiguous range, else a
-    selection of them (a reference table)."""
-    if rows[-1] - rows[0] + 1 == rows.size:
-        yield table, int(rows[0]), int(rows.size)
-        return
-    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
-        yield selection, 0, int(rows.size)
-
-
-def _remote_block(path, column, block, direction):
-    """A dask task: read a chunk (no read lock: the client holds the write lock) and
-    correct it; the client writes it."""
-    tables = _tables()
-    with contextlib.closing(tables.table(str(path), ack=False,
-                                         lockoptions="autonoread")) as table, \
-            _selection(table, block.rows) as (selection, start, n):
-        data = selection.getcol(column, start, n)
-        return data, _corrected(data, block, direction)
-
-
-def _results(work, client, path, column, direction):
-    """(block, corrected data or None, NaN rows) in order; dask keeps two per worker going."""
-    if client is None:
-        for block in work:
-            yield block, None, None
-        return
-    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
-    blocks, pending = iter(work), []
-    while True:
-        while len(pending) < ahead:
-            block = next(blocks, None)
-            if block is None:
-                break
-            pending.append((block, client.submit(_remote_block, path, column, block,
-                                                 direction, pure=False)))
-        if not pending:
-            return
-        done, future = pending.pop(0)
-        data, bad = future.result()
-        yield done, data, bad
 
 
 def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
@@ -637,8 +569,10 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         motion). ``vertical='geocentric', pole='casa'`` reproduces
         ``applycal(parang=True)`` (:doc:`/correcting`).
     client : `dask.distributed.Client`, optional
-        Correct the chunks on its workers, a few at a time each; this process
-        writes them, in order. The result is bit for bit the serial one.
+        Correct the chunks on its workers, a few at a time each: each worker
+        reads, corrects and writes its chunks itself, under casacore's table
+        lock (taken for the writing of one chunk at a time), and this process
+        records them in order. The result is bit for bit the serial one.
 
     Returns
     -------
@@ -728,31 +662,32 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
 
     def blocks():
         for rows, products, k1, k2, angles in chunking[resume:]:
-            time, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
-            yield _Block(rows, products, angles(time, field, k1), angles(time, field, k2))
+            epochs, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
+            yield Block(rows, products, angles(epochs, field, k1), angles(epochs, field, k2))
 
-    with _open(path, write=True) as table:
+    shared = client is not None  # the workers write their chunks themselves
+    with _open(path, write=True, shared=shared) as table:
         if corrected_column not in table.colnames():
-            _add_column(table, data_column, corrected_column)
+            with locked(table, shared):
+                _add_column(table, data_column, corrected_column)
+        run = serial_writer(table, data_column, corrected_column, direction) if not shared \
+            else f"{os.getpid()}-{id(table)}-{time.time_ns()}"
         try:
             with progress_steps(progress, len(chunking) - resume) as step:
-                for block, data, bad in _results(blocks(),
-                                                 client, path, data_column, direction):
-                    rows = block.rows
-                    with _selection(table, rows) as (selection, start, n):
-                        if data is None:
-                            data = selection.getcol(data_column, start, n)
-                            bad = _corrected(data, block, direction)
-                        selection.putcol(corrected_column, data, start, n)
+                for block, bad in results(blocks(), client, path,
+                                          (data_column, corrected_column), direction, run):
                     nan_rows += bad
-                    done += rows.size
+                    done += block.rows.size
                     chunks += 1
-                    table.putcolkeyword(corrected_column, _PARTIAL,
-                                        {"what": what, "direction": direction, "done": done,
-                                         "chunks": chunks, "chunk_rows": step_rows})
+                    with locked(table, shared):
+                        table.putcolkeyword(corrected_column, _PARTIAL,
+                                            {"what": what, "direction": direction,
+                                             "done": done, "chunks": chunks,
+                                             "chunk_rows": step_rows})
                     step()
         except BaseException as error:
-            table.flush()
+            with locked(table, shared):
+                table.flush()
             intact = "is intact" if data_column != corrected_column else \
                 "is partly corrected"
             message = (f"{str(path)!r}: interrupted after {done} of {total} rows; "
@@ -764,7 +699,8 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
             if isinstance(error, Exception):
                 raise MSError(f"{message} ({type(error).__name__}: {error})") from error
             raise
-        table.removecolkeyword(corrected_column, _PARTIAL)
+        with locked(table, shared):
+            table.removecolkeyword(corrected_column, _PARTIAL)
     _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
                  ("" if pole == "itrs" else f" (pole={pole})"))
     if nan_rows:
