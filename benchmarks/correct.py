@@ -352,14 +352,18 @@ def _ms(directory, gib):
 
 
 def _floor(path, chunk_rows):
-    """Read DATA in chunks, multiply by a per-row, per-product phase, write CORRECTED_DATA."""
+    """Read DATA in chunks into one buffer, multiply by a per-row, per-product phase, write
+    CORRECTED_DATA."""
     from casacore.tables import table
 
     with table(str(path), readonly=False, ack=False) as t:
         n = t.nrows()
+        # Read into one buffer (a new array per chunk would be faulted in afresh).
+        buffer = np.empty((chunk_rows,) + t.getcell("DATA", 0).shape, dtype=np.complex64)
         for k in range(0, n, chunk_rows):
             m = min(chunk_rows, n - k)
-            data = t.getcol("DATA", k, m)
+            data = buffer[:m]
+            t.getcolnp("DATA", data, k, m)
             phase = np.exp(1j * np.linspace(0, 1, m * data.shape[-1])).astype(np.complex64)
             data *= phase.reshape(m, 1, data.shape[-1])
             t.putcol("CORRECTED_DATA", data, k, m)
