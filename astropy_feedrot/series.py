@@ -75,13 +75,13 @@ def _unique_integers(values, low, inverse=True):
     years: a few thousand days), which costs a few array passes instead of a
     sort; the same result.
     """
-    span = int(values.max() - low) + 1
-    if span > 8 * values.size + 4096:
+    high = values.max()
+    if not (np.isfinite(low) and np.isfinite(high)) or high - low >= 8 * values.size + 4096:
         if inverse:
             return np.unique(values, return_inverse=True)
         return np.unique(values), None
     index = (values - low).astype(np.intp)
-    present = np.zeros(span, dtype=bool)
+    present = np.zeros(int(high - low) + 1, dtype=bool)
     present[index] = True
     distinct = np.flatnonzero(present) + low
     if not inverse:

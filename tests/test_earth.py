@@ -286,3 +286,8 @@ def test_unique_integers_is_numpys_unique(values, spread):
     assert np.array_equal(distinct, expected)
     assert np.array_equal(inverse, expected_inverse.reshape(-1))
     assert np.array_equal(_unique_integers(values, values.min(), inverse=False)[0], expected)
+    with_nan = np.append(values, np.nan)  # not integers: numpy's unique
+    distinct, inverse = _unique_integers(with_nan, with_nan.min())
+    expected, expected_inverse = np.unique(with_nan, return_inverse=True)
+    assert np.array_equal(distinct, expected, equal_nan=True)
+    assert np.array_equal(inverse, expected_inverse.reshape(-1))

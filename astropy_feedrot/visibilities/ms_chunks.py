@@ -137,7 +137,7 @@ def _selection(table, rows):
 
 
 # This worker process's handle on the Measurement Set of the current run (a dask
-# task opens it once per run, not once per chunk), and the lock of its threads.
+# task opens it once per run, not once per chunk).
 _WORKER = {"run": None, "table": None}
 
 
@@ -168,8 +168,7 @@ def _remote_block(path, data_column, corrected_column, block, direction, run):
         with _selection(table, block.rows) as (selection, start, n):
             data = _read(selection, data_column, start, n)
     bad = _corrected(data, block, direction)
-    with _PROCESS_LOCK, locked(table, True), \
-            _selection(table, block.rows) as (selection, start, n):
+    with locked(table, True), _selection(table, block.rows) as (selection, start, n):
         selection.putcol(corrected_column, data, start, n)
     return bad
 
@@ -205,8 +204,11 @@ def results(work, client, path, columns, direction, run):
     [('a', 1), ('b', 1)]
     """
     if client is None:
-        for block in work:
-            yield block, run(block)
+        try:
+            for block in work:
+                yield block, run(block)
+        finally:
+            vars(_BUFFERS).pop("bytes", None)  # this process keeps no chunk after the run
         return
     ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
     blocks, pending = iter(work), []
