@@ -11,6 +11,7 @@ Chebyshev points evaluated by Horner's rule (`chebyshev`, `monomials`,
 Plain numpy on floats; nothing here knows about time scales or frames.
 """
 
+import collections
 import concurrent.futures
 import functools
 import hashlib
@@ -423,6 +424,8 @@ KEPT_CHUNK = 366
 # The chunks kept: within 1901-2098, where ERFA's ephemeris (epv00) is valid.
 _KEPT_CHUNKS = range(-99, 99)
 _KEPT = {}
+# Runs of consecutive chunks as one table, for sparse epochs over years.
+_KEPT_SPANS = collections.OrderedDict()
 _KEPT_LOCK = threading.Lock()
 # Set when a chunk could not be written: chunks not kept yet are then not
 # computed (a year of nodes for a few epochs would be paid by every process).
@@ -472,6 +475,7 @@ def clear_kept_nodes():
     """
     with _KEPT_LOCK:
         _KEPT.clear()
+        _KEPT_SPANS.clear()
 
 
 class KeptSeries(Series):
@@ -549,6 +553,9 @@ class KeptSeries(Series):
         chunks = np.unique(which)
         if not all(int(c) in _KEPT_CHUNKS for c in chunks):
             return self._computed(needed)
+        first, last = int(chunks[0]), int(chunks[-1])
+        if chunks.size == last - first + 1:  # consecutive years: one gather from them all
+            return self._years(first, last)[needed - first * KEPT_CHUNK]
         tables = {int(c): self._chunk(int(c)) for c in chunks}
         out = np.empty((needed.size, next(iter(tables.values())).shape[-1]))
         if np.all(which[1:] >= which[:-1]):  # sorted (as Series.at asks): runs of a chunk
@@ -569,6 +576,20 @@ class KeptSeries(Series):
             for j, row in zip(missing, self.evaluate(KEPT_ORIGIN, days)):
                 self._nodes[j] = row
         return np.array([self._nodes[j] for j in needed.tolist()])
+
+    def _years(self, first, last):
+        """The kept chunks ``first`` to ``last`` as one table (the last few kept)."""
+        key = (self.name, first, last)
+        with _KEPT_LOCK:
+            table = _KEPT_SPANS.get(key)
+        if table is None:
+            table = np.concatenate([self._chunk(c) for c in range(first, last + 1)])
+            table.flags.writeable = False
+            with _KEPT_LOCK:
+                _KEPT_SPANS[key] = table
+                while len(_KEPT_SPANS) > 8:
+                    _KEPT_SPANS.popitem(last=False)
+        return table
 
     def _chunk(self, chunk):
         key = (self.name, chunk)

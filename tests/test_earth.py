@@ -271,6 +271,11 @@ def test_kept_nodes_in_one_chunk_as_across_chunks():
     both = series.nodes(needed)
     assert np.array_equal(series.nodes(needed[:8]), both[:8])
     assert np.array_equal(series.nodes(needed[8:]), both[8:])
+    # Nodes over three consecutive years come from one table of them, sorted or not.
+    spread = np.arange(4 * KEPT_CHUNK - 5, 7 * KEPT_CHUNK + 5, 97)
+    one_by_one = np.concatenate([series.nodes(spread[k:k + 1]) for k in range(spread.size)])
+    assert np.array_equal(series.nodes(spread), one_by_one)
+    assert np.array_equal(series.nodes(spread[::-1]), one_by_one[::-1])
 
 
 @given(st.lists(st.integers(-10**6, 10**6), min_size=1, max_size=300),
