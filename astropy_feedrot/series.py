@@ -380,13 +380,31 @@ def horner(coefficients, slot, x):
     starts = np.flatnonzero(np.diff(slot)) + 1
     if slot.size >= RUN_EPOCHS * (starts.size + 1) and starts.size < MAX_RUNS:
         return _horner_by_runs(coefficients, slot, x, starts)
-    x = x[:, np.newaxis]
+    n_s = coefficients.shape[1]
+    block = max(256, HORNER_BLOCK // max(n_s, 1))
+    if slot.size <= block:
+        return _horner_block(coefficients, slot, x[:, np.newaxis])
+    # A block of epochs at a time, so that the sums stay in the cache between the
+    # steps of the polynomial (each step over a million epochs went to memory).
+    out = np.empty((n_s, slot.size) + coefficients.shape[3:])
+    for a in range(0, slot.size, block):
+        b = min(a + block, slot.size)
+        out[:, a:b] = _horner_block(coefficients, slot[a:b], x[a:b, np.newaxis])
+    return out
+
+
+def _horner_block(coefficients, slot, x):
     out = np.take(coefficients[-1], slot, axis=1)
     for k in range(coefficients.shape[0] - 2, -1, -1):
         out *= x
         out += np.take(coefficients[k], slot, axis=1)
     return out
 
+
+#: Epochs (times sources) that `horner` evaluates at once: 16384 epochs of one
+#: source are 400 kB of sums, which stay in the cache (the arithmetic, hence
+#: every bit, is that of all epochs at once).
+HORNER_BLOCK = 16384
 
 #: Epochs per run of one cell from which `horner` takes a run's coefficients
 #: once (broadcast) instead of gathering them for every epoch, and the most

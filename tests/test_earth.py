@@ -296,3 +296,18 @@ def test_unique_integers_is_numpys_unique(values, spread):
     expected, expected_inverse = np.unique(with_nan, return_inverse=True)
     assert np.array_equal(distinct, expected, equal_nan=True)
     assert np.array_equal(inverse, expected_inverse.reshape(-1))
+
+
+@pytest.mark.parametrize("sources", [1, 3])
+def test_horner_in_blocks_is_horner_at_once(sources):
+    # Many epochs are evaluated a block at a time (in the cache): the same
+    # arithmetic per epoch, so the same bits as all epochs at once.
+    from astropy_feedrot.series import HORNER_BLOCK, _horner_block, horner
+
+    rng = np.random.default_rng(5)
+    cells, n = 50, 3 * HORNER_BLOCK + 17
+    slot = rng.integers(0, cells, n)  # not in runs: the blocks of gathered terms
+    coefficients = rng.normal(size=(9, sources, cells, 3))
+    x = rng.uniform(-1, 1, n)
+    expected = _horner_block(coefficients, slot, x[:, np.newaxis])
+    assert np.array_equal(horner(coefficients, slot, x), expected)
