@@ -34,9 +34,7 @@ series per day of the span and under 0.1 us per epoch, and at no number of
 epochs more than astropy's own transformation (see `fast_path_applies`).
 """
 
-import collections
 import hashlib
-import threading
 
 import erfa
 import numpy as np
@@ -57,6 +55,7 @@ from astropy.time import Time
 from .config import conf
 from .eop import iers_context, table_in_use
 from .inputs import as_location, as_skycoord, as_time
+from .kept import KeptLast
 from .instants import UtcDays, distinct, terrestrial
 from .series import (
     KeptSeries,
@@ -217,8 +216,7 @@ def distance_less(data):
 #: How many sites `site_position` keeps.
 SITE_CACHE_SIZE = 256
 
-_SITES = collections.OrderedDict()
-_SITES_LOCK = threading.Lock()
+_SITES = KeptLast(SITE_CACHE_SIZE)
 
 
 def site_position(location):
@@ -249,16 +247,12 @@ def site_position(location):
     array([4075659.18 ,  931824.551, 4801516.102])
     """
     key = (np.asarray(location.value).tobytes(), str(location.unit))
-    with _SITES_LOCK:
-        site = _SITES.get(key)
+    site = _SITES.get(key)
     if site is None:
         lon, lat, height = location.to_geodetic("WGS84")
         site = erfa.gd2gc(1, lon.to_value(u.rad), lat.to_value(u.rad), height.to_value(u.m))
         site.flags.writeable = False
-        with _SITES_LOCK:
-            _SITES[key] = site
-            while len(_SITES) > SITE_CACHE_SIZE:
-                _SITES.popitem(last=False)
+        _SITES.put(key, site)
     return site
 
 
@@ -688,8 +682,7 @@ def _horner_cost(degree):
 #: How many `EarthOrientation` objects `orientation_of` keeps.
 ORIENTATION_CACHE_SIZE = 4
 
-_ORIENTATIONS = collections.OrderedDict()
-_ORIENTATIONS_LOCK = threading.Lock()
+_ORIENTATIONS = KeptLast(ORIENTATION_CACHE_SIZE)
 
 
 def orientation_of(obstime):
@@ -730,19 +723,11 @@ def orientation_of(obstime):
     digest = hashlib.sha256(memoryview(np.ascontiguousarray(obstime.jd1, dtype=float)))
     digest.update(memoryview(np.ascontiguousarray(obstime.jd2, dtype=float)))
     key = (obstime.scale, obstime.shape, digest.digest(), id(table))
-    with _ORIENTATIONS_LOCK:
-        hit = _ORIENTATIONS.get(key)
-        if hit is not None and hit[0] is table:  # the entry keeps its table alive
-            _ORIENTATIONS.move_to_end(key)
-    if hit is not None and hit[0] is table:
+    hit = _ORIENTATIONS.get(key, tag=table)  # the entry keeps its table alive
+    if hit is not None:
         with iers_context(obstime):  # the same check of the tables as a new one makes
-            return hit[1]
-    orientation = EarthOrientation(obstime)
-    with _ORIENTATIONS_LOCK:
-        _ORIENTATIONS[key] = (table, orientation)
-        while len(_ORIENTATIONS) > ORIENTATION_CACHE_SIZE:
-            _ORIENTATIONS.popitem(last=False)
-    return orientation
+            return hit
+    return _ORIENTATIONS.put(key, EarthOrientation(obstime), tag=table)
 
 
 def clear_orientation_cache():
@@ -759,5 +744,4 @@ def clear_orientation_cache():
     >>> from astropy_feedrot.earth import clear_orientation_cache
     >>> clear_orientation_cache()
     """
-    with _ORIENTATIONS_LOCK:
-        _ORIENTATIONS.clear()
+    _ORIENTATIONS.clear()

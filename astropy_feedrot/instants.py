@@ -11,13 +11,11 @@ would at that instant. `~astropy_feedrot.earth.EarthOrientation` is built on
 them.
 """
 
-import collections
-import threading
-
 import erfa
 import numpy as np
 
 from .eop import downloads_allowed, iers_context, table_arrays, utc_earth_orientation
+from .kept import KeptLast
 
 __all__ = ["UtcDays", "Instants", "distinct", "terrestrial", "ERA_RATE", "OMEGA"]
 
@@ -119,20 +117,14 @@ class UtcDays:
         if self.days.size <= _KEPT_DAYS and not downloads_allowed():
             arrays = table_arrays()
             key = (self.ref1, self.days.tobytes())
-            with _DAY_TABLES_LOCK:
-                hit = _DAY_TABLES.get(key)
-                if hit is not None and hit[0] is arrays:
-                    _DAY_TABLES.move_to_end(key)
-            if hit is not None and hit[0] is arrays:
-                self.__dict__.update(hit[1])
+            tables = _DAY_TABLES.get(key, tag=arrays)
+            if tables is not None:
+                self.__dict__.update(tables)
                 return
         tables = _day_tables(self.ref1, self.ref2, self.days)
         self.__dict__.update(tables)
         if key is not None:
-            with _DAY_TABLES_LOCK:
-                _DAY_TABLES[key] = (arrays, tables)
-                while len(_DAY_TABLES) > DAY_TABLES_CACHE_SIZE:
-                    _DAY_TABLES.popitem(last=False)
+            _DAY_TABLES.put(key, tables, tag=arrays)
 
     def at(self, slot, frac):
         """The quantities at instants given by day slots and fractions of day."""
@@ -142,8 +134,7 @@ class UtcDays:
 #: How many sets of days `UtcDays` keeps the tables of, and the most days a set kept.
 DAY_TABLES_CACHE_SIZE = 16
 _KEPT_DAYS = 4096
-_DAY_TABLES = collections.OrderedDict()
-_DAY_TABLES_LOCK = threading.Lock()
+_DAY_TABLES = KeptLast(DAY_TABLES_CACHE_SIZE)
 
 
 def _day_tables(ref1, ref2, days):

@@ -11,7 +11,6 @@ Chebyshev points evaluated by Horner's rule (`chebyshev`, `monomials`,
 Plain numpy on floats; nothing here knows about time scales or frames.
 """
 
-import collections
 import concurrent.futures
 import functools
 import hashlib
@@ -24,6 +23,8 @@ import threading
 import erfa
 import numpy as np
 from astropy.config import get_cache_dir
+
+from .kept import KeptLast
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
            "horner", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
@@ -443,7 +444,7 @@ KEPT_CHUNK = 366
 _KEPT_CHUNKS = range(-99, 99)
 _KEPT = {}
 # Runs of consecutive chunks as one table, for sparse epochs over years.
-_KEPT_SPANS = collections.OrderedDict()
+_KEPT_SPANS = KeptLast(8)
 _KEPT_LOCK = threading.Lock()
 # Set when a chunk could not be written: chunks not kept yet are then not
 # computed (a year of nodes for a few epochs would be paid by every process).
@@ -493,7 +494,7 @@ def clear_kept_nodes():
     """
     with _KEPT_LOCK:
         _KEPT.clear()
-        _KEPT_SPANS.clear()
+    _KEPT_SPANS.clear()
 
 
 class KeptSeries(Series):
@@ -598,15 +599,11 @@ class KeptSeries(Series):
     def _years(self, first, last):
         """The kept chunks ``first`` to ``last`` as one table (the last few kept)."""
         key = (self.name, first, last)
-        with _KEPT_LOCK:
-            table = _KEPT_SPANS.get(key)
+        table = _KEPT_SPANS.get(key)
         if table is None:
             table = np.concatenate([self._chunk(c) for c in range(first, last + 1)])
             table.flags.writeable = False
-            with _KEPT_LOCK:
-                _KEPT_SPANS[key] = table
-                while len(_KEPT_SPANS) > 8:
-                    _KEPT_SPANS.popitem(last=False)
+            _KEPT_SPANS.put(key, table)
         return table
 
     def _chunk(self, chunk):

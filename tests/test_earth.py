@@ -164,7 +164,8 @@ def test_shapes_of_targets_and_epochs():
 
 # --- the layers: inputs at the bottom, no cycle, no hidden imports ---------------
 
-@pytest.mark.parametrize("module", ["inputs", "series", "instants", "earth", "epochs", "frames"])
+@pytest.mark.parametrize("module", ["inputs", "kept", "series", "instants", "earth", "epochs",
+                                    "frames"])
 def test_modules_import_first(module):
     # In a fresh interpreter, each module imports without a cycle.
     subprocess.run([sys.executable, "-c", f"import astropy_feedrot.{module}"],
@@ -184,6 +185,7 @@ def imports(path):
 
 def test_inputs_is_the_bottom_layer():
     assert imports(PACKAGE / "inputs.py") == []
+    assert imports(PACKAGE / "kept.py") == []  # beside it: what is kept between calls
 
 
 @pytest.mark.parametrize("module", ["inputs.py", "series.py", "instants.py", "earth.py",

@@ -13,7 +13,6 @@ and Stokes codes) and their sources.
 
 import os
 import tempfile
-import threading
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +22,7 @@ from astropy.time import Time
 
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
+from ..kept import thread_buffer
 from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
@@ -404,27 +404,14 @@ def _correct_chunk(records, plan, table, sources, name, direction):
     return int(np.count_nonzero(bad))
 
 
-_BUFFERS = threading.local()
-
-
-def _buffer(dtype, rows):
-    """An array of ``rows`` records, in a buffer this thread keeps for its next chunks:
-    a new one for each chunk would be mapped and faulted in afresh (dask's workers set
-    glibc to return freed memory at once)."""
-    nbytes = dtype.itemsize * rows
-    buffer = getattr(_BUFFERS, "bytes", None)
-    if buffer is None or buffer.size < nbytes:
-        buffer = _BUFFERS.bytes = np.empty(nbytes, dtype=np.uint8)
-    return buffer[:nbytes].view(dtype)
-
-
 def _chunk_task(source, target, plan, start, stop, shift, table, sources, name, direction):
     """Correct rows [start, stop) of one UV_DATA table: read from ``source``, corrected
     in memory, written to the same rows of ``target``, ``shift`` bytes further (its
     primary header is longer); the number of NaN rows. A dask task too: chunks are
     disjoint byte ranges of the output."""
     offset = plan.offset + start * plan.dtype.itemsize
-    records = _buffer(plan.dtype, stop - start)
+    # In a buffer this thread keeps for its next chunks (kept.thread_buffer).
+    records = thread_buffer(plan.dtype, (stop - start,))
     with open(source, "rb") as fin:
         fin.seek(offset)
         if fin.readinto(records.view(np.uint8)) != records.nbytes:

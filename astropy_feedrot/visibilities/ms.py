@@ -20,7 +20,6 @@ python-casacore is an optional dependency (``pip install
 import contextlib
 import fcntl
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -35,7 +34,7 @@ from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
-from .ms_chunks import Block, locked, results, serial_writer
+from .ms_chunks import Block, locked, results
 from .ms_chunks import tables as _tables
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
@@ -79,7 +78,7 @@ def _ms_path(ms):
 @contextlib.contextmanager
 def _open(path, *, write=False, shared=False):
     """The main table; ``shared``: written by other processes too (casacore user locks,
-    taken by `_locked` around each write)."""
+    taken by `~astropy_feedrot.visibilities.ms_chunks.locked` around each write)."""
     tables = _tables()
     locking = {"option": "usernoread"} if shared else "permanent" if write else "auto"
     table = tables.table(str(path), readonly=not write, ack=False, lockoptions=locking)
@@ -670,12 +669,10 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         if corrected_column not in table.colnames():
             with locked(table, shared):
                 _add_column(table, data_column, corrected_column)
-        run = serial_writer(table, data_column, corrected_column, direction) if not shared \
-            else f"{os.getpid()}-{id(table)}-{time.time_ns()}"
         try:
             with progress_steps(progress, len(chunking) - resume) as step:
-                for block, bad in results(blocks(), client, path,
-                                          (data_column, corrected_column), direction, run):
+                for block, bad in results(blocks(), table, path,
+                                          (data_column, corrected_column), direction, client):
                     nan_rows += bad
                     done += block.rows.size
                     chunks += 1

@@ -3,7 +3,7 @@
 dask workers.
 
 In one process the main table is held with casacore's permanent lock and each
-chunk is read, corrected and written in turn (`serial_writer`). With a dask
+chunk is read, corrected and written in turn. With a dask
 client, each worker opens the table once per run with casacore's user locks
 (``usernoread``: reading needs no lock, and other processes write other
 rows), reads and corrects its chunks, and writes each under the table's write
@@ -15,13 +15,15 @@ them in order (`results`). The threads of one process take the lock in turn.
 import contextlib
 import threading
 import time
+import uuid
 
 import astropy.units as u
 import numpy as np
 
 from ..correction import correct_receptor_visibilities
+from ..kept import release_thread_buffer, thread_buffer
 
-__all__ = ["Block", "locked", "results", "serial_writer", "tables"]
+__all__ = ["Block", "locked", "results", "tables"]
 
 _EXTRA = "pip install 'astropy_feedrot[ms]'"
 
@@ -105,22 +107,15 @@ def _corrected(data, block, direction):
     return int(np.count_nonzero(bad))
 
 
-_BUFFERS = threading.local()
 _VALUE_TYPES = {"complex": np.complex64, "dcomplex": np.complex128}
 
 
 def _read(table, column, start, n):
-    """Rows of a column of one cell shape, read into a buffer this thread keeps: a new
-    array for each chunk would be mapped and faulted in afresh (a tenth of a second for
-    32 MiB here; dask's workers return freed memory at once)."""
-    dtype = np.dtype(_VALUE_TYPES.get(table.getcoldesc(column).get("valueType"),
-                                      np.complex64))
-    shape = (n,) + tuple(np.shape(table.getcell(column, start)))
-    nbytes = dtype.itemsize * int(np.prod(shape))
-    buffer = getattr(_BUFFERS, "bytes", None)
-    if buffer is None or buffer.size < nbytes:
-        buffer = _BUFFERS.bytes = np.empty(nbytes, dtype=np.uint8)
-    data = buffer[:nbytes].view(dtype).reshape(shape)
+    """Rows of a column of one cell shape, read into the buffer this thread keeps
+    (`~astropy_feedrot.kept.thread_buffer`: a new 32 MiB array for each chunk took a
+    tenth of a second to fault in here)."""
+    dtype = _VALUE_TYPES.get(table.getcoldesc(column).get("valueType"), np.complex64)
+    data = thread_buffer(dtype, (n,) + tuple(np.shape(table.getcell(column, start))))
     table.getcolnp(column, data, start, n)
     return data
 
@@ -173,43 +168,50 @@ def _remote_block(path, data_column, corrected_column, block, direction, run):
     return bad
 
 
-def serial_writer(table, data_column, corrected_column, direction):
-    """A function that reads, corrects and writes a `Block` here (the table held).
-
-    Examples
-    --------
-    >>> from astropy_feedrot.visibilities.ms_chunks import serial_writer
-    >>> callable(serial_writer(None, "DATA", "CORRECTED_DATA", "remove"))
-    True
-    """
-    def run(block):
-        with _selection(table, block.rows) as (selection, start, n):
-            data = _read(selection, data_column, start, n)
-            bad = _corrected(data, block, direction)
-            selection.putcol(corrected_column, data, start, n)
-        return bad
-    return run
+def _here(table, block, columns, direction):
+    """Read, correct and write a `Block` in this process (the table held); the NaN rows."""
+    data_column, corrected_column = columns
+    with _selection(table, block.rows) as (selection, start, n):
+        data = _read(selection, data_column, start, n)
+        bad = _corrected(data, block, direction)
+        selection.putcol(corrected_column, data, start, n)
+    return bad
 
 
-def results(work, client, path, columns, direction, run):
-    """(block, NaN rows) in order, each chunk written; dask keeps two per worker going.
+def results(work, table, path, columns, direction, client=None):
+    """(block, NaN rows) in order, each chunk written: here, in ``table`` (opened with
+    casacore's permanent lock), or with ``client`` on its dask workers (``table``
+    opened shared), two per worker going.
 
-    Without ``client``, ``run`` is a `serial_writer`; with one, a name of the
-    run, unique, under which its workers keep their table open.
+    Parameters
+    ----------
+    work : iterable of `Block`
+        The chunks, in order.
+    table : casacore table
+        The Measurement Set's main table, as this process holds it.
+    path : str or path-like
+        Its path (the workers open it).
+    columns : (str, str)
+        The column read and the column written.
+    direction : {'remove', 'apply'}
+        As in `~astropy_feedrot.visibilities.correct_ms`.
+    client : `dask.distributed.Client`, optional
+        Where the chunks are corrected.
 
     Examples
     --------
     >>> from astropy_feedrot.visibilities.ms_chunks import results
-    >>> list(results(["a", "b"], None, None, ("DATA", "DATA"), "remove", len))
-    [('a', 1), ('b', 1)]
+    >>> list(results([], None, None, ("DATA", "CORRECTED_DATA"), "remove"))  # no chunks
+    []
     """
     if client is None:
         try:
             for block in work:
-                yield block, run(block)
+                yield block, _here(table, block, columns, direction)
         finally:
-            vars(_BUFFERS).pop("bytes", None)  # this process keeps no chunk after the run
+            release_thread_buffer()  # this process keeps no chunk after the run
         return
+    run = uuid.uuid4().hex  # under which the workers keep the table open
     ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
     blocks, pending = iter(work), []
     try:

@@ -1,0 +1,109 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""What the package keeps between calls: the last few results, and each thread's buffer.
+
+`KeptLast` holds the last few values computed (sites' positions, Earth
+orientations, day tables of Earth orientation, runs of years of kept nodes),
+safe to share between threads; a value may be tied to the object it was
+computed from (the IERS table in use), and is found only with that object.
+`thread_buffer` gives each thread one buffer for the chunks of a long
+correction, so that a new array for each chunk is not mapped and faulted in
+afresh. Nothing here imports the rest of the package.
+"""
+
+import collections
+import threading
+
+import numpy as np
+
+__all__ = ["KeptLast", "thread_buffer", "release_thread_buffer"]
+
+
+class KeptLast:
+    """The last ``size`` values used, by key, for every thread.
+
+    Parameters
+    ----------
+    size : int
+        How many values are kept; the least recently used goes first.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kept import KeptLast
+    >>> kept = KeptLast(2)
+    >>> table = object()
+    >>> kept.put("a", 1.0, tag=table)
+    1.0
+    >>> kept.get("a", tag=table), kept.get("a"), kept.get("b")
+    (1.0, None, None)
+    """
+
+    def __init__(self, size):
+        self.size = int(size)
+        self._values = collections.OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key, tag=None):
+        """The value kept for ``key`` and computed from ``tag`` (by identity), or None."""
+        with self._lock:
+            hit = self._values.get(key)
+            if hit is None or hit[0] is not tag:
+                return None
+            self._values.move_to_end(key)
+            return hit[1]
+
+    def put(self, key, value, tag=None):
+        """Keep ``value`` (and ``tag``, alive with it) for ``key``; return ``value``."""
+        with self._lock:
+            self._values[key] = (tag, value)
+            self._values.move_to_end(key)
+            while len(self._values) > self.size:
+                self._values.popitem(last=False)
+        return value
+
+    def clear(self):
+        """Forget every value."""
+        with self._lock:
+            self._values.clear()
+
+    def __len__(self):
+        return len(self._values)
+
+
+_BUFFERS = threading.local()
+
+
+def thread_buffer(dtype, shape):
+    """An array of ``dtype`` and ``shape`` in a buffer this thread keeps for its next calls.
+
+    The buffer grows to the largest array asked for; its contents are
+    whatever the last user left. Chunks of a long correction reuse it: a new
+    array of tens of MiB for each chunk would be mapped and faulted in afresh
+    (dask's workers set glibc to return freed memory at once).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.kept import release_thread_buffer, thread_buffer
+    >>> a = thread_buffer(np.complex64, (4, 2))
+    >>> b = thread_buffer(np.complex64, (2, 2))
+    >>> a.shape, np.shares_memory(a, b)
+    ((4, 2), True)
+    >>> release_thread_buffer()
+    """
+    dtype = np.dtype(dtype)
+    nbytes = dtype.itemsize * int(np.prod(shape))
+    buffer = getattr(_BUFFERS, "bytes", None)
+    if buffer is None or buffer.size < nbytes:
+        buffer = _BUFFERS.bytes = np.empty(nbytes, dtype=np.uint8)
+    return buffer[:nbytes].view(dtype).reshape(shape)
+
+
+def release_thread_buffer():
+    """Let this thread's buffer go (at the end of a correction in the calling thread).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kept import release_thread_buffer
+    >>> release_thread_buffer()
+    """
+    vars(_BUFFERS).pop("bytes", None)
