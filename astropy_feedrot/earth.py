@@ -56,6 +56,7 @@ from .config import conf
 from .eop import iers_context, table_in_use
 from .inputs import as_location, as_skycoord, as_time
 from .kept import KeptLast
+from .kernel import over_components
 from .instants import UtcDays, distinct, terrestrial
 from .series import (
     KeptSeries,
@@ -535,7 +536,7 @@ class EarthOrientation:
         with np.errstate(invalid="ignore"):
             s = self._per_epoch(evaluate, pco.shape[0])
             # The polynomials of the cells keep the length to about 1e-13.
-            s /= np.sqrt(np.einsum("...i,...i->...", s, s))[..., np.newaxis]
+            s /= over_components(np.sqrt(np.einsum("...i,...i->...", s, s)))
         return s.reshape(shape + (self.size, 3))
 
     def sun_position(self):

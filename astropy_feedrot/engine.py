@@ -578,10 +578,17 @@ def degenerate(phase, target, below=None, positions=False):
     ...            np.array([[[0, 0, 1.0], [0, 1.0, 0], [np.nan] * 3]])).tolist()
     [[True, False, False]]
     """
+    undefined = np.isnan(phase)
+    target = np.asarray(target)
+    if not undefined.any():  # the usual case: no need to look at the targets
+        shape = target.shape[:-1]
+        if positions:
+            shape = shape[:-1] + (1,) + shape[-1:]
+        return np.zeros(np.broadcast_shapes(undefined.shape, shape), dtype=bool)
     finite = np.all(np.isfinite(target), axis=-1)
     if positions:
         finite = finite[..., np.newaxis, :]
-    bad = np.isnan(phase) & finite
+    bad = undefined & finite
     if below is not None:
         bad &= ~below
     return bad

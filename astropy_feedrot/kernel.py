@@ -26,6 +26,7 @@ __all__ = [
     "DEGENERATE_NORM",
     "NORTH_POLE",
     "dot",
+    "over_components",
     "unit",
     "projection_matrix",
     "cross_matrix",
@@ -78,6 +79,39 @@ def dot(a, b):
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
     return np.einsum("...i,...i->...", a, b)
+
+
+def over_components(x, n=3):
+    """Scalars repeated over the ``n`` components of a vector, contiguous.
+
+    Multiplying vectors of shape (..., 3) by scalars broadcast as (..., 1)
+    makes numpy's inner loop 3 elements long; the scalars repeated to
+    (..., 3) first make it the length of the array, several times faster
+    for the same arithmetic (the same bits).
+
+    Parameters
+    ----------
+    x : array-like, shape (...)
+        Scalars.
+    n : int, optional
+        Components.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kernel import over_components
+    >>> over_components([1.0, 2.0])
+    array([[1., 1., 1.],
+           [2., 2., 2.]])
+    """
+    x = np.asarray(x, dtype=float)
+    out = np.empty(x.shape + (n,))
+    for j in range(n):  # n column copies: faster than np.repeat for a few components
+        out[..., j] = x
+    return out
 
 
 def unit(v):
@@ -281,7 +315,11 @@ def transmitter_dipole(s, aligned=None, transverse=None):
 
 def _atan2_defined(num, den, defined):
     with np.errstate(invalid="ignore"):
-        return np.where(defined, np.arctan2(num, den), np.nan)
+        out = np.arctan2(num, den)
+    if out.ndim == 0 or np.broadcast_shapes(out.shape, np.shape(defined)) != out.shape:
+        return np.where(defined, out, np.nan)
+    out[~np.broadcast_to(defined, out.shape)] = np.nan  # in place: no third array
+    return out
 
 
 def wu_phase(s, r, t):
@@ -488,12 +526,21 @@ def receiver_term(s, r):
     r = np.asarray(r, dtype=float)
     sx, sy, sz = s[..., 0], s[..., 1], s[..., 2]
     rx, ry, rz = r[..., 0], r[..., 1], r[..., 2]
-    num = sx * ry - sy * rx
-    pole = sx * sx + sy * sy  # |P z|^2
-    den = rz * pole - sz * (rx * sx + ry * sy)
+    # Sums in place (each term has the whole shape): the same arithmetic with
+    # fewer arrays, which over a million epochs is a fifth of the time.
+    num = sx * ry
+    num -= sy * rx
+    pole = sx * sx
+    pole += sy * sy  # |P z|^2
+    den = rx * sx
+    den += ry * sy
+    den *= sz
+    den = rz * pole - den
     # hypot(num, den) = |P r| |P z|: NaN where either is degenerate.
-    defined = (pole >= DEGENERATE_NORM**2) & (num * num + den * den
-                                              >= DEGENERATE_NORM**2 * pole)
+    norm = num * num
+    norm += den * den
+    defined = norm >= DEGENERATE_NORM**2 * pole
+    defined &= pole >= DEGENERATE_NORM**2
     return _atan2_defined(num, den, defined)
 
 

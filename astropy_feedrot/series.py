@@ -25,6 +25,7 @@ import numpy as np
 from astropy.config import get_cache_dir
 
 from .kept import KeptLast
+from .kernel import over_components
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
            "horner", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
@@ -384,17 +385,18 @@ def horner(coefficients, slot, x):
     n_s = coefficients.shape[1]
     block = max(256, HORNER_BLOCK // max(n_s, 1))
     if slot.size <= block:
-        return _horner_block(coefficients, slot, x[:, np.newaxis])
+        return _horner_block(coefficients, slot, x)
     # A block of epochs at a time, so that the sums stay in the cache between the
     # steps of the polynomial (each step over a million epochs went to memory).
     out = np.empty((n_s, slot.size) + coefficients.shape[3:])
     for a in range(0, slot.size, block):
         b = min(a + block, slot.size)
-        out[:, a:b] = _horner_block(coefficients, slot[a:b], x[a:b, np.newaxis])
+        out[:, a:b] = _horner_block(coefficients, slot[a:b], x[a:b])
     return out
 
 
 def _horner_block(coefficients, slot, x):
+    x = over_components(x, coefficients.shape[3])  # (N, 3): a long inner loop
     out = np.take(coefficients[-1], slot, axis=1)
     for k in range(coefficients.shape[0] - 2, -1, -1):
         out *= x
@@ -423,11 +425,13 @@ def _horner_by_runs(coefficients, slot, x, starts):
     """
     degree, n_s, cells, n_c = coefficients.shape
     flat = coefficients.transpose(0, 2, 1, 3).reshape(degree, cells, n_s * n_c)
-    out = np.empty((slot.size, n_s * n_c))
+    width = n_s * n_c
+    out = np.empty((slot.size, width))
     bounds = np.concatenate([[0], starts, [slot.size]])
     for a, b in zip(bounds[:-1], bounds[1:]):
         cell = slot[a]
-        xs = x[a:b, np.newaxis]
+        # x over the components when they are few (a short inner loop otherwise).
+        xs = over_components(x[a:b], width) if width <= 4 else x[a:b, np.newaxis]
         segment = out[a:b]
         segment[...] = flat[-1, cell]
         for k in range(degree - 2, -1, -1):

@@ -301,15 +301,22 @@ def test_unique_integers_is_numpys_unique(values, spread):
 
 
 @pytest.mark.parametrize("sources", [1, 3])
-def test_horner_in_blocks_is_horner_at_once(sources):
-    # Many epochs are evaluated a block at a time (in the cache): the same
-    # arithmetic per epoch, so the same bits as all epochs at once.
-    from astropy_feedrot.series import HORNER_BLOCK, _horner_block, horner
+@pytest.mark.parametrize("runs", [False, True])
+def test_horner_in_blocks_is_horner_at_once(sources, runs):
+    # Many epochs are evaluated a block at a time (in the cache), or a run of one
+    # cell at a time: the same arithmetic per epoch, so the same bits as all
+    # epochs at once.
+    from astropy_feedrot.series import HORNER_BLOCK, horner
 
     rng = np.random.default_rng(5)
     cells, n = 50, 3 * HORNER_BLOCK + 17
-    slot = rng.integers(0, cells, n)  # not in runs: the blocks of gathered terms
+    slot = rng.integers(0, cells, n)
+    if runs:  # runs of one cell, each longer than RUN_EPOCHS
+        slot = np.sort(slot)
     coefficients = rng.normal(size=(9, sources, cells, 3))
     x = rng.uniform(-1, 1, n)
-    expected = _horner_block(coefficients, slot, x[:, np.newaxis])
+    # Horner written out over all epochs at once, x broadcast over the components.
+    expected = coefficients[-1][:, slot]
+    for k in range(coefficients.shape[0] - 2, -1, -1):
+        expected = expected * x[:, np.newaxis] + coefficients[k][:, slot]
     assert np.array_equal(horner(coefficients, slot, x), expected)

@@ -236,3 +236,30 @@ def test_the_top_level_is_the_import_surface():
     for name in ("get_antenna", "feed_rotation_grid", "correct_phase", "mount_from_label",
                  "read_tle", "FileFormatError", "OrbitWarning", "feed_rotation_table"):
         assert name in astropy_feedrot.__all__
+
+
+@pytest.mark.parametrize("positions", [False, True])
+@pytest.mark.parametrize("nan_phase", [False, True])
+def test_degenerate_mask_shape_and_values(positions, nan_phase):
+    # The mask of degenerate angles: NaN phase where the target is finite and not
+    # below the limit, written out here element by element; the same shape
+    # whether or not any phase is NaN (then no target is looked at).
+    from astropy_feedrot.engine import degenerate
+
+    rng = np.random.default_rng(3)
+    n_e, n_a, n_s = 4, 2, 3
+    phase = rng.uniform(-1, 1, (n_e, n_a, n_s))
+    if nan_phase:
+        phase[rng.uniform(size=phase.shape) < 0.5] = np.nan
+    target = rng.normal(size=(n_e, n_s, 3) if positions else (n_e, n_a, n_s, 3))
+    target[0, ..., 1] = np.nan  # missing data at the first epoch
+    below = rng.uniform(size=(n_e, n_a, n_s)) < 0.3
+    expected = np.zeros(phase.shape, dtype=bool)
+    for i in np.ndindex(phase.shape):
+        e, a, s = i
+        point = target[e, s] if positions else target[i]
+        expected[i] = np.isnan(phase[i]) and np.all(np.isfinite(point)) and not below[i]
+    got = degenerate(phase, target, below, positions=positions)
+    assert got.shape == phase.shape
+    assert np.array_equal(got, expected)
+    assert expected.any() == nan_phase
