@@ -16,6 +16,7 @@ import numpy as np
 
 from .eop import downloads_allowed, iers_context, table_arrays, utc_earth_orientation
 from .kept import KeptLast
+from .series import unique_integers
 
 __all__ = ["UtcDays", "Instants", "distinct", "terrestrial", "ERA_RATE", "OMEGA"]
 
@@ -47,7 +48,7 @@ def distinct(values, limit):
     low, high = values.min(), values.max()
     if high - low < limit:
         return np.arange(low, high + 1), lambda: (values - low).astype(np.intp)
-    distinct, index = np.unique(values, return_inverse=True)
+    distinct, index = unique_integers(values.ravel(), low)
     return distinct, lambda: index.reshape(values.shape)
 
 

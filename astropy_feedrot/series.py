@@ -28,7 +28,7 @@ from .kept import KeptLast
 from .kernel import over_components
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
-           "horner", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
+           "horner", "unique_integers", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
            "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN", "KEPT_CHUNK",
            "RUN_EPOCHS", "MAX_RUNS"]
 
@@ -71,12 +71,35 @@ def _barycentric(n):
     return b
 
 
-def _unique_integers(values, low, inverse=True):
+def unique_integers(values, low, inverse=True):
     """`numpy.unique` of integers held as floats, ``low`` their least, and the inverse.
 
     Through a table of the whole range where it is short (sparse epochs over
     years: a few thousand days), which costs a few array passes instead of a
     sort; the same result.
+
+    Parameters
+    ----------
+    values : ndarray
+        Whole numbers as floats (anything else goes to `numpy.unique`).
+    low : float
+        ``values.min()``.
+    inverse : bool, optional
+        Whether to return the index of each value among the distinct ones.
+
+    Returns
+    -------
+    distinct : ndarray
+        The distinct values, sorted.
+    index : ndarray or None
+        ``distinct[index] == values`` (None unless ``inverse``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.series import unique_integers
+    >>> unique_integers(np.array([7.0, 3.0, 7.0, 5.0]), 3.0)
+    (array([3., 5., 7.]), array([2, 0, 2, 1]))
     """
     high = values.max()
     if not (np.isfinite(low) and np.isfinite(high)) or high - low >= 8 * values.size + 4096:
@@ -106,7 +129,11 @@ def combine(values, start, weights):
     # One gather of every stencil and one contraction: a loop over the nodes
     # costs two numpy calls per node, which dominates for few instants.
     weights = weights.reshape(weights.shape[:2])  # (P, n), trailing axes of 1 dropped
-    stencils = values[start[:, np.newaxis] + np.arange(weights.shape[1])]  # (P, n, ...)
+    return _contract(weights, values[start[:, np.newaxis] + np.arange(weights.shape[1])])
+
+
+def _contract(weights, stencils):
+    """Sum over the nodes of weights (P, n) times the stencils' values (P, n, ...)."""
     return np.einsum("pn,pn...->p...", weights, stencils)
 
 
@@ -262,8 +289,12 @@ class Series:
             intervals, slot = j[:1], np.zeros(j.size, dtype=np.intp)
             needed = low + self.offsets
         else:
-            intervals, slot = _unique_integers(j, low)
-            needed, _ = _unique_integers((intervals[:, np.newaxis] + self.offsets).ravel(),
+            if ready:
+                direct = self._direct(x, j, low)
+                if direct is not None:
+                    return direct
+            intervals, slot = unique_integers(j, low)
+            needed, _ = unique_integers((intervals[:, np.newaxis] + self.offsets).ravel(),
                                          low + self.offsets[0], inverse=False)
         if tt.size <= needed.size and not ready:
             return self.evaluate(self.tt1, self.tt2 + tt)
@@ -281,6 +312,33 @@ class Series:
             at_points += weights[:, k, np.newaxis, np.newaxis] * values[first + k]
         coefficients = monomials(inverse, at_points)[:, np.newaxis]
         return horner(coefficients, slot.reshape(-1), 2 * (x - j) - 1)[0]
+
+    def _direct(self, x, j, low):
+        """The Lagrange sums at sparse instants, their stencils read straight from the nodes.
+
+        For instants in time order, mostly one per interval (per scan, sparse
+        over years), when `stencils` serves them: the sums of `at`, with the
+        same nodes and weights, without finding the distinct intervals and
+        nodes first. None where `at` goes the other way.
+        """
+        steps = np.diff(j)
+        if not np.all(steps >= 0):
+            return None
+        intervals = 1 + np.count_nonzero(steps)
+        if j.size > 2 * (PIECE_DEGREE + 1) * intervals:  # the piecewise interpolants pay
+            return None
+        stencils = self.stencils(j, low)
+        if stencils is None:
+            return None
+        return _contract(lagrange_weights(x - j, self.offsets.astype(float)), stencils)
+
+    def stencils(self, j, low):
+        """Values (P, order, C) at the nodes around each interval ``j``, or None.
+
+        ``low`` is the least of ``j``. None here: the nodes of a plain
+        series are computed for the instants that need them.
+        """
+        return None
 
     def _over_span(self, tt, low, high, degree):
         """ERFA at the Chebyshev points of the span of ``tt``, and the polynomial through them."""
@@ -590,6 +648,24 @@ class KeptSeries(Series):
             here = which == c
             out[here] = table[needed[here] - c * KEPT_CHUNK]
         return out
+
+    def stencils(self, j, low):
+        """Values (P, order, C) at the kept nodes around each interval ``j``, or None.
+
+        One gather from the kept table of the years they span; None outside
+        the kept years (`nodes` computes those).
+        """
+        first = int(low) + int(self.offsets[0])
+        last = int(j.max()) + int(self.offsets[-1])
+        first_chunk, last_chunk = first // KEPT_CHUNK, last // KEPT_CHUNK
+        if first_chunk not in _KEPT_CHUNKS or last_chunk not in _KEPT_CHUNKS:
+            return None
+        if first_chunk == last_chunk:
+            table = self._chunk(first_chunk)
+        else:
+            table = self._years(first_chunk, last_chunk)
+        start = j.astype(np.int64) + (int(self.offsets[0]) - first_chunk * KEPT_CHUNK)
+        return table[start[:, np.newaxis] + np.arange(self.order)]
 
     def _computed(self, needed):
         """Nodes outside the kept years, from ERFA (kept in this series only)."""

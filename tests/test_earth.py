@@ -262,6 +262,30 @@ def test_series_in_one_interval_as_in_several():
         assert np.array_equal(alone, together)
 
 
+@pytest.mark.parametrize("span", [200.0, 3652.0])  # within a year; over ten years
+def test_sparse_stencils_read_directly_as_through_distinct_nodes(span):
+    # Sparse instants in time order take their stencils straight from the kept
+    # table; out of order they go through the distinct intervals and nodes.
+    # The same nodes and weights: the same bits, and the same as each alone.
+    from astropy_feedrot.earth import EarthOrientation
+
+    rng = np.random.default_rng(2)
+    times = Time("2013-01-01T00:00") + np.sort(rng.uniform(0, span, 100)) * u.day
+    orientation = EarthOrientation(times)
+    tt = orientation._at_epochs().tt
+    order = rng.permutation(tt.size)
+    for series in (orientation._cip, orientation._velocity, orientation._position):
+        x = tt + series.shift  # node spacing: a day
+        assert series._direct(x, np.floor(x), np.floor(x).min()) is not None
+        assert series._direct(x[order], np.floor(x[order]), np.floor(x).min()) is None
+        direct = series.at(tt)
+        through_nodes = np.empty_like(direct)
+        through_nodes[order] = series.at(tt[order])
+        assert np.array_equal(direct, through_nodes)
+        pairs = np.concatenate([series.at(tt[k:k + 2])[:1] for k in range(0, tt.size - 1, 9)])
+        assert np.array_equal(direct[0:tt.size - 1:9], pairs)
+
+
 def test_kept_nodes_in_one_chunk_as_across_chunks():
     # Nodes of one year are read from its chunk alone; across a year's end the
     # same values come from both chunks.
@@ -282,19 +306,19 @@ def test_kept_nodes_in_one_chunk_as_across_chunks():
 
 @given(st.lists(st.integers(-10**6, 10**6), min_size=1, max_size=300),
        st.integers(0, 5))
-def test_unique_integers_is_numpys_unique(values, spread):
+def testunique_integers_is_numpys_unique(values, spread):
     # The table of the range (short spans) and the sort (long ones) give
     # numpy's unique values and inverse, whatever the spread of the values.
-    from astropy_feedrot.series import _unique_integers
+    from astropy_feedrot.series import unique_integers
 
     values = np.asarray(values, dtype=float) // 10**spread
-    distinct, inverse = _unique_integers(values, values.min())
+    distinct, inverse = unique_integers(values, values.min())
     expected, expected_inverse = np.unique(values, return_inverse=True)
     assert np.array_equal(distinct, expected)
     assert np.array_equal(inverse, expected_inverse.reshape(-1))
-    assert np.array_equal(_unique_integers(values, values.min(), inverse=False)[0], expected)
+    assert np.array_equal(unique_integers(values, values.min(), inverse=False)[0], expected)
     with_nan = np.append(values, np.nan)  # not integers: numpy's unique
-    distinct, inverse = _unique_integers(with_nan, with_nan.min())
+    distinct, inverse = unique_integers(with_nan, with_nan.min())
     expected, expected_inverse = np.unique(with_nan, return_inverse=True)
     assert np.array_equal(distinct, expected, equal_nan=True)
     assert np.array_equal(inverse, expected_inverse.reshape(-1))
