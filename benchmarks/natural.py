@@ -45,8 +45,9 @@ PASS/FAIL lines for the targets:
 * no regime slower than the rigorous path, cold or warm;
 * every regime within 0.1 mas of the rigorous path.
 
-Times are the best of repeated runs (the machine is shared: compare the
-ratios of one run; the load average is printed at the start and the end).
+Times are the best of repeated runs, the paths of a regime taking turns so
+that a slow spell of a shared machine falls on all of them alike (compare
+the ratios of one run; the load average is printed at the start and the end).
 With ``--strict`` the exit status is 1 if a target is missed. Everything runs
 offline on the Earth orientation tables bundled with astropy. Run
 ``python benchmarks/natural.py --help`` for the options.
@@ -311,35 +312,41 @@ def max_difference_mas(a, b):
     return float(np.nanmax(np.abs(d))) * MAS_PER_DEG
 
 
-def measure(path, antenna, regime, stride, repeats, budget):
-    """Best time per epoch (us) of up to ``repeats`` samples within ``budget`` s, and the result.
+def measure(paths, antenna, regime, steps, repeats, budget):
+    """Best time per epoch (us) of each path, and its result: up to ``repeats`` rounds.
 
-    A sample is one call, or, for fewer than 1000 epochs, the mean of as many
-    calls as make 1000 epochs (timer resolution and the noise of a shared
-    machine). ``fast`` clears the package's caches before every call (cold);
-    ``warm`` computes the same epochs once first and keeps them.
+    In each round every path takes one sample in turn, so that a slow spell
+    of the shared machine falls on all paths alike instead of on the one
+    measured then; a path stops once it has spent ``budget`` s. A sample is
+    one call, or, for fewer than 1000 epochs, the mean of as many calls as
+    make 1000 epochs (timer resolution). ``fast`` clears the package's caches
+    before every call (cold); ``warm`` computes the same epochs once first and
+    keeps them. ``steps[path]`` thins the epochs of the slow paths.
     """
-    runner = RUNNERS[path]
-    calls = max(1, 1000 // regime.count) if path not in LOOPED else 1
-    best, spent, result, count = math.inf, 0.0, None, 0
-    if path == "warm":
-        runner(antenna, *regime.make(stride))
+    best = {p: math.inf for p in paths}
+    spent = {p: 0.0 for p in paths}
+    results = {}
+    if "warm" in paths:
+        RUNNERS["warm"](antenna, *regime.make(steps["warm"]))
     for _ in range(repeats):
-        inputs = [regime.make(stride) for _ in range(calls)]
-        count = np.size(inputs[0][1])
-        gc.collect()
-        elapsed = 0.0
-        for source, times in inputs:
-            if path == "fast":
-                clear_orientation_cache()  # every call from nothing, as a first call
-            t0 = time.perf_counter()
-            result = runner(antenna, source, times)
-            elapsed += time.perf_counter() - t0
-        elapsed /= calls
-        best, spent = min(best, elapsed), spent + elapsed * calls
-        if spent >= budget:
-            break
-    return best / count * 1e6, degrees(result)
+        for path in paths:
+            if spent[path] >= budget:
+                continue
+            runner = RUNNERS[path]
+            calls = max(1, 1000 // regime.count) if path not in LOOPED else 1
+            inputs = [regime.make(steps[path]) for _ in range(calls)]
+            count = np.size(inputs[0][1])
+            gc.collect()
+            elapsed = 0.0
+            for source, times in inputs:
+                if path == "fast":
+                    clear_orientation_cache()  # every call from nothing, as a first call
+                t0 = time.perf_counter()
+                results[path] = runner(antenna, source, times)
+                elapsed += time.perf_counter() - t0
+            best[path] = min(best[path], elapsed / calls / count * 1e6)
+            spent[path] += elapsed
+    return best, {p: degrees(r) for p, r in results.items()}
 
 
 FIRST_CALL = """
@@ -443,7 +450,8 @@ def print_tables(rows, args):
     columns = paths + [p.split("+")[0] + "/fast" for p in ratios]
     widths = [max(len(c) + 2, 10) for c in columns]
     print(f"Time per epoch (us): best of up to {args.repeats} samples within "
-          f"{args.budget:g} s per path and regime, all transformations included")
+          f"{args.budget:g} s per path and regime, the paths taking turns, all "
+          "transformations included")
     print(f"{'regime':<{width}}{'epochs':>9}"
           + "".join(f"{c:>{w}}" for c, w in zip(columns, widths)))
     for row in rows:
@@ -602,13 +610,9 @@ def main(argv=None):
         stride = max(1, math.ceil(regime.count / args.max_slow))
         loop_stride = max(1, math.ceil(regime.count / args.max_loop))
         row["stride"] = stride
-        results = {}
-        for p in paths:
-            step = loop_stride if p in LOOPED else stride if p in SLOW else 1
-            row["us"][p], results[p] = measure(p, antenna, regime, step, args.repeats,
-                                               args.budget)
-            if step > 1:
-                row["estimated"].add(p)
+        steps = {p: loop_stride if p in LOOPED else stride if p in SLOW else 1 for p in paths}
+        row["us"], results = measure(paths, antenna, regime, steps, args.repeats, args.budget)
+        row["estimated"] = {p for p in paths if steps[p] > 1}
         reference = results["rigorous"]
         row["compared"] = reference.size
         for p in COMPARED:
