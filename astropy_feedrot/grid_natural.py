@@ -52,6 +52,7 @@ from .focus import MirrorTrain
 from .frames import LocalFrame
 from .grid_arrays import epoch_blocks
 from .instants import OMEGA
+from .kept import helper_thread, on_helper_thread
 
 __all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_rotation_block",
            "fast_receiver", "traced_block", "traced_receiver", "engine_block", "natural_grid"]
@@ -498,27 +499,55 @@ def natural_grid(geocentric, velocity, receivers, sign=1.0, min_sine=None):
     """
     n_s, n_t = geocentric.shape[:2]
     out = np.empty((n_t, len(receivers), n_s))
-    degenerate = 0
     scale = sign * np.degrees(1.0)
-    # Blocks of a quarter of the engine's: the memory of the traced mirrors'
-    # temporaries stays below that of a loop over antennas.
-    for block in epoch_blocks(n_t, n_s * 4):
+    # Two halves of the antennas at once, one on the helper thread, where the
+    # grid is large: numpy releases the GIL, so both cores work.
+    halves = (len(receivers) > 1 and n_t * n_s * len(receivers) >= PARALLEL_POINTS
+              and not on_helper_thread())
+    # Blocks of a quarter of the engine's (a twelfth with two antennas at once):
+    # the memory of the traced mirrors' temporaries stays below that of a loop
+    # over antennas.
+    degenerate = 0
+    for block in epoch_blocks(n_t, n_s * (12 if halves else 4)):
         g, v = geocentric[:, block], velocity[block]  # (S, t, 3), (t, 3)
         shared = shared_block(g, v)
         valid = np.isfinite(shared.components[2])  # False at masked epochs
         valid = None if valid.all() else valid
-        for i, rx in enumerate(receivers):
-            if fast_receiver(rx):
-                phase, below = feed_rotation_block(shared, rx, min_sine=min_sine)
-            elif traced_receiver(rx):
-                phase, below = traced_block(shared, rx, min_sine=min_sine)
-            else:
-                phase, below = engine_block(g, v, rx, min_sine=min_sine)
-            nan = np.isnan(phase)  # degenerate: NaN but neither masked nor below the limit
-            if below is not None:
-                nan &= ~below
-            if valid is not None:
-                nan &= valid
-            degenerate += int(np.count_nonzero(nan))
-            np.multiply(phase.T, scale, out=out[block, i])
+        work = (shared, g, v, receivers, valid, min_sine, out[block], scale)
+        if not halves:
+            degenerate += _antennas(range(len(receivers)), *work)
+            continue
+        # Alternate antennas, so that each half has its share of costly foci.
+        other = helper_thread().submit(_antennas, range(1, len(receivers), 2), *work)
+        try:
+            degenerate += _antennas(range(0, len(receivers), 2), *work)
+        finally:
+            degenerate += other.result()  # waited for, even when this half failed
     return out, degenerate
+
+
+def _antennas(indices, shared, g, v, receivers, valid, min_sine, out, scale):
+    """`natural_grid` for the antennas ``indices`` in a block: into ``out`` (t, A, S),
+    returning the number of degenerate grid points."""
+    count = 0
+    for i in indices:
+        rx = receivers[i]
+        if fast_receiver(rx):
+            phase, below = feed_rotation_block(shared, rx, min_sine=min_sine)
+        elif traced_receiver(rx):
+            phase, below = traced_block(shared, rx, min_sine=min_sine)
+        else:
+            phase, below = engine_block(g, v, rx, min_sine=min_sine)
+        nan = np.isnan(phase)  # degenerate: NaN but neither masked nor below the limit
+        if below is not None:
+            nan &= ~below
+        if valid is not None:
+            nan &= valid
+        count += int(np.count_nonzero(nan))
+        np.multiply(phase.T, scale, out=out[:, i])
+    return count
+
+
+#: Grid points (epochs x antennas x sources) from which `natural_grid` computes
+#: two halves of the antennas at once.
+PARALLEL_POINTS = 2**16

@@ -7,15 +7,19 @@ safe to share between threads; a value may be tied to the object it was
 computed from (the IERS table in use), and is found only with that object.
 `thread_buffer` gives each thread one buffer for the chunks of a long
 correction, so that a new array for each chunk is not mapped and faulted in
-afresh. Nothing here imports the rest of the package.
+afresh. `helper_thread` is the one worker thread the process keeps for work
+split in two (numpy and pyerfa release the GIL). Nothing here imports the
+rest of the package.
 """
 
 import collections
+import concurrent.futures
 import threading
 
 import numpy as np
 
-__all__ = ["KeptLast", "thread_buffer", "release_thread_buffer"]
+__all__ = ["KeptLast", "thread_buffer", "release_thread_buffer", "helper_thread",
+           "on_helper_thread"]
 
 
 class KeptLast:
@@ -107,3 +111,45 @@ def release_thread_buffer():
     >>> release_thread_buffer()
     """
     vars(_BUFFERS).pop("bytes", None)
+
+
+_HELPER = []
+_HELPER_LOCK = threading.Lock()
+_HELPER_NAME = "astropy_feedrot-helper"
+
+
+def helper_thread():
+    """The one worker thread the process keeps, started on first use.
+
+    For work split in two, one half here and one in the calling thread
+    (starting a thread costs about 2 ms). Work running on it must not wait
+    for it again (`on_helper_thread` tells).
+
+    Returns
+    -------
+    concurrent.futures.ThreadPoolExecutor
+        With one worker.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kept import helper_thread
+    >>> helper_thread().submit(sum, [1, 2, 3]).result()
+    6
+    """
+    with _HELPER_LOCK:
+        if not _HELPER:
+            _HELPER.append(concurrent.futures.ThreadPoolExecutor(
+                max_workers=1, thread_name_prefix=_HELPER_NAME))
+        return _HELPER[0]
+
+
+def on_helper_thread():
+    """Whether the calling thread is `helper_thread` (which must then do its work itself).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kept import helper_thread, on_helper_thread
+    >>> on_helper_thread(), helper_thread().submit(on_helper_thread).result()
+    (False, True)
+    """
+    return threading.current_thread().name.startswith(_HELPER_NAME)

@@ -11,7 +11,6 @@ Chebyshev points evaluated by Horner's rule (`chebyshev`, `monomials`,
 Plain numpy on floats; nothing here knows about time scales or frames.
 """
 
-import concurrent.futures
 import functools
 import hashlib
 import math
@@ -24,13 +23,13 @@ import erfa
 import numpy as np
 from astropy.config import get_cache_dir
 
-from .kept import KeptLast
+from .kept import KeptLast, helper_thread, on_helper_thread
 from .kernel import over_components
 
 __all__ = ["Series", "lagrange_weights", "combine", "in_parallel", "chebyshev", "monomials",
-           "horner", "unique_integers", "short_span_degree", "KeptSeries", "kept_path", "clear_kept_nodes",
-           "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN", "KEPT_CHUNK",
-           "RUN_EPOCHS", "MAX_RUNS"]
+           "horner", "unique_integers", "short_span_degree", "KeptSeries", "kept_path",
+           "clear_kept_nodes", "PIECE_DEGREE", "PARALLEL_NODES", "SHORT_SPANS", "KEPT_ORIGIN",
+           "KEPT_CHUNK", "RUN_EPOCHS", "MAX_RUNS"]
 
 # With many instants in an interval of a grid, the interpolant is reduced there to
 # a polynomial of this degree (Chebyshev points), below 1e-6 mas.
@@ -196,25 +195,12 @@ def in_parallel(evaluate, tt1, tt2):
     >>> bool(np.array_equal(era, erfa.era00(2460000.5, tt2)))
     True
     """
-    if tt2.size < PARALLEL_NODES:
+    if tt2.size < PARALLEL_NODES or on_helper_thread():
         return evaluate(tt1, tt2)
     half = tt2.size // 2
-    first = _helper_thread().submit(evaluate, tt1, tt2[:half])
+    first = helper_thread().submit(evaluate, tt1, tt2[:half])
     second = evaluate(tt1, tt2[half:])
     return np.concatenate([first.result(), second])
-
-
-_HELPER = []
-_HELPER_LOCK = threading.Lock()
-
-
-def _helper_thread():
-    """One worker thread, started on first use and kept (starting one costs ~2 ms)."""
-    with _HELPER_LOCK:
-        if not _HELPER:
-            _HELPER.append(concurrent.futures.ThreadPoolExecutor(
-                max_workers=1, thread_name_prefix="astropy_feedrot-erfa"))
-        return _HELPER[0]
 
 
 class Series:
@@ -295,7 +281,7 @@ class Series:
                     return direct
             intervals, slot = unique_integers(j, low)
             needed, _ = unique_integers((intervals[:, np.newaxis] + self.offsets).ravel(),
-                                         low + self.offsets[0], inverse=False)
+                                        low + self.offsets[0], inverse=False)
         if tt.size <= needed.size and not ready:
             return self.evaluate(self.tt1, self.tt2 + tt)
         values = self.nodes(needed)

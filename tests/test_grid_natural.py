@@ -1,6 +1,8 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """The natural grid's shared directions: each site's diurnal aberration, each antenna's angle."""
 
+import warnings
+
 import erfa
 import numpy as np
 import pytest
@@ -175,3 +177,34 @@ def test_grid_with_every_kind_of_antenna_against_each_antenna():
         assert np.array_equal(np.isnan(one), np.isnan(grid[:, i]))
         difference = np.abs((one - grid[:, i]).wrap_at(180 * u.deg)).to_value(u.mas)
         assert np.nanmax(difference) < 0.05
+
+
+def test_grid_in_two_halves_is_the_grid_in_turn(monkeypatch):
+    # Large grids compute two halves of the antennas at once (one on the helper
+    # thread): every antenna's arithmetic is the same, so the same bits, and
+    # the same warnings. On the helper thread itself the
+    # grid runs in turn (it must not wait for its own thread).
+    import astropy_feedrot.grid_natural as grid_natural
+    from astropy_feedrot.kept import helper_thread
+
+    antennas = [get_antenna(name) for name in ("WETTZ13S", "YEBES40M", "WARK30M",
+                                               "ASKAP32", "DBR205")]
+    sources = SkyCoord([0, 90, 180] * u.deg, [89.99999, 20, -30] * u.deg)
+    t = Time("2023-01-25T00:00") + np.arange(0, 24, 0.5) * u.hour
+
+    def run():
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            out = feed_rotation_grid(antennas, sources, t, min_elevation=5 * u.deg)
+        return out, [str(w.message) for w in record]
+
+    monkeypatch.setattr(grid_natural, "PARALLEL_POINTS", 10**12)
+    in_turn, message = run()
+    monkeypatch.setattr(grid_natural, "PARALLEL_POINTS", 1)
+    halves, halves_message = run()
+    assert np.isnan(in_turn).any() and np.isfinite(in_turn).any()
+    assert np.array_equal(in_turn, halves, equal_nan=True)
+    assert halves_message == message
+    on_helper, helper_message = helper_thread().submit(run).result(timeout=60)
+    assert np.array_equal(in_turn, on_helper, equal_nan=True)
+    assert helper_message == message

@@ -46,3 +46,19 @@ def test_each_thread_has_its_own_buffer_which_grows():
     assert not np.shares_memory(seen[0], again)
     release_thread_buffer()
     assert not np.shares_memory(thread_buffer(np.float64, (2,)), again)
+
+
+def test_in_parallel_on_the_helper_thread_runs_in_turn():
+    # Work on the helper thread that splits itself in two must not wait for
+    # its own thread (a deadlock): it runs both halves itself, same values.
+    import erfa
+
+    from astropy_feedrot.kept import helper_thread, on_helper_thread
+    from astropy_feedrot.series import PARALLEL_NODES, in_parallel
+
+    tt2 = np.arange(4.0 * PARALLEL_NODES)
+    expected = erfa.era00(2460000.5, tt2)  # ERFA at every node, directly
+    assert not on_helper_thread()
+    assert np.array_equal(in_parallel(erfa.era00, 2460000.5, tt2), expected)
+    nested = helper_thread().submit(in_parallel, erfa.era00, 2460000.5, tt2)
+    assert np.array_equal(nested.result(timeout=60), expected)
