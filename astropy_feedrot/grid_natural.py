@@ -55,7 +55,8 @@ from .instants import OMEGA
 from .kept import helper_thread, on_helper_thread
 
 __all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_rotation_block",
-           "fast_receiver", "traced_block", "traced_receiver", "engine_block", "natural_grid"]
+           "fast_receiver", "traced_block", "traced_receiver", "engine_block", "natural_grid",
+           "PARALLEL_POINTS"]
 
 
 #: Products of near-polar lines of sight are checked again from their x and y
