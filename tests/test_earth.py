@@ -306,7 +306,7 @@ def test_kept_nodes_in_one_chunk_as_across_chunks():
 
 @given(st.lists(st.integers(-10**6, 10**6), min_size=1, max_size=300),
        st.integers(0, 5))
-def testunique_integers_is_numpys_unique(values, spread):
+def test_unique_integers_is_numpys_unique(values, spread):
     # The table of the range (short spans) and the sort (long ones) give
     # numpy's unique values and inverse, whatever the spread of the values.
     from astropy_feedrot.series import unique_integers
