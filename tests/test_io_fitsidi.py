@@ -641,3 +641,15 @@ def test_feeds_given_where_the_antenna_table_has_none(tmp_path):
     got = corrected_products(tmp_path / "out.idifits", info)
     np.testing.assert_allclose(got, np.broadcast_to(info["expected"][:, None, None, :],
                                                     got.shape), atol=2e-6)
+
+
+def test_the_calling_thread_keeps_no_chunk_after_a_run(tmp_path):
+    # The chunks are read into a buffer the thread keeps between chunks
+    # (kept.thread_buffer); after the run the calling thread lets it go, as
+    # correct_ms does, so that no chunk-sized buffer stays alive.
+    from astropy_feedrot import kept
+
+    source, _ = run(tmp_path)
+    kept.thread_buffer(np.uint8, (16,))  # a buffer from before the run
+    correct_fitsidi(source, tmp_path / "out.idifits")
+    assert getattr(kept._BUFFERS, "bytes", None) is None

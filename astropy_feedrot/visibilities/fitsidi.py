@@ -22,7 +22,7 @@ from astropy.time import Time
 
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..kept import thread_buffer
+from ..kept import release_thread_buffer, thread_buffer
 from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
@@ -429,9 +429,12 @@ def _chunks(work, client, source, target, shift, tables, sources, name, directio
     """The NaN rows of each chunk, corrected here or, with a client, on dask workers
     (two chunks per worker at a time; the angle tables sent to each worker once)."""
     if client is None:
-        for plan, start, stop in work:
-            yield _chunk_task(source, target, plan, start, stop, shift, tables[plan.index],
-                              sources, name, direction)
+        try:
+            for plan, start, stop in work:
+                yield _chunk_task(source, target, plan, start, stop, shift,
+                                  tables[plan.index], sources, name, direction)
+        finally:
+            release_thread_buffer()  # this process keeps no chunk after the run
         return
     tables = {k: client.scatter(table, broadcast=True) for k, table in tables.items()}
     sources = client.scatter(sources, broadcast=True)
