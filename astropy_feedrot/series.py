@@ -646,10 +646,7 @@ class KeptSeries(Series):
         first_chunk, last_chunk = first // KEPT_CHUNK, last // KEPT_CHUNK
         if first_chunk not in _KEPT_CHUNKS or last_chunk not in _KEPT_CHUNKS:
             return None
-        if first_chunk == last_chunk:
-            table = self._chunk(first_chunk)
-        else:
-            table = self._years(first_chunk, last_chunk)
+        table = self._years(first_chunk, last_chunk)
         start = j.astype(np.int64) + (int(self.offsets[0]) - first_chunk * KEPT_CHUNK)
         return table[start[:, np.newaxis] + np.arange(self.order)]
 
@@ -664,6 +661,8 @@ class KeptSeries(Series):
 
     def _years(self, first, last):
         """The kept chunks ``first`` to ``last`` as one table (the last few kept)."""
+        if first == last:  # one year: its chunk itself, not a copy
+            return self._chunk(first)
         key = (self.name, first, last)
         table = _KEPT_SPANS.get(key)
         if table is None:
