@@ -8,18 +8,22 @@ computed from (the IERS table in use), and is found only with that object.
 `thread_buffer` gives each thread one buffer for the chunks of a long
 correction, so that a new array for each chunk is not mapped and faulted in
 afresh. `helper_thread` is the one worker thread the process keeps for work
-split in two (numpy and pyerfa release the GIL). Nothing here imports the
-rest of the package.
+split in two (numpy and pyerfa release the GIL). `heap_keeps_chunks` has
+glibc's malloc keep chunk-sized blocks in the heap for the length of a run in
+a process (a dask worker) whose environment tells it to give memory back at
+once. Nothing here imports the rest of the package.
 """
 
 import collections
 import concurrent.futures
+import ctypes
+import os
 import threading
 
 import numpy as np
 
 __all__ = ["KeptLast", "thread_buffer", "release_thread_buffer", "helper_thread",
-           "on_helper_thread"]
+           "on_helper_thread", "heap_keeps_chunks"]
 
 
 class KeptLast:
@@ -153,3 +157,74 @@ def on_helper_thread():
     (False, True)
     """
     return threading.current_thread().name.startswith(_HELPER_NAME)
+
+
+# glibc's mallopt parameters (malloc.h) and the environment variables that set them.
+_MALLOPT = {"MALLOC_TRIM_THRESHOLD_": -1, "MALLOC_MMAP_THRESHOLD_": -3}
+_GLIBC_DEFAULT = 128 * 1024  # both thresholds, when the environment does not set them
+# While a run goes on: blocks up to 32 MiB (glibc's largest mmap threshold on 64-bit
+# systems) come from the heap, and up to 256 MiB of freed heap stays there.
+_RUN = {"MALLOC_TRIM_THRESHOLD_": 256 * 2**20, "MALLOC_MMAP_THRESHOLD_": 32 * 2**20}
+
+
+def _glibc():
+    try:
+        libc = ctypes.CDLL(None)
+        return libc.mallopt, libc.malloc_trim
+    except (OSError, AttributeError):  # not glibc
+        return None
+
+
+def _environment_value(name):
+    try:
+        return int(os.environ.get(name, _GLIBC_DEFAULT))
+    except ValueError:
+        return _GLIBC_DEFAULT
+
+
+def heap_keeps_chunks(keep=True):
+    """During a run of chunks, let glibc's malloc keep chunk-sized blocks in the heap.
+
+    dask's workers start with ``MALLOC_TRIM_THRESHOLD_=65536`` in their
+    environment, so that freed memory goes back to the system at once. That
+    also stops glibc from raising its mmap threshold as it does by default:
+    every block of more than 128 KiB is then mapped afresh and faulted in
+    page by page when used, and casacore's and numpy's chunk-sized
+    temporaries did so for every chunk (a dask worker took twice the time
+    of this process for the same chunks of a Measurement Set). With ``keep``
+    true, blocks up to 32 MiB come from the heap and up to 256 MiB of freed
+    heap is kept; ``keep=False`` gives back the values of the environment
+    (glibc's defaults where it sets only one) and returns the free heap to
+    the system. Nothing happens in a process whose environment sets neither
+    threshold (glibc then adapts by itself) or that does not use glibc.
+
+    Parameters
+    ----------
+    keep : bool, optional
+        True when a run starts, False when it ends.
+
+    Returns
+    -------
+    bool
+        Whether glibc's thresholds were set.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.kept import heap_keeps_chunks
+    >>> import os
+    >>> heap_keeps_chunks() == ("MALLOC_TRIM_THRESHOLD_" in os.environ
+    ...                         or "MALLOC_MMAP_THRESHOLD_" in os.environ)
+    True
+    >>> _ = heap_keeps_chunks(False)
+    """
+    if not any(name in os.environ for name in _MALLOPT):
+        return False
+    calls = _glibc()
+    if calls is None:
+        return False
+    mallopt, malloc_trim = calls
+    for name, parameter in _MALLOPT.items():
+        mallopt(parameter, _RUN[name] if keep else _environment_value(name))
+    if not keep:
+        malloc_trim(0)
+    return True

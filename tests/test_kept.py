@@ -62,3 +62,67 @@ def test_in_parallel_on_the_helper_thread_runs_in_turn():
     assert np.array_equal(in_parallel(erfa.era00, 2460000.5, tt2), expected)
     nested = helper_thread().submit(in_parallel, erfa.era00, 2460000.5, tt2)
     assert np.array_equal(nested.result(timeout=60), expected)
+
+
+# glibc's struct mallinfo2 (malloc.h, glibc 2.33+): hblkhd is the memory in mapped blocks.
+_MALLINFO = """
+import ctypes, sys
+import numpy as np
+from astropy_feedrot.kept import heap_keeps_chunks
+
+class Info(ctypes.Structure):
+    _fields_ = [(name, ctypes.c_size_t) for name in (
+        "arena", "ordblks", "smblks", "hblks", "hblkhd", "usmblks", "fsmblks", "uordblks",
+        "fordblks", "keepcost")]
+
+libc = ctypes.CDLL(None)
+libc.mallinfo2.restype = Info
+mapped = lambda: libc.mallinfo2().hblkhd
+size = 8 * 2**20
+a = np.ones(size, np.uint8)
+start = mapped()
+b = np.ones(size, np.uint8)
+print(mapped() - start >= size)  # mapped: the environment keeps the threshold at 128 KiB
+print(heap_keeps_chunks())
+c = np.ones(size, np.uint8)
+print(mapped() - start >= 2 * size)  # from the heap now
+print(heap_keeps_chunks(False))
+d = np.ones(size, np.uint8)
+print(mapped() - start >= 2 * size)  # mapped again
+"""
+
+
+def test_the_heap_keeps_chunks_for_a_run_and_gives_them_back_after():
+    # A process started as dask starts its workers (MALLOC_TRIM_THRESHOLD_=65536); glibc's
+    # own count of mapped blocks says where each 8 MiB array came from.
+    import ctypes
+    import os
+    import subprocess
+    import sys
+
+    import pytest
+
+    if not hasattr(ctypes.CDLL(None), "mallinfo2"):
+        pytest.skip("needs glibc 2.33 or later (mallinfo2)")
+    env = dict(os.environ, MALLOC_TRIM_THRESHOLD_="65536")
+    out = subprocess.run([sys.executable, "-c", _MALLINFO], env=env, capture_output=True,
+                         text=True, check=True).stdout.split()
+    assert out == ["True", "True", "False", "True", "True"]
+
+
+def test_without_the_environment_glibc_is_left_to_adapt(monkeypatch):
+    from astropy_feedrot.kept import heap_keeps_chunks
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    monkeypatch.delenv("MALLOC_MMAP_THRESHOLD_", raising=False)
+    assert heap_keeps_chunks() is False
+    assert heap_keeps_chunks(False) is False
+
+
+def test_an_unreadable_threshold_in_the_environment_gives_glibcs_default(monkeypatch):
+    from astropy_feedrot import kept
+
+    monkeypatch.setenv("MALLOC_MMAP_THRESHOLD_", "lots")
+    assert kept._environment_value("MALLOC_MMAP_THRESHOLD_") == 128 * 1024
+    monkeypatch.setattr(kept, "_glibc", lambda: None)  # not glibc: nothing to set
+    assert kept.heap_keeps_chunks() is False
