@@ -431,6 +431,47 @@ def correct_linear_visibilities(visibilities, feed_rotation1, feed_rotation2,
 # --- receptor by receptor --------------------------------------------------------
 
 
+# Rows multiplied at once by `_multiply`: about this many bytes of visibilities (they
+# stay in the cache while their factor is repeated and applied).
+_BLOCK_BYTES = 2**18
+
+
+def _rows_contiguous(a):
+    """Whether each row (the first axis) of ``a`` lies contiguous in memory."""
+    expected = a.itemsize
+    for size, stride in zip(a.shape[:0:-1], a.strides[:0:-1]):
+        if size != 1 and stride != expected:
+            return False
+        expected *= size
+    return True
+
+
+def _multiply(values, factor, out):
+    """``np.multiply(values, factor, out=out)`` where ``factor`` (rows, 1, ..., 1,
+    products) is the same along the axes between (channels, bands).
+
+    Broadcast so, numpy's inner loop is as long as the last axis, a few
+    products; the factor repeated over the middle axes, a block of rows at a
+    time, makes it as long as the block: several times faster, the same bits.
+    """
+    shape = values.shape
+    middle = int(np.prod(shape[1:-1])) if values.ndim >= 3 else 0
+    if middle < 8 or out.shape != shape \
+            or factor.shape != (shape[0],) + (1,) * (values.ndim - 2) + (shape[-1],) \
+            or not (_rows_contiguous(values) and _rows_contiguous(out)):
+        np.multiply(values, factor, out=out, casting="same_kind")
+        return
+    n, k = shape[0], shape[-1]
+    v, o, f = values.reshape(n, middle, k), out.reshape(n, middle, k), factor.reshape(n, 1, k)
+    if not np.may_share_memory(o, out):  # a copy: not the rows of out
+        np.multiply(values, factor, out=out, casting="same_kind")
+        return
+    step = max(1, _BLOCK_BYTES // (middle * k * values.itemsize))
+    for a in range(0, n, step):
+        np.multiply(v[a:a + step], np.repeat(f[a:a + step], middle, axis=1), out=o[a:a + step],
+                    casting="same_kind")
+
+
 def _product_names(products):
     """Upper-case two-letter product names, their basis, checked."""
     if isinstance(products, str):
@@ -613,7 +654,7 @@ def correct_receptor_visibilities(visibilities, position_angles1, position_angle
         factor = np.stack(np.broadcast_arrays(*factors), axis=-1)
         if values.dtype.itemsize == 8:  # complex64, in either byte order
             factor = factor.astype(np.complex64)
-        np.multiply(values, factor, out=out, casting="same_kind")
+        _multiply(values, factor, out)
         return _finish(out, values.dtype, unit, mask)
     missing = [name for name in LINEAR_PRODUCTS if name not in names]
     if missing:

@@ -287,11 +287,24 @@ class ReceptorAngleTable:
     def __init__(self, antennas, time, source, key1, key2, sources, to_time, *, products,
                  frame="apparent", where="the data", hint="give the antennas' receptors"):
         time, source = np.asarray(time, float), np.asarray(source)
-        self.times = np.unique(time)
+        self.times, at = _distinct(time)
         self.sources = np.unique(source)
         self.n_keys = int(max(antennas)) + 1
-        codes = np.unique(np.concatenate([self._codes(time, source, np.asarray(key1)),
-                                          self._codes(time, source, np.asarray(key2))]))
+        row = (at * self.sources.size + np.searchsorted(self.sources, source)) * self.n_keys
+        code1, code2 = row + np.asarray(key1), row + np.asarray(key2)
+        grid = self.times.size * self.sources.size * self.n_keys
+        self.lookup = None
+        if grid <= max(2 * time.size, LOOKUP_CELLS):
+            # Every (time, source, antenna) is a place in a grid no larger than the
+            # rows: the codes present are marked there, and a row's place is read
+            # from it (no sort of the rows' codes, no search).
+            seen = np.zeros(grid, bool)
+            seen[code1] = True
+            seen[code2] = True
+            codes = np.flatnonzero(seen)
+            self.lookup = (np.cumsum(seen, dtype=np.int64) - 1).astype(_place_type(codes.size))
+        else:
+            codes = np.unique(np.concatenate([code1, code2]))
         keys = codes % self.n_keys
         rest = codes // self.n_keys
         with warnings.catch_warnings():
@@ -310,9 +323,35 @@ class ReceptorAngleTable:
     def __call__(self, time, source, keys):
         """The position angles (deg), shape (N, 2), of the receptors of antennas
         ``keys`` in rows of these times and sources (rows the table was made from)."""
-        return self.table[np.searchsorted(self.codes, self._codes(np.asarray(time, float),
-                                                                  np.asarray(source),
-                                                                  np.asarray(keys)))]
+        return self.table[self.places(time, source, keys)]
+
+    def places(self, time, source, keys):
+        """Where the position angles of those rows are in ``table`` (int32 where it is
+        large enough: chunks sent to dask workers carry these, not the angles)."""
+        codes = self._codes(np.asarray(time, float), np.asarray(source), np.asarray(keys))
+        if self.lookup is not None:
+            return self.lookup[codes]
+        return np.searchsorted(self.codes, codes).astype(_place_type(self.codes.size))
+
+
+# A ReceptorAngleTable finds rows' places by a lookup in the grid of (time, source,
+# antenna) when the grid has at most this many cells or twice the rows; else by a search.
+LOOKUP_CELLS = 2**16
+
+
+def _place_type(n):
+    """The integer type of places in a table of ``n`` rows."""
+    return np.int32 if n < 2**31 else np.int64
+
+
+def _distinct(values):
+    """``np.unique(values, return_inverse=True)`` of an array of floats, without a sort
+    or a search when it is sorted already (the rows of a visibility file mostly are)."""
+    if values.size > 1 and np.all(values[1:] >= values[:-1]):
+        new = np.concatenate([[True], values[1:] != values[:-1]])
+        return values[new], np.cumsum(new) - 1
+    distinct = np.unique(values)
+    return distinct, np.searchsorted(distinct, values)
 
 
 def _tile(obstime):
