@@ -89,3 +89,40 @@ def test_ms_workers_writing_rows_of_shared_tiles(tmp_path, client, chunk_rows, d
                                       b.getcol(corrected_column))
         assert "FEEDROT_PARTIAL" not in b.getcolkeywords(corrected_column)
     correct_ms(parallel, chunk_rows=chunk_rows, redo=True, **columns)  # not locked
+
+
+def test_ms_in_place_interrupted_on_workers_goes_on_without_correcting_twice(tmp_path,
+                                                                              client):
+    # DATA corrected into itself on two workers, stopped (Ctrl-C) after the first chunk
+    # given: the chunks the workers had taken cannot be stopped, so they are waited for
+    # and recorded; the run started again corrects only the others, and the result is
+    # the serial one, bit for bit (a chunk corrected twice would differ).
+    from astropy_feedrot.visibilities import MSError
+
+    serial = unpack(tmp_path / "a")
+    fill_model(serial)
+    parallel = unpack(tmp_path / "b")
+    fill_model(parallel)
+    columns = dict(data_column="DATA", corrected_column="DATA", chunk_rows=13)
+    correct_ms(serial, **columns)
+
+    def stop(done, total):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt, match="DATA is partly corrected; the first"):
+        correct_ms(parallel, client=client, progress=stop, **columns)
+    with table(str(parallel), ack=False, readonly=False) as t:
+        partial = t.getcolkeywords("DATA")["FEEDROT_PARTIAL"]
+        assert partial["chunks"] > 1  # beyond the one given: the chunks sent, waited for
+        assert partial["chunks"] < -(-t.nrows() // 13)
+        # Were a chunk's state unknown (its task not waited for), going on would be refused.
+        t.putcolkeyword("DATA", "FEEDROT_PARTIAL", dict(partial, unknown=np.array([0])))
+    with pytest.raises(MSError, match=r"chunks \[0\] \(of 13 rows, numbered from 0\) of "
+                       "DATA may or may not be corrected .* restore DATA from a copy"):
+        correct_ms(parallel, client=client, **columns)
+    with table(str(parallel), ack=False, readonly=False) as t:
+        t.putcolkeyword("DATA", "FEEDROT_PARTIAL", partial)
+    correct_ms(parallel, client=client, **columns)
+    with table(str(serial), ack=False) as a, table(str(parallel), ack=False) as b:
+        assert a.getcol("DATA").tobytes() == b.getcol("DATA").tobytes()
+        assert "FEEDROT_PARTIAL" not in b.getcolkeywords("DATA")

@@ -206,6 +206,17 @@ def test_no_data_column(circular):
                r"has no column 'MODEL_DATA' \(its data columns: \['DATA'\]\)")
 
 
+def test_rows_of_a_feed_id_that_feed_lacks(circular):
+    # Antenna 2 has one FEED row (feed 0); three rows of data say feed 1.
+    ms, _ = circular
+    with table(str(ms), readonly=False, ack=False) as t:
+        rows = np.flatnonzero(t.getcol("ANTENNA1") == 2)[:3]
+        for row in rows.tolist():
+            t.putcell("FEED1", row, 1)
+    _unchanged(ms, lambda: correct_ms(ms), MSError,
+               r"antenna 2 has no FEED row for the FEED1/FEED2 ids \[0, 1\]")
+
+
 def test_no_feed_rows_for_an_antenna(circular):
     ms, _ = circular
     with table(str(ms / "FEED"), readonly=False, ack=False) as feed:

@@ -11,6 +11,7 @@
 and Stokes codes) and their sources.
 """
 
+import contextlib
 import os
 import tempfile
 from pathlib import Path
@@ -22,7 +23,7 @@ from astropy.time import Time
 
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..kept import release_thread_buffer, thread_buffer
+from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..outputs import publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
@@ -31,6 +32,7 @@ from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, with_receptors
+from .tasks import task_groups
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -425,9 +427,17 @@ def _chunk_task(source, target, plan, start, stop, shift, table, sources, name, 
     return count
 
 
+def _chunk_run(source, target, items, shift, table, sources, name, direction):
+    """A dask task: chunks (plan, start, stop) of one UV_DATA table in turn; their NaN
+    rows."""
+    return [_chunk_task(source, target, plan, start, stop, shift, table, sources, name,
+                        direction) for plan, start, stop in items]
+
+
 def _chunks(work, client, source, target, shift, tables, sources, name, direction):
     """The NaN rows of each chunk, corrected here or, with a client, on dask workers
-    (two chunks per worker at a time; the angle tables sent to each worker once)."""
+    (two tasks of a few chunks, `~astropy_feedrot.visibilities.tasks.task_groups`, per
+    worker at a time; the angle tables sent to each worker once)."""
     if client is None:
         try:
             for plan, start, stop in work:
@@ -438,20 +448,26 @@ def _chunks(work, client, source, target, shift, tables, sources, name, directio
         return
     tables = {k: client.scatter(table, broadcast=True) for k, table in tables.items()}
     sources = client.scatter(sources, broadcast=True)
-    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
-    items, pending = iter(work), []
-    while True:
-        while len(pending) < ahead:
-            item = next(items, None)
-            if item is None:
-                break
-            plan, start, stop = item
-            pending.append(client.submit(_chunk_task, source, target, plan, start, stop,
-                                         shift, tables[plan.index], sources, name, direction,
-                                         pure=False))
-        if not pending:
-            return
-        yield pending.pop(0).result()
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    groups = task_groups(work, len(work), workers, key=lambda item: item[0].index)
+    pending = []
+    client.run(heap_keeps_chunks)
+    try:
+        while True:
+            while len(pending) < 2 * workers:
+                group = next(groups, None)
+                if group is None:
+                    break
+                plan = group[0][0]
+                pending.append(client.submit(_chunk_run, source, target, group, shift,
+                                             tables[plan.index], sources, name, direction,
+                                             pure=False))
+            if not pending:
+                return
+            yield from pending.pop(0).result()
+    finally:
+        with contextlib.suppress(Exception):
+            client.run(heap_keeps_chunks, False)
 
 
 def _check_paths(path, output, overwrite):

@@ -34,7 +34,7 @@ from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, check_history, history_entry
 from .kinds import existing_path, file_kind
-from .ms_chunks import Block, locked, results
+from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
@@ -242,6 +242,10 @@ class _Feeds:
                                       receptors=receptors)
         return self.key[key]
 
+    def _candidates(self, number, spw):
+        """The FEED rows of antenna ``number`` that hold for spectral window ``spw``."""
+        return [i for i in self.by_antenna.get(number, []) if self.rows[i][2] in (-1, spw)]
+
     def check(self, keys, products, dd):
         """MSError unless the receptors of the virtual antennas ``keys`` give ``products``."""
         for key in np.unique(keys).tolist():
@@ -256,17 +260,33 @@ class _Feeds:
 
     def keys(self, antennas, numbers, feed, spw, mjd_s):
         """The virtual antenna of each row (antenna ``numbers``, ``feed`` ids, times)."""
-        out = np.full(numbers.shape, -1)
-        for number in np.unique(numbers).tolist():
-            rows = np.flatnonzero(numbers == number)
+        distinct = np.unique(numbers).tolist()
+        for number in distinct:
             if number not in antennas:
                 raise MSError(f"{str(self.path)!r}: rows use antenna {number}, which the "
                               "ANTENNA table lacks (or holds as a flagged placeholder)")
+        # Most antennas have one receptor set for the window, whatever the time: their
+        # rows take it at once (a lookup by antenna number); the others are resolved
+        # row by row below.
+        size = max(distinct, default=-1) + 1
+        lookup, feed_of = np.full(size, -1), np.full(size, -1)
+        for number in distinct:
             if number in self.fallback:
-                out[rows] = self.fallback[number]
+                lookup[number] = self.fallback[number]
                 continue
-            candidates = [i for i in self.by_antenna.get(number, [])
-                          if self.rows[i][2] in (-1, spw)]
+            candidates = self._candidates(number, spw)
+            if len(candidates) == 1:
+                _, feed_id, _, _, _, types, angles = self.rows[candidates[0]]
+                where = f"{str(self.path)!r}, table FEED, row {candidates[0]}"
+                lookup[number] = self._virtual(number, antennas[number],
+                                               _receptors(types, angles, where))
+                feed_of[number] = feed_id
+        out = lookup[numbers]
+        wanted = feed_of[numbers]
+        out[(wanted >= 0) & (feed != wanted)] = -1
+        for number in np.unique(numbers[out < 0]).tolist():
+            rows = np.flatnonzero(numbers == number)
+            candidates = self._candidates(number, spw)
             if not candidates:
                 raise MSError(f"{str(self.path)!r}: antenna {number} "
                               f"({antennas[number].name}) has no FEED row for spectral "
@@ -639,11 +659,16 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         meta = _meta(table)
         step_rows = _chunk_rows(table, data_column, chunk_rows)
     what = f"{data_column} -> {corrected_column}"
-    resume = 0
+    progress_record = Progress(what, direction, step_rows)
     if partial is not None and partial.get("what") == what \
             and partial.get("direction") == direction:
         # Go on with the chunks of the interrupted run.
-        resume, step_rows = int(partial["chunks"]), int(partial["chunk_rows"])
+        progress_record = Progress.resumed(partial, what, direction)
+        if progress_record.unknown and data_column == corrected_column:
+            raise MSError(f"{str(path)!r}: an interrupted run left "
+                          f"{progress_record.unknown_text(data_column)}; the correction "
+                          f"cannot go on from there: restore {data_column} from a copy")
+        step_rows = progress_record.chunk_rows
     else:
         history = _history_text(path)
         for column in dict.fromkeys([corrected_column, data_column]):
@@ -657,40 +682,49 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                  angles) for dd, rows, products, k1, k2, angles in plans
                 for k in range(0, rows.size, step_rows)]
     total = meta["TIME"].size
-    nan_rows, done, chunks = 0, sum(item[0].size for item in chunking[:resume]), resume
+    progress_record.count_rows([item[0].size for item in chunking])
+    to_do = progress_record.to_do(len(chunking))
+    nan_rows = 0
 
     def blocks():
-        for rows, products, k1, k2, angles in chunking[resume:]:
+        for index in to_do:
+            rows, products, k1, k2, angles = chunking[index]
             epochs, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
-            yield Block(rows, products, angles(epochs, field, k1), angles(epochs, field, k2))
+            yield Block(rows_of(rows), products, angles.table, angles.places(epochs, field, k1),
+                        angles.places(epochs, field, k2), index)
 
     shared = client is not None  # the workers write their chunks themselves
+    late = []
     with _open(path, write=True, shared=shared) as table:
         if corrected_column not in table.colnames():
             with locked(table, shared):
                 _add_column(table, data_column, corrected_column)
+
+        def record():
+            with locked(table, shared):
+                table.putcolkeyword(corrected_column, _PARTIAL, progress_record.keyword())
+
+        # Marked before any row is written: a run killed outright is seen as partial.
+        record()
+        stream = results(blocks(), table, path, (data_column, corrected_column), direction,
+                         client, late, len(to_do))
         try:
-            with progress_steps(progress, len(chunking) - resume) as step:
-                for block, bad in results(blocks(), table, path,
-                                          (data_column, corrected_column), direction, client):
+            with progress_steps(progress, len(to_do)) as step:
+                for block, bad in stream:
                     nan_rows += bad
-                    done += block.rows.size
-                    chunks += 1
-                    with locked(table, shared):
-                        table.putcolkeyword(corrected_column, _PARTIAL,
-                                            {"what": what, "direction": direction,
-                                             "done": done, "chunks": chunks,
-                                             "chunk_rows": step_rows})
+                    progress_record.add(block.index)
+                    # Shared: taking the table's lock costs the workers a reread of it.
+                    if not shared or progress_record.since_written() >= RECORD_SECONDS:
+                        record()
                     step()
         except BaseException as error:
+            stream.close()  # waits for the chunks already sent to workers: into late
+            for block, bad in late:
+                progress_record.add(block.index, known=bad is not None)
+            record()
             with locked(table, shared):
                 table.flush()
-            intact = "is intact" if data_column != corrected_column else \
-                "is partly corrected"
-            message = (f"{str(path)!r}: interrupted after {done} of {total} rows; "
-                       f"{data_column} {intact}; the first {chunks} chunks of {step_rows} "
-                       f"rows of {corrected_column} (keyword {_PARTIAL}) are corrected, the "
-                       "others not: run the same correction again to finish")
+            message = progress_record.interrupted(path, total, data_column, corrected_column)
             if isinstance(error, KeyboardInterrupt):
                 raise KeyboardInterrupt(message) from None
             if isinstance(error, Exception):

@@ -21,11 +21,17 @@ import astropy.units as u
 import numpy as np
 
 from ..correction import correct_receptor_visibilities
-from ..kept import release_thread_buffer, thread_buffer
+from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
+from .tasks import task_groups
 
-__all__ = ["Block", "locked", "results", "tables"]
+__all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
+           "tables"]
 
 _EXTRA = "pip install 'astropy_feedrot[ms]'"
+
+# With dask workers, the progress keyword is written at most this often (seconds): each
+# write takes the table's lock, and the workers then read the table's state again.
+RECORD_SECONDS = 1.0
 
 # One holder of casacore's lock at a time among this process's threads (casacore's
 # lock belongs to the process: two threads would release each other's).
@@ -81,23 +87,149 @@ def _acquire(table):
 
 
 class Block:
-    """One chunk of rows and its receptors' position angles; picklable, for dask.
+    """One chunk of rows and where its receptors' position angles are; picklable, for
+    dask.
+
+    ``rows`` are the rows (a `range` where they follow each other: it pickles
+    small). The position angles (deg) of the two antennas of row ``k`` are
+    ``table[place1[k]]`` and ``table[place2[k]]``
+    (`~astropy_feedrot.visibilities.receptors.ReceptorAngleTable`: each distinct
+    time, source and antenna once, sent to each dask worker once). ``index`` is
+    the chunk's place in the run (the progress keyword counts chunks).
 
     Examples
     --------
     >>> import numpy as np
     >>> from astropy_feedrot.visibilities.ms_chunks import Block
-    >>> Block(np.arange(3), ["RR", "LL"], np.zeros((3, 2)), np.zeros((3, 2))).rows
-    array([0, 1, 2])
+    >>> table = np.array([[10.0, -10.0], [20.0, -20.0]])
+    >>> block = Block(range(3), ["RR", "LL"], table, np.array([0, 1, 1]), np.zeros(3, int))
+    >>> block.theta()[0][:, 0]
+    array([10., 20., 20.])
     """
 
-    def __init__(self, rows, products, theta1, theta2):
-        self.rows, self.products, self.theta1, self.theta2 = rows, products, theta1, theta2
+    def __init__(self, rows, products, table, place1, place2, index=0):
+        self.rows, self.products, self.table = rows, products, table
+        self.place1, self.place2, self.index = place1, place2, index
+
+    def theta(self):
+        """The position angles (deg) of the receptors of both antennas, each (N, 2)."""
+        return self.table[self.place1], self.table[self.place2]
+
+    def sent(self):
+        """The block without its angle table (a dask task takes that apart)."""
+        return Block(self.rows, self.products, None, self.place1, self.place2, self.index)
+
+
+def rows_of(rows):
+    """Rows as a `Block` keeps them: a `range` where they follow each other.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.ms_chunks import rows_of
+    >>> rows_of(np.array([4, 5, 6])), rows_of(np.array([1, 3]))
+    (range(4, 7), array([1, 3]))
+    """
+    if rows.size and rows[-1] - rows[0] + 1 == rows.size:
+        return range(int(rows[0]), int(rows[-1]) + 1)
+    return rows
+
+
+class Progress:
+    """Which chunks of a run are written: the value of the output column's keyword
+    ``FEEDROT_PARTIAL`` until the run ends.
+
+    The first ``chunks`` chunks are written, and those numbered in ``also``
+    (chunks run on dask workers end in any order); those in ``unknown`` may
+    or may not be (a worker's task that was not waited for).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.ms_chunks import Progress
+    >>> progress = Progress("DATA -> CORRECTED_DATA", "remove", 100)
+    >>> progress.count_rows([100, 100, 100, 50])
+    >>> progress.add(0); progress.add(2)
+    >>> progress.chunks, sorted(progress.also), progress.done
+    (1, [2], 200)
+    >>> progress.add(1)
+    >>> progress.chunks, progress.also, progress.to_do(4)
+    (3, set(), [3])
+    """
+
+    def __init__(self, what, direction, chunk_rows, chunks=0, also=(), unknown=()):
+        self.what, self.direction, self.chunk_rows = what, direction, int(chunk_rows)
+        self.chunks, self.also, self.unknown = int(chunks), set(also), set(unknown)
+        self.sizes = []
+        self._written = time.monotonic()
+
+    @classmethod
+    def resumed(cls, keyword, what, direction):
+        """The progress recorded in the keyword of an interrupted run."""
+        return cls(what, direction, keyword["chunk_rows"], keyword["chunks"],
+                   np.ravel(keyword.get("also", [])).astype(int).tolist(),
+                   np.ravel(keyword.get("unknown", [])).astype(int).tolist())
+
+    def count_rows(self, sizes):
+        """The number of rows of each chunk of the run."""
+        self.sizes = list(sizes)
+
+    def to_do(self, n):
+        """The numbers of the chunks still to write, of ``n``."""
+        return [k for k in range(self.chunks, n) if k not in self.also]
+
+    def add(self, index, known=True):
+        """Chunk ``index`` written (``known`` false: perhaps written)."""
+        if not known:
+            self.unknown.add(index)
+            return
+        self.unknown.discard(index)
+        self.also.add(index)
+        while self.chunks in self.also:
+            self.also.discard(self.chunks)
+            self.chunks += 1
+
+    @property
+    def done(self):
+        """The rows written."""
+        return sum(self.sizes[:self.chunks]) + sum(self.sizes[k] for k in self.also)
+
+    def keyword(self):
+        """The keyword's value now (and the time it is written)."""
+        self._written = time.monotonic()
+        value = {"what": self.what, "direction": self.direction, "done": self.done,
+                 "chunks": self.chunks, "chunk_rows": self.chunk_rows}
+        for name in ("also", "unknown"):
+            if getattr(self, name):
+                value[name] = np.array(sorted(getattr(self, name)), dtype=np.int64)
+        return value
+
+    def since_written(self):
+        """Seconds since the keyword's value was last taken."""
+        return time.monotonic() - self._written
+
+    def unknown_text(self, column):
+        """What the chunks of unknown state mean for ``column``."""
+        return (f"chunks {sorted(self.unknown)} (of {self.chunk_rows} rows, numbered from 0) "
+                f"of {column} may or may not be corrected (a worker's task was not waited "
+                "for)")
+
+    def interrupted(self, path, total, data_column, corrected_column):
+        """The message of an interrupted run."""
+        same = data_column == corrected_column
+        also = f" and chunks {sorted(self.also)} (numbered from 0)" if self.also else ""
+        text = (f"{str(path)!r}: interrupted after {self.done} of {total} rows; "
+                f"{data_column} {'is partly corrected' if same else 'is intact'}; the first "
+                f"{self.chunks} chunks of {self.chunk_rows} rows of {corrected_column}{also} "
+                f"(keyword FEEDROT_PARTIAL) are corrected, the others not")
+        if same and self.unknown:
+            return (f"{text}, but {self.unknown_text(corrected_column)}: the correction "
+                    f"cannot go on from there; restore {data_column} from a copy")
+        return f"{text}: run the same correction again to finish"
 
 
 def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
-    theta1, theta2 = block.theta1, block.theta2
+    theta1, theta2 = block.theta()
     # One angle pair per row, for every channel.
     correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
                                   block.products, out=data, direction=direction)
@@ -124,11 +256,12 @@ def _read(table, column, start, n):
 def _selection(table, rows):
     """(table, start, count) of the rows: the table itself for a contiguous range, else a
     selection of them (a reference table)."""
-    if rows[-1] - rows[0] + 1 == rows.size:
-        yield table, int(rows[0]), int(rows.size)
+    n = len(rows)
+    if rows[-1] - rows[0] + 1 == n:
+        yield table, int(rows[0]), n
         return
-    with contextlib.closing(table.selectrows(rows.tolist())) as selection:
-        yield selection, 0, int(rows.size)
+    with contextlib.closing(table.selectrows(np.asarray(rows).tolist())) as selection:
+        yield selection, 0, n
 
 
 # This worker process's handle on the Measurement Set of the current run (a dask
@@ -147,24 +280,38 @@ def _worker_table(path, run):
     return _WORKER["table"]
 
 
+def _start_worker(path, run):
+    """Open the table for a run and keep chunk-sized blocks in the heap (run on every
+    worker)."""
+    with _PROCESS_LOCK:
+        _worker_table(path, run)
+    heap_keeps_chunks()
+
+
 def _release_worker(run):
-    """Close the handle of a finished run (run on every worker)."""
+    """Close the handle of a finished run and give glibc's thresholds back (run on every
+    worker)."""
     with _PROCESS_LOCK:
         if _WORKER["run"] == run and _WORKER["table"] is not None:
             _WORKER["table"].close()
             _WORKER.update(run=None, table=None)
+    heap_keeps_chunks(False)
 
 
-def _remote_block(path, data_column, corrected_column, block, direction, run):
-    """A dask task: read a chunk (no lock: other processes write other rows), correct
-    it, and write it under casacore's write lock; the NaN rows."""
-    with _PROCESS_LOCK:
-        table = _worker_table(path, run)
-        with _selection(table, block.rows) as (selection, start, n):
-            data = _read(selection, data_column, start, n)
-    bad = _corrected(data, block, direction)
-    with locked(table, True), _selection(table, block.rows) as (selection, start, n):
-        selection.putcol(corrected_column, data, start, n)
+def _remote_blocks(path, data_column, corrected_column, blocks, table, direction, run):
+    """A dask task: read each block (no lock: other processes write other rows),
+    correct it with the angle ``table``, and write it under casacore's write lock; the
+    NaN rows of each."""
+    bad = []
+    for block in blocks:
+        block.table = table
+        with _PROCESS_LOCK:
+            handle = _worker_table(path, run)
+            with _selection(handle, block.rows) as (selection, start, n):
+                data = _read(selection, data_column, start, n)
+        bad.append(_corrected(data, block, direction))
+        with locked(handle, True), _selection(handle, block.rows) as (selection, start, n):
+            selection.putcol(corrected_column, data, start, n)
     return bad
 
 
@@ -178,10 +325,10 @@ def _here(table, block, columns, direction):
     return bad
 
 
-def results(work, table, path, columns, direction, client=None):
+def results(work, table, path, columns, direction, client=None, late=None, count=0):
     """(block, NaN rows) in order, each chunk written: here, in ``table`` (opened with
     casacore's permanent lock), or with ``client`` on its dask workers (``table``
-    opened shared), two per worker going.
+    opened shared), two tasks per worker going.
 
     Parameters
     ----------
@@ -196,7 +343,18 @@ def results(work, table, path, columns, direction, client=None):
     direction : {'remove', 'apply'}
         As in `~astropy_feedrot.visibilities.correct_ms`.
     client : `dask.distributed.Client`, optional
-        Where the chunks are corrected.
+        Where the chunks are corrected, a few at a time in each task
+        (`~astropy_feedrot.visibilities.tasks.task_groups`).
+    late : list, optional
+        If the run stops early (an error, Ctrl-C, the generator closed), the
+        chunks written by the workers and not yet given are waited for (a task
+        that has started cannot be stopped, and it writes its rows): each is
+        appended as ``(block, NaN rows)``, or ``(block, None)`` where its task
+        failed or was not waited for (a second Ctrl-C): its rows may or may not
+        have been written.
+    count : int, optional
+        The number of chunks in ``work`` (with ``client``: the tasks shrink
+        towards the end).
 
     Examples
     --------
@@ -212,22 +370,46 @@ def results(work, table, path, columns, direction, client=None):
             release_thread_buffer()  # this process keeps no chunk after the run
         return
     run = uuid.uuid4().hex  # under which the workers keep the table open
-    ahead = 2 * max(1, len(client.scheduler_info().get("workers", {})))
-    blocks, pending = iter(work), []
+    # Every worker opens the table now, while no process writes: opening reads the
+    # table's files without a lock, and a column another worker is writing could be
+    # read half written (a worker that joins later opens it at its first task).
+    client.run(_start_worker, path, run)
+    workers = max(1, len(client.scheduler_info().get("workers", {})))
+    groups = task_groups(work, count, workers, key=lambda block: id(block.table))
+    pending, angle_tables, given = [], {}, []
     try:
         while True:
-            while len(pending) < ahead:
-                block = next(blocks, None)
-                if block is None:
+            while len(pending) < 2 * workers:
+                group = next(groups, None)
+                if group is None:
                     break
-                pending.append((block, client.submit(_remote_block, path, *columns, block,
-                                                     direction, run, pure=False)))
+                key = id(group[0].table)
+                if key not in angle_tables:  # each angle table to each worker once
+                    angle_tables[key] = client.scatter(group[0].table, broadcast=True)
+                pending.append((group, client.submit(
+                    _remote_blocks, path, *columns, [block.sent() for block in group],
+                    angle_tables[key], direction, run, pure=False)))
             if not pending:
                 return
-            done, future = pending.pop(0)
-            yield done, future.result()
+            group, future = pending[0]
+            given = list(zip(group, future.result()))
+            del pending[0]
+            while given:
+                yield given.pop(0)
     finally:
-        for _, future in pending:  # interrupted: the rows after the last done are redone
-            future.cancel()
+        if late is not None:
+            late.extend(given)  # written, not yet given
+        waiting = True
+        for group, future in pending:
+            bad = [None] * len(group)
+            if waiting:
+                try:
+                    bad = future.result()
+                except Exception:  # noqa: S110 - recorded as unknown below
+                    pass
+                except BaseException:  # a second Ctrl-C: stop waiting, the rest unknown
+                    waiting = False
+            if late is not None:
+                late.extend(zip(group, bad))
         with contextlib.suppress(Exception):
             client.run(_release_worker, run)
