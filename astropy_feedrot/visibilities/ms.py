@@ -588,10 +588,12 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         motion). ``vertical='geocentric', pole='casa'`` reproduces
         ``applycal(parang=True)`` (:doc:`/correcting`).
     client : `dask.distributed.Client`, optional
-        Correct the chunks on its workers, a few at a time each: each worker
-        reads, corrects and writes its chunks itself, under casacore's table
-        lock (taken for the writing of one chunk at a time), and this process
-        records them in order. The result is bit for bit the serial one.
+        Correct the chunks on its workers, a few chunks to a task: each
+        worker reads, corrects and writes its chunks itself, under casacore's
+        table lock (taken for the writing of one chunk at a time), and this
+        process records them in order. The result is bit for bit the serial
+        one. On Ctrl-C the chunks the workers have taken are waited for
+        (a running task cannot be stopped) and recorded.
 
     Returns
     -------
@@ -606,8 +608,10 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         For a path that is not a Measurement Set, a missing ``data_column``,
         an antenna without ``FEED`` rows, receptors of the other basis than
         the products (a circular-linear baseline), Stokes products, a set
-        that is read-only or locked by another process, or a correction the
-        ``HISTORY`` says was made already; nothing is written then.
+        that is read-only or locked by another process, a correction the
+        ``HISTORY`` says was made already, or a correction of a column into
+        itself whose interrupted run left chunks in an unknown state; nothing
+        is written then.
 
     Warns
     -----
