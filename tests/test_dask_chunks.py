@@ -91,8 +91,8 @@ def test_ms_workers_writing_rows_of_shared_tiles(tmp_path, client, chunk_rows, d
     correct_ms(parallel, chunk_rows=chunk_rows, redo=True, **columns)  # not locked
 
 
-def test_ms_in_place_interrupted_on_workers_goes_on_without_correcting_twice(tmp_path,
-                                                                              client):
+def test_ms_in_place_interrupted_on_workers_goes_on_without_correcting_twice(
+        tmp_path, client):
     # DATA corrected into itself on two workers, stopped (Ctrl-C) after the first chunk
     # given: the chunks the workers had taken cannot be stopped, so they are waited for
     # and recorded; the run started again corrects only the others, and the result is
