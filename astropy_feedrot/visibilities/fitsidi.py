@@ -32,7 +32,7 @@ from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, with_receptors
-from .tasks import task_groups
+from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -448,23 +448,17 @@ def _chunks(work, client, source, target, shift, tables, sources, name, directio
         return
     tables = {k: client.scatter(table, broadcast=True) for k, table in tables.items()}
     sources = client.scatter(sources, broadcast=True)
-    workers = max(1, len(client.scheduler_info().get("workers", {})))
-    groups = task_groups(work, len(work), workers, key=lambda item: item[0].index)
-    pending = []
+    workers = worker_count(client)
+
+    def submit(group):
+        return client.submit(_chunk_run, source, target, group, shift,
+                             tables[group[0][0].index], sources, name, direction, pure=False)
+
     client.run(heap_keeps_chunks)
     try:
-        while True:
-            while len(pending) < 2 * workers:
-                group = next(groups, None)
-                if group is None:
-                    break
-                plan = group[0][0]
-                pending.append(client.submit(_chunk_run, source, target, group, shift,
-                                             tables[plan.index], sources, name, direction,
-                                             pure=False))
-            if not pending:
-                return
-            yield from pending.pop(0).result()
+        groups = task_groups(work, len(work), workers, key=lambda item: item[0].index)
+        for _, counts in in_order(groups, submit, workers, []):
+            yield from counts
     finally:
         with contextlib.suppress(Exception):
             client.run(heap_keeps_chunks, False)

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..correction import correct_receptor_visibilities
 from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
-from .tasks import task_groups
+from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
            "tables"]
@@ -374,26 +374,20 @@ def results(work, table, path, columns, direction, client=None, late=None, count
     # table's files without a lock, and a column another worker is writing could be
     # read half written (a worker that joins later opens it at its first task).
     client.run(_start_worker, path, run)
-    workers = max(1, len(client.scheduler_info().get("workers", {})))
-    groups = task_groups(work, count, workers, key=lambda block: id(block.table))
+    workers = worker_count(client)
     pending, angle_tables, given = [], {}, []
+
+    def submit(group):
+        key = id(group[0].table)
+        if key not in angle_tables:  # each angle table to each worker once
+            angle_tables[key] = client.scatter(group[0].table, broadcast=True)
+        return client.submit(_remote_blocks, path, *columns, [block.sent() for block in group],
+                             angle_tables[key], direction, run, pure=False)
+
     try:
-        while True:
-            while len(pending) < 2 * workers:
-                group = next(groups, None)
-                if group is None:
-                    break
-                key = id(group[0].table)
-                if key not in angle_tables:  # each angle table to each worker once
-                    angle_tables[key] = client.scatter(group[0].table, broadcast=True)
-                pending.append((group, client.submit(
-                    _remote_blocks, path, *columns, [block.sent() for block in group],
-                    angle_tables[key], direction, run, pure=False)))
-            if not pending:
-                return
-            group, future = pending[0]
-            given = list(zip(group, future.result()))
-            del pending[0]
+        groups = task_groups(work, count, workers, key=lambda block: id(block.table))
+        for group, bad in in_order(groups, submit, workers, pending):
+            given = list(zip(group, bad))
             while given:
                 yield given.pop(0)
     finally:

@@ -290,7 +290,7 @@ class ReceptorAngleTable:
         self.times, at = _distinct(time)
         self.sources = np.unique(source)
         self.n_keys = int(max(antennas)) + 1
-        row = (at * self.sources.size + np.searchsorted(self.sources, source)) * self.n_keys
+        row = self._row_codes(at, source)
         code1, code2 = row + np.asarray(key1), row + np.asarray(key2)
         grid = self.times.size * self.sources.size * self.n_keys
         self.lookup = None
@@ -315,10 +315,12 @@ class ReceptorAngleTable:
                 frame=frame, where=where, hint=hint)
         self.codes = codes
 
+    def _row_codes(self, at, source):
+        """The code of antenna 0 in rows of times ``self.times[at]`` and ``source``."""
+        return (at * self.sources.size + np.searchsorted(self.sources, source)) * self.n_keys
+
     def _codes(self, time, source, keys):
-        t = np.searchsorted(self.times, time)
-        s = np.searchsorted(self.sources, source)
-        return (t * self.sources.size + s) * self.n_keys + keys
+        return self._row_codes(np.searchsorted(self.times, time), source) + keys
 
     def __call__(self, time, source, keys):
         """The position angles (deg), shape (N, 2), of the receptors of antennas

@@ -8,7 +8,7 @@ with no more memory than one chunk. Towards the end of a run the tasks shrink
 to one chunk each, so that the workers finish together.
 """
 
-__all__ = ["TASK_CHUNKS", "task_groups"]
+__all__ = ["TASK_CHUNKS", "task_groups", "worker_count", "in_order"]
 
 TASK_CHUNKS = 4
 
@@ -53,3 +53,64 @@ def task_groups(items, count, workers, key=id):
         left -= 1
     if group:
         yield group
+
+
+def worker_count(client):
+    """The workers of a dask client (at least one).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.tasks import worker_count
+    >>> class Client:  # what dask's Client.scheduler_info gives, in part
+    ...     def scheduler_info(self):
+    ...         return {"workers": {"tcp://a": {}, "tcp://b": {}}}
+    >>> worker_count(Client())
+    2
+    """
+    return max(1, len(client.scheduler_info().get("workers", {})))
+
+
+def in_order(groups, submit, workers, pending):
+    """(group, result) of each task in the order of ``groups``, two tasks per worker
+    submitted ahead.
+
+    A task stays in ``pending`` until its result is in: a caller stopped while
+    it waits finds there every task submitted and not given (a task that has
+    started cannot be stopped: it may be waited for).
+
+    Parameters
+    ----------
+    groups : iterable
+        The tasks' items (`task_groups`).
+    submit : callable
+        ``submit(group)`` gives the task's future.
+    workers : int
+        The dask workers.
+    pending : list
+        Filled with the (group, future) submitted and not yet given.
+
+    Yields
+    ------
+    (group, result)
+
+    Examples
+    --------
+    >>> from concurrent.futures import ThreadPoolExecutor
+    >>> from astropy_feedrot.visibilities.tasks import in_order
+    >>> with ThreadPoolExecutor(2) as pool:
+    ...     list(in_order([[1, 2], [3]], lambda group: pool.submit(sum, group), 1, []))
+    [([1, 2], 3), ([3], 3)]
+    """
+    groups = iter(groups)
+    while True:
+        while len(pending) < 2 * workers:
+            group = next(groups, None)
+            if group is None:
+                break
+            pending.append((group, submit(group)))
+        if not pending:
+            return
+        group, future = pending[0]
+        result = future.result()
+        del pending[0]
+        yield group, result
