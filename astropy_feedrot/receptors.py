@@ -232,6 +232,53 @@ class Receptors:
             angles.append(value)
         return cls(types, angles * u.deg)
 
+    @classmethod
+    def paired(cls, receptor, angle=None):
+        """The two receptors of a feed of which a file names one.
+
+        Files of single-polarization data often name one receptor: a blank
+        ``POLTYB`` (casacore's UVFITS), ``'?'`` (SFXC's FITS-IDI, the
+        ``POLARIZATION_TYPE`` of the Measurement Sets CASA imports from
+        them). The second receptor is the other of the basis, at the same
+        angle (circular) or 90 deg further (linear: ``Y`` at ``X + 90``
+        deg), in the order of the file: the named receptor first.
+
+        Parameters
+        ----------
+        receptor : str
+            ``'R'``, ``'L'``, ``'X'`` or ``'Y'`` (any case).
+        angle : `~astropy.units.Quantity`, optional
+            Its angle in the antenna (default 0 for R, L and X, 90 deg for Y).
+
+        Returns
+        -------
+        `Receptors`
+
+        Raises
+        ------
+        ValueError
+            For any other letter.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy_feedrot.receptors import Receptors
+        >>> Receptors.paired("l", 10 * u.deg)
+        Receptors('LR', [10.0, 10.0] * u.deg)
+        >>> Receptors.paired("Y", 0 * u.deg)
+        Receptors('YX', [0.0, -90.0] * u.deg)
+        """
+        letter = str(receptor).strip().upper()
+        if len(letter) != 1:
+            raise ValueError(f"give one receptor letter (R, L, X or Y), got {receptor!r}")
+        basis = basis_of(letter)
+        if angle is None:
+            angle = (90.0 if letter == "Y" else 0.0) * u.deg
+        angle = u.Quantity(angle, u.deg).ravel()[0]
+        other = [t for t in RECEPTOR_TYPES[basis] if t != letter][0]
+        step = 0.0 if basis == "circular" else (90.0 if letter == "X" else -90.0)
+        return cls(letter + other, u.Quantity([angle, angle + step * u.deg]))
+
     def __repr__(self):
         angles = ", ".join(repr(float(a)) for a in self.angles.value)
         return f"Receptors({self.types!r}, [{angles}] * u.deg)"

@@ -171,6 +171,7 @@ def test_real_casacore_evla_file():
     antennas = uvfits_antennas(path)
     assert len(antennas) == 19
     assert antennas[1].name == "W09"
-    assert antennas[1].receptors == Receptors("R")  # empty POLTYB: one receptor
+    # An empty POLTYB: completed from POLTYA (Receptors.paired), as pyuvdata reads it.
+    assert antennas[1].receptors == Receptors("RL", [0, 0] * u.deg)
     # The VLA's antennas lie within 25 km of its centre (the VLA_CENTRE above).
     assert all(np.linalg.norm(xyz_of(a) - VLA_CENTRE) < 25e3 for a in antennas.values())

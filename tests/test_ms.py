@@ -175,6 +175,20 @@ def test_receptors_per_spectral_window_and_time(linear, tmp_path):
                                rtol=0, atol=2e-6)
 
 
+def test_one_receptor_named_completed_from_it(circular):
+    # CASA's importfitsidi of a single-polarization file (SFXC, POLTYB '?') writes
+    # POLARIZATION_TYPE ['R', '?'] (FitsIDItoMS.cc): the pair is completed from the
+    # first receptor (Receptors.paired), whatever angle the '?' receptor has.
+    ms, model = circular
+    for antenna in range(28):
+        set_feed(ms, antenna, "R?", (0.0, 37.0))
+    assert ms_antennas(ms)[1].receptors == Receptors("RL", [0, 0] * u.deg)
+    correct_ms(ms)
+    got = corrected(ms, model)
+    np.testing.assert_allclose(got, np.broadcast_to(model["expected"][:, None, :], got.shape),
+                               rtol=0, atol=2e-6)
+
+
 def test_feeds_given_by_the_user(tmp_path):
     ms = unpack(tmp_path)
     make_linear(ms, {"default": (0.0, 90.0)})

@@ -409,7 +409,9 @@ def _receptor_rows(hdu, name, numbers_column):
         number = int(number)
         types = _letter(data["POLTYA"][row])
         angles = [np.ravel(np.asarray(data["POLAA"][row], dtype=float))]
-        if "POLTYB" in columns and _letter(data["POLTYB"][row]):
+        # A blank or '?' POLTYB (casacore's UVFITS, SFXC's single-polarization
+        # FITS-IDI) is completed from POLTYA (Receptors.paired) below.
+        if "POLTYB" in columns and _letter(data["POLTYB"][row]) not in ("", "?"):
             types += _letter(data["POLTYB"][row])
             if "POLAB" not in columns:
                 raise FITSFormatError(name, table, "a POLAB column with POLTYB", None,
@@ -436,7 +438,8 @@ def _receptor_rows(hdu, name, numbers_column):
     out = {}
     for number, (types, angles) in seen.items():
         try:
-            out[number] = Receptors(types, list(angles) * u.deg)
+            out[number] = (Receptors.paired(types, angles[0] * u.deg) if len(types) == 1
+                           else Receptors(types, list(angles) * u.deg))
         except ValueError as error:
             raise ValueError(f"{name}, table {table}: antenna {number}: {error}") from None
     return out

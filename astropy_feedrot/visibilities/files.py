@@ -118,12 +118,12 @@ def antenna_table(antennas, software=None):
     >>> from astropy_feedrot.visibilities import antenna_table, read_antennas
     >>> table = antenna_table(*read_antennas(sample_file("vla_day2_8chan.uvfits")))
     >>> [list(map(str, table[c][:3])) for c in ("name", "label", "receptors")]
-    [['W09', 'E02', 'E09'], ['0', '0', '0'], ['R', 'R', 'R']]
+    [['W09', 'E02', 'E09'], ['0', '0', '0'], ['RL', 'RL', 'RL']]
     >>> str(table["mount"][0]), str(table["focus"][0])
     ('AltAzMount()', 'CassegrainFocus()')
 
-    (casacore wrote a blank ``POLTYB`` for this file: one receptor is
-    listed, as read.)
+    (casacore wrote a blank ``POLTYB`` for this file: the second receptor
+    is completed from the first, `~astropy_feedrot.Receptors.paired`.)
     """
     numbers = sorted(antennas)
     rows = []

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import FK4, ICRS, SkyCoord
+from astropy.io import fits
 from astropy.time import Time
 
 from ..correction import correct_receptor_visibilities
@@ -483,6 +484,23 @@ def _check_paths(path, output, overwrite):
     return source, target
 
 
+def _with_history(source, header_end, text):
+    """The primary header of ``source`` as its bytes lie, with HISTORY cards of ``text``
+    before its END card (astropy would rewrite some cards it reads, e.g. the
+    ``NAXIS = 0`` of SFXC's random-groups header)."""
+    with open(source, "rb") as handle:
+        raw = handle.read(header_end)
+    cards = [raw[k:k + 80] for k in range(0, len(raw) - len(raw) % 80, 80)]
+    end = next((k for k, card in enumerate(cards) if card.rstrip() == b"END"), None)
+    if end is None:
+        raise FITSFormatError(source, "primary header", "an END card", None)
+    history = fits.Header()
+    history.add_history(text)
+    body = b"".join(cards[:end]) + history.tostring(endcard=False, padding=False).encode(
+        "ascii") + cards[end]
+    return body + b" " * (-len(body) % 2880)
+
+
 def _copy_around(source, target, header, header_end, rows):
     """Write ``header``, then the bytes of ``source`` after ``header_end`` but those of
     ``rows`` (byte ranges of the source, which the chunks write), to ``target``."""
@@ -650,13 +668,12 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         scale = _time_scale(hdul, source)
         sources = _sources(hdul, source)
         header_end = int(hdul.fileinfo(0)["datLoc"])
-        new_header = primary.copy()
     antennas = fitsidi_antennas(source, vertical=vertical, software=software)
     if feeds is not None:
         antennas = with_receptors(antennas, feeds)
     antennas, note = catalogue_receptors(antennas, catalogue,
                                          telescope=str(primary.get("TELESCOP", "")).strip())
-    new_header.add_history(history_entry(
+    new_header = _with_history(source, header_end, history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row", frame=frame_name, vertical=vertical))
     directory = os.path.dirname(os.path.abspath(target))
@@ -666,7 +683,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     try:
         with open_fits(source) as hdul:
             plans = [_Plan(hdul, index, source) for index in indices]
-        shift = _copy_around(source, temporary, new_header.tostring().encode("ascii"),
+        shift = _copy_around(source, temporary, new_header,
                              header_end, [(plan.offset, plan.offset + plan.rows
                                            * plan.dtype.itemsize) for plan in plans])
         work = []

@@ -137,6 +137,10 @@ def _feed_rows(path):
 
 def _receptors(types, angles, where):
     try:
+        if len(types.replace("?", "")) == 1 and types[0] != "?":
+            # One receptor named ('L' and '?' of a single-polarization FITS-IDI
+            # file imported by CASA): the pair, completed from it.
+            return Receptors.paired(types[0], angles[0] * u.deg)
         return Receptors(types, list(angles) * u.deg)
     except ValueError as error:
         raise MSError(f"{where}: {error}") from None

@@ -102,15 +102,12 @@ def _receptors(feeds, angles, stationary):
         # pyuvdata: 0 = north, 90 deg = east; here alpha = 0 is the aligned
         # (east) dipole of StationaryMount, so alpha = feed_angle - 90 deg.
         alpha = [a - 90.0 for a in alpha]
+    if len(types) == 2 and types[1] in ("", "?"):
+        types = types[:1]
     if len(types) == 1:
-        # One feed listed (UVFITS files whose POLTYB is blank): the other
-        # receptor of the pair, at the same angle (circular) or 90 deg on (linear).
-        (letter,) = types
-        basis = basis_of(letter)
-        other = [t for t in RECEPTOR_TYPES[basis] if t != letter][0]
-        step = 0.0 if basis == "circular" else (90.0 if letter == "X" else -90.0)
-        types.append(other)
-        alpha.append(alpha[0] + step)
+        # One feed listed (UVFITS files whose POLTYB is blank, '?' of SFXC): the
+        # other receptor of the pair (Receptors.paired).
+        return Receptors.paired(types[0], alpha[0] * u.deg)
     return Receptors("".join(types), alpha * u.deg)
 
 
