@@ -11,6 +11,9 @@ U = 0.08) for 8 hours with four antennas of the VLA (circular feeds) or ALMA
 ``python casa_sim.py applycal MS``: CASA's ``applycal(parang=True)``, no
 calibration table: DATA with the parallactic angle removed into
 CORRECTED_DATA.
+
+``python casa_sim.py importfitsidi FITS MS``: CASA's ``importfitsidi``, a
+FITS-IDI file into a new Measurement Set.
 """
 
 import importlib
@@ -60,6 +63,12 @@ def simulate(kind, out):
     sm.close()
 
 
+def importfitsidi(fits, ms):
+    from casatasks import importfitsidi as task
+
+    task(fitsidifile=[fits], vis=ms)
+
+
 def applycal(ms):
     from casatasks import applycal as task
 
@@ -72,6 +81,8 @@ if __name__ == "__main__":
             importlib.import_module(name)
     elif sys.argv[1] == "simulate":
         simulate(sys.argv[2], sys.argv[3])
+    elif sys.argv[1] == "importfitsidi":
+        importfitsidi(sys.argv[2], sys.argv[3])
     else:
         applycal(sys.argv[2])
     print("done")

@@ -2,24 +2,16 @@
 """The correction against CASA itself: applycal(parang=True) on one copy of a
 Measurement Set simulated by CASA's simulator, correct_ms on another.
 
-CASA (casatools, casatasks, casadata) runs in a subprocess configured offline:
-a site configuration file in a temporary directory (CASASITECONFIG) points
-the measures and data at casadata's copy and turns every automatic update
-off; HOME is that directory too, so the user's ~/.casa is never read or
-written. The tests are skipped, saying why, without the three packages
-(``pip install casatools casatasks casadata``).
+CASA (casatools, casatasks, casadata) runs in a subprocess configured offline
+(tests/casa_offline.py). The tests are skipped, saying why, without the three
+packages (``pip install casatools casatasks casadata``).
 
 What is compared: the EVPA of CORRECTED_DATA, row by row. The reference is
 CASA's own output; the tolerances are those documented in
 docs/correcting.rst.
 """
 
-import importlib.util
-import os
 import shutil
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,53 +19,21 @@ import pytest
 pytest.importorskip("casacore")
 
 from casacore.tables import table  # noqa: E402
+from casa_offline import SKIP_WITHOUT_CASA, check_casa_starts, run_casa  # noqa: E402
 
 from astropy_feedrot.visibilities import correct_ms  # noqa: E402
 
-MISSING = [name for name in ("casatools", "casatasks", "casadata")
-           if importlib.util.find_spec(name) is None]
-pytestmark = pytest.mark.skipif(bool(MISSING), reason=f"CASA is not installed ({', '.join(MISSING)}"
-                                f" missing: pip install casatools casatasks casadata)")
-
-SCRIPT = Path(__file__).parent / "casa_sim.py"
+pytestmark = SKIP_WITHOUT_CASA
 
 # ALMA's receptor angles as in its Measurement Sets (X at -10 deg, Y at 80 deg),
 # one antenna turned further to exercise per-antenna angles.
 ALMA_ANGLES = np.radians([[-10.0, 80.0], [-10.0, 80.0], [15.0, 105.0], [-10.0, 80.0]])
 
 
-def _casa(home, *args):
-    """Run casa_sim.py with CASA configured offline in ``home``."""
-    config = home / "casasiteconfig.py"
-    if not config.exists():
-        config.write_text(
-            "import casadata\n"
-            "measurespath = casadata.datapath\n"
-            "datapath = [casadata.datapath]\n"
-            "measures_auto_update = False\n"
-            "data_auto_update = False\n"
-            "nologfile = True\n"
-            "nologger = True\n"
-            "nogui = True\n"
-            f"cachedir = {str(home / 'cache')!r}\n")
-    env = dict(os.environ, HOME=str(home), CASASITECONFIG=str(config))
-    result = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], cwd=home, env=env,
-                            capture_output=True, text=True, timeout=600)
-    assert result.returncode == 0 and "done" in result.stdout, result.stderr[-2000:]
-
-
 @pytest.fixture(scope="module")
 def casa_works(tmp_path_factory):
     """Skip, saying why, if the installed CASA does not start (e.g. built for another numpy)."""
-    home = tmp_path_factory.mktemp("casa_check")
-    try:
-        _casa(home, "check")
-    except AssertionError as error:
-        lines = [line for line in str(error).splitlines() if line.strip()]
-        reason = f"CASA is installed but does not start here: {lines[-1] if lines else ''}"
-        if os.environ.get("FEEDROT_REQUIRE_CASA"):  # set by .ci/run: a skip would hide it
-            pytest.fail(reason)
-        pytest.skip(reason)
+    check_casa_starts(tmp_path_factory.mktemp("casa_check"))
 
 
 @pytest.fixture(scope="module", params=["vla", "alma"])
@@ -81,13 +41,13 @@ def simulated(request, tmp_path_factory, casa_works):
     """(data, CASA's CORRECTED_DATA, a pristine copy, kind) of a simulated set."""
     home = tmp_path_factory.mktemp(f"casa_{request.param}")
     ms = home / f"{request.param}.ms"
-    _casa(home, "simulate", request.param, ms)
+    run_casa(home, "simulate", request.param, ms)
     if request.param == "alma":
         with table(str(ms / "FEED"), readonly=False, ack=False) as feed:
             feed.putcol("RECEPTOR_ANGLE", ALMA_ANGLES)
     pristine = home / "pristine.ms"
     shutil.copytree(ms, pristine)
-    _casa(home, "applycal", ms)
+    run_casa(home, "applycal", ms)
     with table(str(ms), ack=False) as t:
         casa = t.getcol("CORRECTED_DATA")[:, 0]
         flags = t.getcol("FLAG")[:, 0].any(axis=-1)
