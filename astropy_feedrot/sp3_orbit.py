@@ -13,7 +13,21 @@ from .frames import as_time
 from .io import SP3Data, read_sp3
 from .orbit_base import Orbit, check_orientation
 
-__all__ = ["SP3Orbit", "lagrange_interpolate"]
+__all__ = ["SP3Orbit", "lagrange_interpolate", "points_needed", "MAX_EXTRAPOLATION",
+           "POSITION_TOLERANCE"]
+
+#: The longest extrapolation (s) before the first or after the last epoch of an SP3
+#: file: RTKLIB's MAXDTE (pephpos in preceph.c).
+MAX_EXTRAPOLATION = 900.0
+
+#: The interpolation error (m) that `points_needed` allows. A position error turns the
+#: line of sight and the nominal yaw by about its size over the distance, amplified near
+#: the noon and midnight turns; 10 m keeps the wind-up within 1e-4 cycle with a margin
+#: (tests/test_gnss_arcs.py measures it against the exact orbits).
+POSITION_TOLERANCE = 10.0
+
+_GM_EARTH = 3.986004418e14  # m3/s2, IERS Conventions 2010
+_OMEGA_EARTH = 7.292115e-5  # rad/s
 
 
 class SP3Orbit(Orbit):
@@ -30,6 +44,9 @@ class SP3Orbit(Orbit):
         Number of consecutive epochs of the sliding window of the Lagrange
         interpolating polynomial (default 10, i.e. degree 9, the usual choice
         for 5- and 15-minute IGS orbits).
+    extrapolate : float or `~astropy.units.Quantity`, optional
+        Seconds before the first and after the last epoch of the file where
+        positions are extrapolated (default 0: none; at most 900).
 
     Attributes
     ----------
@@ -67,6 +84,12 @@ class SP3Orbit(Orbit):
     centred window, shifted at the ends of a stretch). Times outside the
     file's epochs raise an error.
 
+    With ``extrapolate``, times up to that many seconds before the first or
+    after the last epoch (at most `MAX_EXTRAPOLATION`, 900 s, as RTKLIB's
+    ``MAXDTE``) get the polynomial of the window at that end, evaluated
+    outside it; its error grows as ``(omega h)**points`` (see
+    `points_needed`): metres for 10 points and one 15-minute interval.
+
     The window is made only of consecutive epochs at the interval of the
     file's header where the satellite has a valid position. A hole is any
     break in that: epochs the file skips, an epoch without a record of the
@@ -95,7 +118,7 @@ class SP3Orbit(Orbit):
     array([['2023-01-25T00:00:19.000', '2023-01-25T00:45:19.000']], dtype='<U23')
     """
 
-    def __init__(self, source, satellite, points=10):
+    def __init__(self, source, satellite, points=10, extrapolate=0.0):
         data = source if isinstance(source, SP3Data) else read_sp3(source)
         if satellite not in data.positions:
             raise ValueError(
@@ -130,6 +153,11 @@ class SP3Orbit(Orbit):
                 "give fewer points or a file without holes"
             )
         self._usable = long_enough
+        extrapolate = u.Quantity(extrapolate, u.s).to_value(u.s)
+        if not 0 <= extrapolate <= MAX_EXTRAPOLATION:
+            raise ValueError(f"extrapolate must be 0 to {MAX_EXTRAPOLATION:g} s, got "
+                             f"{extrapolate!r} s")
+        self.extrapolate = extrapolate * u.s
 
     def __repr__(self):
         return (
@@ -156,13 +184,24 @@ class SP3Orbit(Orbit):
         check_orientation(orientation, obstime)
         x = np.atleast_1d((obstime - self._t0).to_value(u.s)).ravel()
         tol = 1e-6
-        outside = (x < self._seconds[0] - tol) | (x > self._seconds[-1] + tol)
+        margin = tol + self.extrapolate.to_value(u.s)
+        outside = (x < self._seconds[0] - margin) | (x > self._seconds[-1] + margin)
         if np.any(outside):
+            beyond = f" (extrapolated up to {self.extrapolate.to_value(u.s):g} s beyond)" \
+                if margin > tol else ""
             raise ValueError(
                 f"times outside the coverage of the SP3 orbit of {self.satellite}: "
                 f"{self.epochs[0].isot} to {self.epochs[-1].isot} {self.epochs.scale.upper()}"
+                + beyond
             )
         run = _stretch_of(self._seconds, self._run_start, self._run_end, x, tol)
+        # Beyond the first or last epoch (extrapolate): the stretch ending there, as RTKLIB
+        # extrapolates the polynomial of its end window (pephpos, up to 900 s).
+        for node, side in ((0, x < self._seconds[0] - tol),
+                           (len(self._seconds) - 1, x > self._seconds[-1] + tol)):
+            if np.any(side):
+                k = np.searchsorted(self._run_start, node, side="right") - 1
+                run[side] = k if self._run_start[k] <= node <= self._run_end[k] else -1
         ok = run >= 0
         ok[ok] = self._usable[run[ok]]
         out = np.full(x.shape + (3,), np.nan)
@@ -273,3 +312,49 @@ def _lagrange(x, y, x_new, start, points):
     weights = np.prod(numer / denom, axis=-1)  # (M, points)
     values = y[window]  # (M, points, ...)
     return np.einsum("mp,mp...->m...", weights, values)
+
+
+def points_needed(interval, radius=20e6, tolerance=POSITION_TOLERANCE):
+    """The fewest Lagrange points that interpolate an orbit sampled every ``interval`` well.
+
+    Parameters
+    ----------
+    interval : float or `~astropy.units.Quantity`
+        The epoch interval of the orbit file (s).
+    radius : float, optional
+        The smallest orbit radius of its satellites (m; default 20,000 km,
+        below every GNSS orbit: the fastest).
+    tolerance : float, optional
+        The interpolation error allowed (m; default `POSITION_TOLERANCE`).
+
+    Returns
+    -------
+    int
+        The smallest ``n >= 2`` whose error bound is within ``tolerance``.
+
+    Notes
+    -----
+    The rule: the error of a polynomial through ``n`` points ``h`` apart is
+    at most ``|f^(n)| / n! * max |prod (t - t_k)|``. An Earth-fixed orbit of
+    radius ``r`` turns at most at ``omega = sqrt(GM / r**3) + Omega_Earth``,
+    so ``|f^(n)| <= r omega**n``; in the first or last interval of a window
+    shifted to an end (the worst place inside a file) the product is at most
+    ``h**n max_{0 <= s <= 1} |s (s - 1) ... (s - n + 1)|``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.sp3_orbit import points_needed
+    >>> points_needed(900.0), points_needed(300.0), points_needed(30.0)
+    (8, 5, 3)
+    """
+    h = u.Quantity(interval, u.s).to_value(u.s)
+    omega = np.sqrt(_GM_EARTH / radius**3) + _OMEGA_EARTH
+    s = np.linspace(0.0, 1.0, 201)
+    product = np.ones_like(s)
+    factorial = 1.0
+    for n in range(1, 40):
+        product = product * np.abs(s - (n - 1))
+        factorial *= n
+        if n >= 2 and radius * (omega * h) ** n * product.max() / factorial <= tolerance:
+            return n
+    return 40

@@ -16,8 +16,8 @@ SP3 = str(sample_file("gnss_sample.sp3"))
 def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
     out, table = tmp_path / "out.rnx", tmp_path / "windup.ecsv"
     assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--table", str(table)]) == 0
-    assert "1920 carrier phases of 640 observations at 40 epochs corrected, 16 arcs" in \
-        capsys.readouterr().err
+    assert ("1920 carrier phases of 640 observations at 40 epochs corrected, 16 arcs, "
+            "0 epochs untouched\n") in capsys.readouterr().err
     windup = QTable.read(table)
     assert len(windup) == 640 and windup["windup"].unit == u.cycle
     assert list(windup["prn"][:3]) == ["G01", "G02", "G03"]
@@ -38,6 +38,9 @@ def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
     (["-o", "{tmp}/a.rnx", "--position", "1,2"], "--position: expected X,Y,Z"),
     (["-o", "{tmp}/a.rnx", "--table", "{tmp}/t.txt"], "--table: cannot tell a format"),
     (["-o", "{tmp}/a.rnx", "--orbex", "{tmp}/none.obx"], "--orbex: no such file '"),
+    # Issue 26: --points 1 used to exit 0 with every satellite untouched; 2 is 4.6e-3 cycle off.
+    (["-o", "{tmp}/a.rnx", "--points", "1"], "points=1 is too few for SP3 orbits at 900 s"),
+    (["-o", "{tmp}/a.rnx", "--points", "2"], "needs at least 7 points (default 10)"),
 ])
 def test_rinex_errors(tmp_path, capsys, argv, match):
     argv = [a.format(tmp=tmp_path) for a in argv]
@@ -120,7 +123,22 @@ def test_rinex_model_attitude(tmp_path, capsys):
     out = tmp_path / "out.rnx"
     assert main(["rinex", RNX, "--sp3", SP3, "-o", str(out), "--attitude", "model"]) == 0
     assert "16 arcs" in capsys.readouterr().err
-    assert "MODEL ATTITUDE" in out.read_text()
+    assert "astropy_feedrot: L - WIND-UP (CYCLES, RHCP, YAW MODELS)" in out.read_text()
     assert main(["rinex", RNX, "--sp3", SP3, "-o", str(tmp_path / "x.rnx"),
                  "--metadata", str(sample_file("igs_satellite_metadata.snx"))]) == 1
     assert "--metadata goes with --attitude model" in capsys.readouterr().err
+
+
+def test_rinex_summary_counts(tmp_path, capsys):
+    """The summary line counts arcs, untouched epochs and satellites, singular or plural."""
+    from astropy_feedrot.gnss.synthetic import write_rinex
+    from astropy.time import Time
+
+    obs = tmp_path / "obs.rnx"
+    write_rinex(obs, "3.04", {"G": ("C1C", "L1C")}, ["G01", "G31"],
+                Time("2023-01-25T02:55:19", scale="tai"), 2, 30.0)
+    assert main(["rinex", str(obs), "--sp3", SP3, "-o", str(tmp_path / "a.rnx")]) == 0
+    err = capsys.readouterr().err
+    assert "G31: not in the SP3 files" in err
+    assert err.endswith("2 carrier phases of 4 observations at 2 epochs corrected, 1 arc, "
+                        "0 epochs untouched, 1 satellite untouched\n")

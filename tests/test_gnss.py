@@ -122,7 +122,7 @@ def test_round_trip_keeps_every_byte(tmp_path, version, suffix):
     with opener(target, "rb") as fh:
         written = fh.read().splitlines(keepends=True)
     end = next(i for i, line in enumerate(original) if b"END OF HEADER" in line)
-    assert written[end] == b"a comment".ljust(60) + b"COMMENT\n"
+    assert written[end] == b"a comment".ljust(60) + b"COMMENT".ljust(20) + b"\n"  # 80 columns
     assert written[:end] + written[end + 1:] == original
 
 
@@ -204,34 +204,62 @@ def test_only_phases_change(tmp_path, sp3):
     report = correct_rinex(source, tmp_path / "b.rnx", sp3)
     original, corrected = _without_phases(source), _without_phases(tmp_path / "b.rnx")
     end = next(i for i, line in enumerate(original) if "END OF HEADER" in line)
-    assert corrected[end].startswith("L - WIND-UP (CYCLES, RHCP, NOMINAL ATTITUDE)")
-    assert corrected[:end] + corrected[end + 1:] == original
+    # Two COMMENT lines, 80 columns, saying what was done (issue 26).
+    assert corrected[end:end + 2] == [
+        "astropy_feedrot: L - WIND-UP (CYCLES, RHCP, NOMINAL YAW)    COMMENT             \n",
+        "WIND-UP REMOVED FROM 659 PHASES OF 13 SATELLITES            COMMENT             \n"]
+    assert corrected[:end] + corrected[end + 2:] == original
     assert report.phases == 30 * (5 * 2 + 4 * 2 + 4 * 1) - 1  # R01 missing once
 
 
-def test_new_arc_at_loss_of_lock(tmp_path, sp3):
-    source = _rinex(tmp_path / "a.rnx", epochs=240, lli={(120, "G02"): 1})
-    report = correct_rinex(source, tmp_path / "b.rnx", sp3)
-    assert report.arcs == 13 + 1
-    before, after = _phases(source), _phases(tmp_path / "b.rnx")
-    removed = np.array([before[t, "G02"][0] - after[t, "G02"][0] for t in range(240)])
-    whole = np.rint(removed)
-    # Without the flag, the arc would run on continuously (Eq 9); the flag
-    # restarts it at the principal value, in [-0.5, 0.5] cycles.
-    assert abs(removed[120]) <= 0.5005
-    steps = np.diff(removed)
-    assert np.all(np.abs(np.delete(steps, 119)) < 0.25)
-    continuous = correct_rinex(_rinex(tmp_path / "c.rnx", epochs=240), tmp_path / "d.rnx", sp3)
-    assert continuous.arcs == 13
-    plain = _phases(tmp_path / "c.rnx")
-    after_plain = _phases(tmp_path / "d.rnx")
-    removed_plain = np.array([plain[t, "G02"][0] - after_plain[t, "G02"][0]
+def test_loss_of_lock_keeps_the_arc(tmp_path, sp3):
+    """A loss-of-lock flag does not restart the wind-up (it used to: issue 26).
+
+    The wind-up is geometry, not a measurement: RTKLIB carries its phw through
+    every flag (windupcorr, rtkcmn.c). Restarting at the principal value put a
+    whole-cycle step into the satellite's unflagged phases whenever the
+    accumulated wind-up had drifted past half a cycle.
+    """
+    flagged = _rinex(tmp_path / "a.rnx", epochs=240, lli={(120, "G02", "L2W"): 1})
+    report = correct_rinex(flagged, tmp_path / "b.rnx", sp3)
+    plain = _rinex(tmp_path / "c.rnx", epochs=240)
+    continuous = correct_rinex(plain, tmp_path / "d.rnx", sp3)
+    assert report.arcs == continuous.arcs == 13
+    before, after = _phases(flagged), _phases(tmp_path / "b.rnx")
+    removed = np.array([[b - a for b, a in zip(before[t, "G02"], after[t, "G02"])]
+                        for t in range(240)])
+    # The same value from both phases (L1C unflagged, L2W flagged) at every epoch ...
+    np.testing.assert_allclose(removed[:, 0], removed[:, 1], atol=1.5e-3)  # F14.3 rounding
+    # ... and the same as without the flag: no step anywhere.
+    plain_before, plain_after = _phases(plain), _phases(tmp_path / "d.rnx")
+    removed_plain = np.array([plain_before[t, "G02"][0] - plain_after[t, "G02"][0]
                               for t in range(240)])
-    # Same wind-up modulo whole cycles: the arcs differ by an integer only.
-    offset = removed[120:] - removed_plain[120:]
-    np.testing.assert_allclose(offset, np.rint(offset[0]), atol=2e-3)
-    np.testing.assert_allclose(removed[:120], removed_plain[:120], atol=1e-9)
-    assert whole.dtype == float
+    np.testing.assert_allclose(removed[:, 0], removed_plain, atol=1e-9)
+    assert np.all(np.abs(np.diff(removed[:, 0])) < 0.25)
+
+
+def test_flagged_epoch_past_half_a_cycle(tmp_path, sp3):
+    """The flagged-epoch geometry of ESBC R04 (issue 26), reproduced with the synthetic orbits.
+
+    The wind-up of one satellite is followed past +0.5 cycle (or -0.5) and one
+    of its phases is flagged there: every phase of the satellite keeps the
+    continuous value (RTKLIB's behaviour), none gets a one-cycle step.
+    """
+    plain = _rinex(tmp_path / "plain.rnx", epochs=420, start=START + 1800 * u.s)
+    report = correct_rinex(plain, tmp_path / "plain_out.rnx", sp3, table=True)
+    rows = report.windup
+    # The satellite and epoch where the continuous wind-up is furthest past half a cycle.
+    prn, k = max(((p, int(np.argmax(np.abs(rows["windup"][rows["prn"] == p].value))))
+                  for p in sorted(set(rows["prn"]))),
+                 key=lambda pk: np.abs(rows["windup"][rows["prn"] == pk[0]].value[pk[1]]))
+    series = rows["windup"][rows["prn"] == prn].value
+    assert abs(series[k]) > 0.5  # past the principal value: a restart would step here
+    code = TYPES[prn[0]][2] if prn[0] in "GE" else TYPES[prn[0]][1]
+    flagged = _rinex(tmp_path / "flagged.rnx", epochs=420, start=START + 1800 * u.s,
+                     lli={(k, prn, code): 1})
+    again = correct_rinex(flagged, tmp_path / "flagged_out.rnx", sp3, table=True)
+    np.testing.assert_array_equal(again.windup["windup"], rows["windup"])
+    assert again.arcs == report.arcs
 
 
 def test_gap_starts_a_new_arc(tmp_path, sp3):
@@ -239,6 +267,20 @@ def test_gap_starts_a_new_arc(tmp_path, sp3):
     source = _rinex(tmp_path / "a.rnx", epochs=100, missing=missing)
     assert correct_rinex(source, tmp_path / "b.rnx", sp3).arcs == 13 + 1
     assert correct_rinex(source, tmp_path / "c.rnx", sp3, max_gap=1 * u.h).arcs == 13
+
+
+@pytest.mark.parametrize("missing, arcs", [(0, 13), (1, 13 + 1), (2, 13 + 1)])
+def test_max_gap_of_one_interval(tmp_path, sp3, missing, arcs):
+    """--max-gap equal to the sampling interval: consecutive epochs never start an arc.
+
+    Epoch times carry rounding (30 s steps read as 29.999999 or 30.000001 s);
+    the gap is compared with max_gap plus half the interval, so a step of one
+    interval is always within it and one missing epoch (60 s) never is.
+    """
+    gone = {(t, "G03") for t in range(100, 100 + missing)}
+    source = _rinex(tmp_path / "a.rnx", epochs=200, missing=gone)
+    report = correct_rinex(source, tmp_path / "b.rnx", sp3, max_gap=30 * u.s)
+    assert report.arcs == arcs
 
 
 def test_sp3_day_boundary_and_blocks(tmp_path, orbits, sp3, monkeypatch):
@@ -265,14 +307,39 @@ def test_zero_direction_turns_the_receiver():
 def test_orbex_attitude(tmp_path):
     from astropy_feedrot.data import sample_file
 
-    source = _rinex(tmp_path / "a.rnx", epochs=3, sats=["G01", "G05", "E11"], start=START)
-    with pytest.warns(OrbitWarning, match=r"E11: .*holes of the orbit"):
-        report = correct_rinex(source, tmp_path / "b.rnx", sample_file("sample.sp3"),
-                               orbex=sample_file("sample.obx"), points=2)
-    # E11 has no two consecutive valid epochs at the start of the file: untouched.
-    assert report.phases == 3 * (2 + 2)
-    assert report.untouched == {"E11": "3 epochs in holes of the orbit, outside the attitude "
-                                       "or with degenerate geometry"}
+    named = constellation(START, {"G": 5, "E": 11})  # G01, G05, E11 of sample.obx among them
+    path = tmp_path / "sim.sp3"
+    write_sp3(path, {p: named[p] for p in ("G01", "G05", "E11")}, START - 3600 * u.s, 12)
+    source = _rinex(tmp_path / "a.rnx", epochs=4, sats=["G01", "G05", "E11"], start=START)
+    with pytest.warns(OrbitWarning, match=r"^phases left untouched: E11: 1 epochs in holes of "
+                                          r"the orbit, outside the attitude"):
+        report = correct_rinex(source, tmp_path / "b.rnx", path,
+                               orbex=sample_file("sample.obx"))
+    # sample.obx covers 00:00 to 00:01: the fourth epoch (00:01:30) is outside it.
+    assert report.phases == 3 * 3 * 2
+    assert set(report.untouched) == {"E11", "G01", "G05"}
+
+
+def test_points_refused_before_any_work(tmp_path, sp3):
+    """Too few interpolation points for the orbit's sampling are refused (issue 26)."""
+    from astropy_feedrot.data import sample_file
+
+    source = _rinex(tmp_path / "a.rnx", epochs=3, sats=["G01", "G05"], start=START)
+    for points in (1, 2, 6):
+        with pytest.raises(ValueError, match=rf"points={points} is too few for SP3 orbits at "
+                                             r"900 s: interpolating them within 1e-4 cycle of "
+                                             r"wind-up needs at least 7 points"):
+            correct_rinex(source, tmp_path / "b.rnx", sp3, points=points)
+    with pytest.raises(ValueError, match=r"points=30 exceeds the 17 epochs of the SP3 files"):
+        correct_rinex(source, tmp_path / "b.rnx", sp3, points=30)
+    with pytest.raises(TypeError, match=r"points must be a whole number of epochs \(int\)"):
+        correct_rinex(source, tmp_path / "b.rnx", sp3, points=7.5)
+    # The shipped four-epoch sample cannot be interpolated well at 15 minutes.
+    with pytest.raises(ValueError, match=r"the SP3 files have 4 epochs at 900 s; interpolating "
+                                         r"their orbits within 1e-4 cycle of wind-up needs 7 "
+                                         r"points: give SP3 files of a longer span"):
+        correct_rinex(source, tmp_path / "b.rnx", sample_file("sample.sp3"))
+    assert not (tmp_path / "b.rnx").exists()
 
 
 # -- bad input ---------------------------------------------------------------------------
@@ -332,13 +399,58 @@ def test_more_observations_than_declared(tmp_path):
 
 
 def test_sp3_not_covering(tmp_path, sp3):
-    source = _rinex(tmp_path / "a.rnx", epochs=10, start=START + 5 * u.h)
-    with pytest.raises(ValueError, match=r"the SP3 files cover 2023-01-25T00:00:19.000 to "
-                                         r"2023-01-25T04:00:19.000 TAI, but .* has observations "
-                                         r"at 2023-01-25T05:00:19.000 TAI \(line 12\); give the "
-                                         r"SP3 files"):
-        correct_rinex(source, tmp_path / "b.rnx", sp3)
-    assert not (tmp_path / "b.rnx").exists()
+    """Epochs beyond the SP3 files: extrapolated up to one interval, untouched beyond.
+
+    RTKLIB extrapolates precise orbits up to 900 s (MAXDTE, pephpos); further
+    out the epochs are left as read and counted, never the whole file refused.
+    """
+    source = _rinex(tmp_path / "a.rnx", epochs=62, start=START + 3.75 * u.h)  # 03:45-04:15:30
+    with pytest.warns(OrbitWarning) as caught:
+        report = correct_rinex(source, tmp_path / "b.rnx", sp3)
+    messages = [str(w.message) for w in caught]
+    assert len(messages) == 2
+    assert messages[0] == (
+        "30 epochs (2023-01-25T04:00:49.000 to 2023-01-25T04:15:19.000 TAI) lie up to 900 s "
+        "(one SP3 interval) outside the SP3 files (2023-01-25T00:00:19.000 to "
+        "2023-01-25T04:00:19.000): their orbits are extrapolated, as RTKLIB does; give "
+        "*_20230250000_01D_*_ORB.SP3 to interpolate them")
+    assert messages[1].startswith(
+        "1 epochs (2023-01-25T04:15:49.000 to 2023-01-25T04:15:49.000 TAI) lie more than 900 s "
+        "outside the SP3 files")
+    assert messages[1].endswith("their phases are left untouched; give "
+                                "*_20230250000_01D_*_ORB.SP3")
+    assert report.untouched_epochs == 1 and report.extrapolated_epochs == 30
+    before, after = _phases(source), _phases(tmp_path / "b.rnx")
+    assert all(before[61, s] == after[61, s] for s in constellation(START, COUNTS))
+    assert all(before[60, s] != after[60, s] for s in constellation(START, COUNTS))
+    # The extrapolated wind-up against the same orbits in a longer file (interpolated).
+    longer = tmp_path / "longer.sp3"
+    write_sp3(longer, constellation(START, COUNTS), START, 19)
+    correct_rinex(source, tmp_path / "c.rnx", longer)
+    reference = _phases(tmp_path / "c.rnx")
+    diff = np.concatenate([np.subtract(after[t, s], reference[t, s]) for t in range(31, 61)
+                           for s in constellation(START, COUNTS)])
+    assert np.max(np.abs(diff)) <= 2e-3  # F14.3 rounding of the two files
+    # A file wholly outside: every epoch untouched, the file still written.
+    late = _rinex(tmp_path / "late.rnx", epochs=10, start=START + 5 * u.h)
+    with pytest.warns(OrbitWarning, match=r"^10 epochs \(2023-01-25T05:00:19.000 to "
+                                          r"2023-01-25T05:04:49.000 TAI\) lie more than 900 s"):
+        report = correct_rinex(late, tmp_path / "d.rnx", sp3)
+    assert report.phases == 0 and report.untouched_epochs == 10
+    assert "NO PHASE CORRECTED" in (tmp_path / "d.rnx").read_text()
+
+
+def test_next_day_file_named(tmp_path, orbits):
+    """A full day at 15 minutes ends at 23:45: the message names the next day's product."""
+    day = tmp_path / "GRG0MGXFIN_20230250000_01D_15M_ORB.SP3"
+    write_sp3(day, orbits, START + 20 * u.h, 16)  # 20:00 to 23:45 GPS
+    source = _rinex(tmp_path / "a.rnx", epochs=40, start=START + 23.7 * u.h)  # to 00:01:30
+    with pytest.warns(OrbitWarning) as caught:
+        report = correct_rinex(source, tmp_path / "b.rnx", day)
+    assert [str(w.message).rsplit(" give ", 1)[1] for w in caught] == [
+        "GRG0MGXFIN_20230260000_01D_15M_ORB.SP3 to interpolate them",
+        "GRG0MGXFIN_20230260000_01D_15M_ORB.SP3"]
+    assert report.untouched_epochs == 3 and report.extrapolated_epochs == 30
 
 
 def test_prn_absent_from_orbit(tmp_path, sp3):
@@ -402,11 +514,14 @@ def test_model_attitude(tmp_path, sp3, orbits):
     path = tmp_path / "named.sp3"
     write_sp3(path, named, START, 17)
     source = _rinex(tmp_path / "a.rnx", epochs=120, sats=list(named))
-    with pytest.warns(OrbitWarning, match=r"C59: no yaw model for its block BDS-3G"):
+    # Satellites without a yaw law get nominal yaw, named in one warning (issue 26).
+    with pytest.warns(OrbitWarning, match=r"^no yaw model for C59 \(block BDS-3G\): nominal "
+                                          r"yaw used for them$"):
         report = correct_rinex(source, tmp_path / "model.rnx", path, attitude="model")
-    assert list(report.untouched) == ["C59"]
+    assert report.untouched == {}
     correct_rinex(source, tmp_path / "nominal.rnx", path)
     model, nominal = _phases(tmp_path / "model.rnx"), _phases(tmp_path / "nominal.rnx")
+    assert all(model[t, "C59"] == nominal[t, "C59"] for t in range(120))
     times = START + 3600 * u.s + np.arange(120) * 30 * u.s
     sun = sun_position(times)
     for prn, orbit in named.items():

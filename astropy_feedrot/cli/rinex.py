@@ -14,7 +14,7 @@ from ..outputs import TABLE_FORMATS, CommandError, check_outputs, table_format, 
 from ..outputs import write_files
 from .common import add_units_option, examples, in_units, one_line, parse_quantity, read_path
 
-__all__ = ["EXAMPLES", "register"]
+__all__ = ["EXAMPLES", "register", "summary"]
 
 #: Examples of ``feedrot rinex``, one command line each (the tests run them with the
 #: package's GNSS samples under these names).
@@ -74,11 +74,35 @@ def _run_rinex(args):
         windup = in_units(report.windup, args.units, ["windup"])
         write_files([(table, table_writer(windup, table_format(table)))],
                     overwrite=args.overwrite)
-    satellites = f", {len(report.untouched)} satellites untouched" if report.untouched else ""
-    print(f"feedrot: {report.output}: {report.phases} carrier phases of {report.observations} "
-          f"observations at {report.epochs} epochs corrected, {report.arcs} arcs{satellites}",
-          file=sys.stderr)
+    print(f"feedrot: {report.output}: {summary(report)}", file=sys.stderr)
     return 0
+
+
+def _count(n, what):
+    return f"{n} {what}{'' if n == 1 else 's'}"
+
+
+def summary(report):
+    """The summary line of a `~astropy_feedrot.gnss.RinexCorrection`.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.gnss import RinexCorrection
+    >>> from astropy_feedrot.cli.rinex import summary
+    >>> summary(RinexCorrection("out.rnx", 2, 6, 12, 1, {"G07": "not in the SP3 files"},
+    ...                         None, 1, 0))
+    '12 carrier phases of 6 observations at 2 epochs corrected, 1 arc, 1 epoch untouched, \
+1 satellite untouched'
+    """
+    parts = [f"{_count(report.phases, 'carrier phase')} of "
+             f"{_count(report.observations, 'observation')} at {_count(report.epochs, 'epoch')} "
+             f"corrected", _count(report.arcs, "arc")]
+    if report.extrapolated_epochs:
+        parts.append(f"{_count(report.extrapolated_epochs, 'epoch')} of orbits extrapolated")
+    parts.append(f"{_count(report.untouched_epochs, 'epoch')} untouched")
+    if report.untouched:
+        parts.append(f"{_count(len(report.untouched), 'satellite')} untouched")
+    return ", ".join(parts)
 
 
 def register(commands):
@@ -89,10 +113,12 @@ def register(commands):
         "or Hatanaka-compressed) with the carrier-phase wind-up of every satellite (GPS, "
         "GLONASS, Galileo, BeiDou, QZSS, NavIC; PRNs as G05, E11) subtracted from every "
         "carrier phase (L) of it: the RHCP wind-up in cycles, the same at every frequency "
-        "(L_corrected = L - windup), continuous along each satellite's arc (a new arc after "
-        "a gap or a loss-of-lock flag), the receiver turned by the header's ANTENNA: ZERODIR "
-        "AZI. Every other byte of the file is kept; one COMMENT line says what was applied. "
-        "Satellites without an orbit or attitude are left untouched and listed once.",
+        "(L_corrected = L - windup), continuous along each satellite's arc through loss-of-"
+        "lock flags (a new arc only after a gap longer than --max-gap), the receiver turned "
+        "by the header's ANTENNA: ZERODIR AZI (and by events that change it). Every other "
+        "byte of the file is kept; two COMMENT lines say what was applied. Epochs up to one "
+        "SP3 interval (900 s at most) beyond the SP3 files get extrapolated orbits; further "
+        "ones, and satellites without an orbit or attitude, are left untouched and counted.",
         epilog=examples(EXAMPLES),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     rinex.add_argument("obs", metavar="OBS", help="the RINEX observation file")
@@ -110,10 +136,12 @@ def register(commands):
     rinex.add_argument("-o", "--output", required=True, metavar="OUT",
                        help="the corrected copy (.gz: gzip-compressed); never the input")
     rinex.add_argument("--max-gap", default="300s", metavar="DURATION",
-                       help="a longer gap starts a new arc (default 300s)")
+                       help="a longer gap starts a new arc (default 300s; compared with a "
+                       "tolerance of half the sampling interval)")
     rinex.add_argument("--points", type=int, metavar="N",
-                       help="points of the orbit interpolation (default 10, or all epochs of "
-                       "shorter SP3 files)")
+                       help="points of the orbit interpolation (default 10); fewer than the "
+                       "orbits' sampling needs for 1e-4 cycle (7 at 15 min, 5 at 5 min for "
+                       "GPS) are refused")
     rinex.add_argument("--position", metavar="X,Y,Z",
                        help="the antenna's ITRS position in metres (default APPROX POSITION "
                        "XYZ of the header)")

@@ -20,13 +20,15 @@ Conventions
   measured phase") and as RTKLIB and the IGS models apply it (with their
   own constants: see :doc:`/gnss`).
 * An arc is a run of epochs of one satellite without a gap longer than
-  ``max_gap``, a loss-of-lock indicator (bit 0 of the LLI) on one of its
-  phases, or an epoch flagged 1 (power failure). Within an arc the wind-up
-  is continuous (Eq 9); an arc starts at the principal value, in
-  [-0.5, 0.5) cycles.
+  ``max_gap`` (`~astropy_feedrot.gnss.arcs.Arcs`): the wind-up is kept
+  continuous (Eq 9) through loss-of-lock flags, power failures and events,
+  as RTKLIB keeps its ``phw``; an arc starts at the principal value, in
+  [-0.5, 0.5) cycles, the same for every phase of the satellite.
 """
 
 import os
+import shutil
+import tempfile
 import warnings
 from pathlib import Path
 from typing import NamedTuple
@@ -52,7 +54,9 @@ from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
 from ..io.sp3 import join_sp3
 from ..orbits import Orbit, SP3Orbit
 from ..outputs import same_file, write_files
+from ..sp3_orbit import MAX_EXTRAPOLATION, points_needed
 from ..yaw_models import LAWS, ModelAttitude, default_metadata
+from .arcs import Arcs, orbit_file_name
 from .rinex import RinexReader, record_times
 from .streams import RinexWriter
 
@@ -89,6 +93,12 @@ class RinexCorrection(NamedTuple):
         With ``table=True``: columns ``time`` (`~astropy.time.Time`), ``prn``
         and ``windup`` (`~astropy.units.Quantity` in cycles, as removed), one
         row per epoch and satellite in the order of the file.
+    untouched_epochs : int
+        Epochs outside the SP3 files (beyond what is extrapolated), whose
+        phases were left as they were.
+    extrapolated_epochs : int
+        Epochs up to one SP3 interval (at most 900 s) outside the SP3 files,
+        whose orbits were extrapolated.
 
     Examples
     --------
@@ -104,6 +114,8 @@ class RinexCorrection(NamedTuple):
     arcs: int
     untouched: dict
     windup: QTable = None
+    untouched_epochs: int = 0
+    extrapolated_epochs: int = 0
 
 
 def receiver_axes(xyz, zero_direction=0.0):
@@ -199,16 +211,22 @@ def join_orbex(sources, frame=None):
 
 
 class _Satellites:
-    """The orbit and attitude of each PRN, made on first use; why a PRN has none."""
+    """The orbit and attitude of each PRN, made on first use; why a PRN has none.
 
-    def __init__(self, sp3, orbex, attitude, points, metadata=None):
+    Under ``attitude='model'``, a PRN whose block has no yaw law (or that the
+    metadata does not know) gets nominal yaw, and is listed in ``nominal``.
+    """
+
+    def __init__(self, sp3, orbex, attitude, points, metadata=None, extrapolate=0.0):
         self.metadata = metadata
         self.sp3 = sp3
         self.orbex = orbex
         self.attitude = attitude
         self.points = points
+        self.extrapolate = extrapolate
         self.models = {}
         self.why = {}
+        self.nominal = {}
 
     def get(self, prn):
         if prn in self.models:
@@ -220,29 +238,29 @@ class _Satellites:
             self.why[prn] = "no attitude in the ORBEX files"
         else:
             try:
-                orbit = SP3Orbit(self.sp3, prn, points=self.points)
+                orbit = SP3Orbit(self.sp3, prn, points=self.points,
+                                 extrapolate=self.extrapolate)
             except ValueError as error:
                 self.why[prn] = f"no usable orbit ({error})"
             else:
-                if self.attitude == "nominal":
-                    att = NominalAttitude()
-                elif self.attitude == "orbex":
-                    att = self.orbex[prn]
-                else:
-                    att = None
-                    try:
-                        block = self.metadata.block(prn, self.sp3.epochs[0])
-                    except ValueError:
-                        self.why[prn] = "not in the satellite metadata on that date"
-                    else:
-                        if block in LAWS:
-                            att = ModelAttitude.from_metadata(orbit, prn, self.sp3.epochs[0],
-                                                              self.metadata)
-                        else:
-                            self.why[prn] = f"no yaw model for its block {block}"
-                model = None if att is None else (orbit, att)
+                model = (orbit, self.attitude_of(prn, orbit))
         self.models[prn] = model
         return model
+
+    def attitude_of(self, prn, orbit):
+        if self.attitude == "nominal":
+            return NominalAttitude()
+        if self.attitude == "orbex":
+            return self.orbex[prn]
+        try:
+            block = self.metadata.block(prn, self.sp3.epochs[0])
+        except ValueError:
+            self.nominal[prn] = "not in the satellite metadata on that date"
+            return NominalAttitude()
+        if block not in LAWS:
+            self.nominal[prn] = f"block {block}"
+            return NominalAttitude()
+        return ModelAttitude.from_metadata(orbit, prn, self.sp3.epochs[0], self.metadata)
 
 
 def _dipoles(attitudes, times, positions, orientation):
@@ -268,48 +286,6 @@ def _dipoles(attitudes, times, positions, orientation):
             a, t = attitude.dipoles(times[inside], positions[i, inside])
             aligned[i, inside], transverse[i, inside] = a, t
     return aligned, transverse
-
-
-class _Continuity:
-    """Eq 9 along each satellite's arcs, across blocks of epochs."""
-
-    def __init__(self, max_gap):
-        self.max_gap = max_gap
-        self.last = {}  # prn -> (seconds, wrapped cycles, whole cycles)
-        self.arcs = 0
-
-    def apply(self, prns, seconds, wrapped, restart):
-        """Continuous wind-up (cycles) of rows given in time order per PRN.
-
-        ``prns`` (R,) object array, ``seconds`` (R,), ``wrapped`` (R,) in
-        [-0.5, 0.5), ``restart`` (R,) bool: a new arc starts at the row.
-        """
-        order = np.lexsort((seconds, prns))
-        p, t, w, r = prns[order], seconds[order], wrapped[order], restart[order]
-        first = np.r_[True, p[1:] != p[:-1]]
-        prev_t = np.r_[np.nan, t[:-1]]
-        prev_w = np.r_[np.nan, w[:-1]]
-        carried = np.zeros(len(p))
-        if len(p):
-            for k in np.flatnonzero(first):
-                state = self.last.get(p[k])
-                if state is None:
-                    prev_t[k], prev_w[k] = -np.inf, np.nan
-                else:
-                    prev_t[k], prev_w[k], carried[k] = state
-        new = r | (t - prev_t > self.max_gap) | np.isnan(prev_w)
-        step = np.where(new, 0.0, np.rint(prev_w - w) + np.where(first, carried, 0.0))
-        start = new | first
-        total = np.cumsum(step)
-        begin = np.maximum.accumulate(np.where(start, np.arange(len(p)), 0))
-        whole = total - total[begin] + step[begin]
-        self.arcs += int(np.count_nonzero(new))
-        last = np.r_[p[1:] != p[:-1], True] if len(p) else np.zeros(0, bool)
-        for k in np.flatnonzero(last):
-            self.last[p[k]] = (t[k], w[k], whole[k])
-        out = np.empty(len(p))
-        out[order] = w + whole
-        return out
 
 
 def _check_output(source, output, overwrite):
@@ -449,41 +425,46 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     max_gap = u.Quantity(max_gap, u.s).to_value(u.s)
     path = _check_output(source, output, overwrite)
     orbits = join_sp3(sp3_files)
-    if points is None:
-        points = min(10, len(orbits.epochs))
+    points = _check_points(points, orbits)
+    margin = min(orbits.interval, MAX_EXTRAPOLATION)
     attitudes = join_orbex(orbex_files) if attitude == "orbex" else {}
     if attitude == "model":
         if metadata is None:
             metadata = default_metadata()
         elif not isinstance(metadata, SatelliteMetadata):
             metadata = read_satellite_metadata(metadata)
-    satellites = _Satellites(orbits, attitudes, attitude, points, metadata)
+    satellites = _Satellites(orbits, attitudes, attitude, points, metadata, margin)
     report = {}
 
     def write(name):
-        with RinexReader(source) as reader, RinexWriter(name) as writer:
+        with RinexReader(source) as reader, tempfile.TemporaryFile(
+                "w+", encoding="latin-1", newline="", dir=path.parent) as body:
             header = reader.header
             xyz = header.position if position is None else np.asarray(position, dtype=float)
             if xyz is None:
                 raise ValueError(f"{reader.name}: the header gives no APPROX POSITION XYZ; "
                                  "pass the antenna's position (position=[x, y, z] in metres)")
-            axes = receiver_axes(xyz, header.zero_direction)
-            writer.write_header(header, f"L - WIND-UP (CYCLES, RHCP, {attitude.upper()} ATTITUDE) "
-                                "astropy_feedrot")
-            state = _Block(header, xyz, axes, orbits, satellites, _Continuity(max_gap), form)
+            state = _Block(header, xyz, orbits, satellites, Arcs(max_gap, header.interval),
+                           form, margin, reader.name)
             state.rows = [] if table else None
+            out = RinexWriter(body)
             block, epochs = [], 0
             for record in reader:
                 block.append(record)
                 epochs += record.observations
-                if epochs >= BLOCK_EPOCHS:
-                    state.correct(block, reader.name)
-                    for record in block:
-                        writer.write_record(record)
+                if epochs >= BLOCK_EPOCHS or reader.header is not state.header:
+                    state.correct(block)
+                    for done in block:
+                        out.write_record(done)
                     block, epochs = [], 0
-            state.correct(block, reader.name)
-            for record in block:
-                writer.write_record(record)
+                    state.use(reader.header)
+            state.correct(block)
+            for done in block:
+                out.write_record(done)
+            body.seek(0)
+            with RinexWriter(name) as writer:
+                writer.write_header(header, _comments(attitude, state.totals))
+                shutil.copyfileobj(body, writer.file, 1 << 20)
         report.update(state.totals)
         report["rows"] = state.rows
 
@@ -491,6 +472,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         warnings.simplefilter("ignore", OrbitWarning)
         warnings.simplefilter("ignore", DegenerateGeometryWarning)
         write_files([(path, write)], overwrite=overwrite)
+    _warn(report, satellites, orbits, sp3_files, margin)
     untouched = dict(satellites.why)
     for prn, count in report["gaps"].items():
         untouched.setdefault(prn, f"{count} epochs in holes of the orbit, outside the attitude "
@@ -513,59 +495,151 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         windup.meta.update({"file": str(getattr(source, "name", source)), "attitude": attitude,
                             "form": form, "polarization": "RCP"})
     return RinexCorrection(path, report["epochs"], report["observations"], report["phases"],
-                           report["arcs"], untouched, windup)
+                           report["arcs"], untouched, windup, report["outside"][0],
+                           report["extrapolated"][0])
+
+
+def _check_points(points, orbits):
+    """The interpolation points, refused before any work if too few for the orbits' sampling."""
+    epochs = len(orbits.epochs)
+    radii = [np.nanmin(np.linalg.norm(xyz, axis=-1)) for xyz in orbits.positions.values()
+             if np.any(np.isfinite(xyz))]
+    needed = points_needed(orbits.interval, min(radii) if radii else 20e6)
+    if points is None:
+        points = min(10, epochs)
+        if points < needed:
+            raise ValueError(f"the SP3 files have {epochs} epochs at {orbits.interval:g} s; "
+                             f"interpolating their orbits within 1e-4 cycle of wind-up needs "
+                             f"{needed} points: give SP3 files of a longer span")
+        return max(points, needed)
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)):
+        raise TypeError(f"points must be a whole number of epochs (int), got {points!r}")
+    if points < needed:
+        raise ValueError(f"points={points} is too few for SP3 orbits at {orbits.interval:g} s: "
+                         f"interpolating them within 1e-4 cycle of wind-up needs at least "
+                         f"{needed} points (default 10)")
+    if points > epochs:
+        raise ValueError(f"points={points} exceeds the {epochs} epochs of the SP3 files; give "
+                         f"{needed} to {epochs} points or SP3 files of a longer span")
+    return int(points)
+
+
+def _comments(attitude, totals):
+    """The COMMENT lines of the corrected file: what was done, and only that."""
+    kind = {"nominal": "NOMINAL YAW", "model": "YAW MODELS", "orbex": "ORBEX ATTITUDE"}[attitude]
+    corrected = len(totals["satellites"])
+    if not totals["phases"]:
+        return ["astropy_feedrot: NO PHASE CORRECTED (NO ORBIT OR ATTITUDE)"]
+    sats = f"{corrected} SATELLITE{'' if corrected == 1 else 'S'}"
+    return [f"astropy_feedrot: L - WIND-UP (CYCLES, RHCP, {kind})",
+            f"WIND-UP REMOVED FROM {totals['phases']} PHASES OF {sats}"]
+
+
+def _gps_day(time):
+    """``time`` shifted to the GPS-time calendar (as TAI - 19 s), for file names."""
+    return Time(time.tai.jd1, time.tai.jd2 - 19.0 / 86400, format="jd", scale="tai")
+
+
+def _warn(report, satellites, orbits, sp3_files, margin):
+    """The warnings of a correction: once each, after the file is written."""
+    if satellites.nominal:
+        listed = ", ".join(f"{prn} ({why})" for prn, why in sorted(satellites.nominal.items()))
+        warn_caller(f"no yaw model for {listed}: nominal yaw used for them", OrbitWarning)
+    names = [str(getattr(f, "name", f)) for f in sp3_files]
+    first, last = orbits.epochs[0], orbits.epochs[-1]
+    scale = first.scale.upper()
+    for key, what in (("extrapolated", "extrapolated"), ("outside", "untouched")):
+        count, (early, late), after = report[key]
+        if not count:
+            continue
+        day = last + orbits.interval * u.s if after else first - orbits.interval * u.s
+        missing = orbit_file_name(names, _gps_day(day))
+        span = f"{count} epochs ({early.isot} to {late.isot} {scale})"
+        if what == "extrapolated":
+            warn_caller(f"{span} lie up to {margin:g} s (one SP3 interval) outside the SP3 "
+                        f"files ({first.isot} to {last.isot}): their orbits are extrapolated, "
+                        f"as RTKLIB does; give {missing} to interpolate them", OrbitWarning)
+        else:
+            warn_caller(f"{span} lie more than {margin:g} s outside the SP3 files "
+                        f"({first.isot} to {last.isot}): their phases are left untouched; "
+                        f"give {missing}", OrbitWarning)
 
 
 class _Block:
     """Correct blocks of epoch records, carrying the arcs from block to block."""
 
-    def __init__(self, header, xyz, axes, orbits, satellites, continuity, form):
+    def __init__(self, header, xyz, orbits, satellites, arcs, form, margin, name):
         self.form = form
-        self.header = header
-        self.xyz = np.asarray(xyz, dtype=float)
-        self.axes = axes
+        self.name = name
         self.orbits = orbits
         self.satellites = satellites
-        self.continuity = continuity
-        self.fields = {code: header.phase_fields(code) for code in header.obs_types}
-        self.totals = {"epochs": 0, "observations": 0, "phases": 0, "arcs": 0, "gaps": {}}
+        self.arcs = arcs
+        self.margin = margin
+        self.xyz = np.asarray(xyz, dtype=float)
+        self.header = None
+        self.use(header)
+        self.totals = {"epochs": 0, "observations": 0, "phases": 0, "arcs": 0, "gaps": {},
+                       "satellites": set(), "outside": [0, (None, None), True],
+                       "extrapolated": [0, (None, None), True]}
         self.rows = None
         self.first = orbits.epochs[0]
         self.span = (orbits.epochs[-1] - self.first).sec
 
-    def correct(self, block, name):
+    def use(self, header):
+        """Take the header in effect from now on (events of flags 3 and 4 change it)."""
+        if header is self.header:
+            return
+        if self.header is not None and header.position is not None:
+            self.xyz = header.position
+        self.header = header
+        self.axes = receiver_axes(self.xyz, header.zero_direction)
+        self.fields = {code: header.phase_fields(code) for code in header.obs_types}
+
+    def count(self, key, times, mask, after):
+        """Count the epochs of ``mask`` under ``key``, keeping the first and last."""
+        if not np.any(mask):
+            return
+        total = self.totals[key]
+        chosen = times[mask]
+        early, late = total[1]
+        total[0] += int(np.count_nonzero(mask))
+        total[1] = (chosen[0] if early is None else early, chosen[-1])
+        total[2] = after
+
+    def correct(self, block):
         data = [record for record in block if record.observations]
         if not data:
             return
+        self.totals["epochs"] += len(data)
+        self.totals["observations"] += sum(len(record.satellites) for record in data)
         times = record_times(data, self.header.time_system)
         seconds = np.asarray((times - self.first).sec, dtype=float)
-        outside = (seconds < -1e-6) | (seconds > self.span + 1e-6)
-        if np.any(outside):
-            k = int(np.argmax(outside))
-            raise ValueError(
-                f"the SP3 files cover {self.first.isot} to {self.orbits.epochs[-1].isot} "
-                f"{self.first.scale.upper()}, but {name} has observations at "
-                f"{times[k].isot} {times.scale.upper()} (line {data[k].lineno}); give the SP3 "
-                "files of every day the observations span")
+        tol = 1e-6
+        before, after = seconds < -tol, seconds > self.span + tol
+        inside = (seconds >= -self.margin - tol) & (seconds <= self.span + self.margin + tol)
+        self.count("outside", times, ~inside, bool(np.any(after & ~inside)))
+        self.count("extrapolated", times, inside & (before | after), bool(np.any(after)))
+        if not np.all(inside):
+            data = [record for record, ok in zip(data, inside) if ok]
+            times, seconds = times[inside], seconds[inside]
+            if not data:
+                return
         # Rows: one per satellite observation with an orbit and an attitude.
         prns = sorted({sat for record in data for sat in record.satellites})
         models = {prn: self.satellites.get(prn) for prn in prns}
         usable = [prn for prn in prns if models[prn] is not None]
         column = {prn: j for j, prn in enumerate(usable)}
-        rows_t, rows_s, rows_new, where = [], [], [], []
+        rows_t, rows_s, where = [], [], []
         for t, record in enumerate(data):
             for i, sat in enumerate(record.satellites):
-                self.totals["observations"] += 1
                 j = column.get(sat)
                 if j is None:
                     continue
                 fields = self.fields[sat[0]]
-                values, lost = record.phases(i, fields)
+                values, _ = record.phases(i, fields, self.name)
                 rows_t.append(t)
                 rows_s.append(j)
-                rows_new.append(lost or record.flag == 1)
                 where.append((record, i, fields, values))
-        self.totals["epochs"] += len(data)
         if not usable or not rows_t:
             return
         orbits = [models[prn][0] for prn in usable]
@@ -585,15 +659,18 @@ class _Block:
                 gaps = self.totals["gaps"]
                 gaps[usable[j]] = gaps.get(usable[j], 0) + int(count)
         names = np.array(usable, dtype=object)[rows_s[good]]
-        total = self.continuity.apply(names, seconds[rows_t[good]], wrapped[good],
-                                      np.asarray(rows_new, dtype=bool)[good])
-        self.totals["arcs"] = self.continuity.arcs
+        total = self.arcs.apply(names, seconds[rows_t[good]], wrapped[good])
+        self.totals["arcs"] = self.arcs.arcs
         if self.rows is not None:
             tai = times.tai
             index = rows_t[good]  # rows are in the file's order
             self.rows.append((tai.jd1[index], tai.jd2[index], names, total))
         changed = 0
         kept = (w for w, g in zip(where, good) if g)
+        done = self.totals["satellites"]
         for (record, i, fields, values), cycles in zip(kept, total):
-            changed += record.subtract(i, fields, values, cycles)
+            n = record.subtract(i, fields, values, cycles)
+            if n:
+                done.add(record.satellites[i])
+            changed += n
         self.totals["phases"] += changed

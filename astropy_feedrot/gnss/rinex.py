@@ -38,6 +38,7 @@ astropy_feedrot[gnss]``), streamed through a pipe.
 
 import contextlib
 import dataclasses
+import zlib
 
 import numpy as np
 
@@ -281,7 +282,7 @@ class EpochRecord:
         flag = self._field(i, line, col)[_VALUE:_VALUE + 1]
         return int(flag) if flag.strip() else 0
 
-    def phases(self, i, fields):
+    def phases(self, i, fields, name="<stream>"):
         """The values of fields of satellite ``i`` and whether one has lost lock.
 
         Parameters
@@ -290,13 +291,22 @@ class EpochRecord:
             The satellite's index in `satellites`.
         fields : list of (int, int, str)
             As `RinexHeader.phase_fields` gives them.
+        name : str, optional
+            The file's name, for the message of an unreadable value.
 
         Returns
         -------
         values : list of float or None
-            None where a field is blank.
+            None where a field is missing: blank, or ``0.000`` (RINEX's
+            spelling of a phase not measured).
         lost : bool
             Whether bit 0 of a field's loss-of-lock indicator is set.
+
+        Raises
+        ------
+        astropy_feedrot.io.FileFormatError
+            If a value is not an F14.3 number (an overflow written as
+            ``**************``, for instance), naming the file and line.
 
         Examples
         --------
@@ -304,10 +314,24 @@ class EpochRecord:
         """
         values, lost = [], False
         start = self.starts[i]
-        for line, col, _ in fields:
+        for line, col, code in fields:
             text = self.lines[start + line]
             field = text[col:col + _VALUE]
-            values.append(float(field) if field.strip() else None)
+            value = None
+            if field.strip():
+                try:
+                    value = float(field)
+                except ValueError:
+                    value = np.nan
+                if not np.isfinite(value):
+                    raise FileFormatError(
+                        name, self.lineno + start + line,
+                        f"a carrier phase {code} of {self.satellites[i]} as an F14.3 number "
+                        f"in columns {col + 1}-{col + _VALUE} (blank or 0.000 if missing)",
+                        text.rstrip("\r\n"))
+                if value == 0.0:
+                    value = None
+            values.append(value)
             flag = text[col + _VALUE:col + _VALUE + 1]
             if flag.isdigit() and int(flag) & 1:
                 lost = True
@@ -450,11 +474,20 @@ class RinexReader:
 
     # -- lines -------------------------------------------------------------------------
 
+    def _read(self):
+        """The next line, or None at the end; a broken compressed stream is a FileFormatError."""
+        try:
+            return next(self._lines, None)
+        except (EOFError, OSError, zlib.error) as error:
+            raise FileFormatError(self.name, self.lineno + 1, "a complete compressed file "
+                                  "(gzip or Compact RINEX) that decompresses",
+                                  f"{type(error).__name__}: {error}") from None
+
     def _next(self, expected):
-        line = next(self._lines, None)
+        line = self._read()
         if line is None:
             if self._pipe is not None:
-                self._pipe.check()
+                self._pipe.check(self.lineno + 1)
             raise FileFormatError(self.name, self.lineno + 1, expected
                                   + " (the file is cut short)", None)
         self.lineno += 1
@@ -496,6 +529,8 @@ class RinexReader:
             elif label == "ANTENNA: ZERODIR AZI":
                 fields["zero_direction"] = float(self._numbers(line, 1, 14, "an azimuth "
                                                                "(F14.4, degrees)")[0])
+            elif label == "ANTENNA: ZERODIR XYZ":
+                self._zero_xyz(line)
             elif label == "INTERVAL":
                 fields["interval"] = float(self._numbers(line, 1, 10, "F10.3 seconds")[0])
             elif label in ("TIME OF FIRST OBS", "TIME OF LAST OBS"):
@@ -517,11 +552,52 @@ class RinexReader:
         fields.setdefault("time_system", _DEFAULT_TIME_SYSTEM.get(system, "GPS"))
         return RinexHeader(self.name, version, major, system, tuple(lines), **fields)
 
-    def _numbers(self, line, count, width, what):
+    def _numbers(self, line, count, width, what, lineno=None):
         try:
             return np.array([float(line[i * width:(i + 1) * width]) for i in range(count)])
         except ValueError:
-            raise self._error(what, line) from None
+            raise self._error(what, line, lineno) from None
+
+    def _zero_xyz(self, line, lineno=None):
+        xyz = self._numbers(line, 3, 14, "three components (3F14.4)", lineno)
+        if np.any(xyz):
+            raise ValueError(
+                f"{self.name}, line {lineno or self.lineno}: ANTENNA: ZERODIR XYZ gives the zero "
+                "direction of a vehicle's antenna in the vehicle's body frame, which needs its "
+                "attitude; only fixed antennas (ANTENNA: ZERODIR AZI) are corrected")
+
+    def _header_change(self, record):
+        """Apply the header records of an event (flags 3 and 4) to `header`.
+
+        New observation types (``# / TYPES OF OBSERV``, ``SYS / # / OBS
+        TYPES``) change how the following records are read; a new ``APPROX
+        POSITION XYZ`` or ``ANTENNA: ZERODIR AZI`` changes the receiver of the
+        wind-up from the next epoch on.
+        """
+        changes, obs_types, pending = {}, None, None
+        header = self.header
+        for k, line in enumerate(record.lines[1:], start=1):
+            label = line[60:80].strip()
+            lineno = record.lineno + k
+            if label in ("SYS / # / OBS TYPES", "# / TYPES OF OBSERV"):
+                if obs_types is None:
+                    obs_types = dict(header.obs_types)
+                pending = self._obs_types(line, label, pending, obs_types, header.system, lineno)
+            elif label == "APPROX POSITION XYZ":
+                xyz = self._numbers(line, 3, 14, "three coordinates (3F14.4)", lineno)
+                changes["position"] = None if not np.any(xyz) else xyz
+            elif label == "ANTENNA: ZERODIR AZI":
+                changes["zero_direction"] = float(self._numbers(
+                    line, 1, 14, "an azimuth (F14.4, degrees)", lineno)[0])
+            elif label == "ANTENNA: ZERODIR XYZ":
+                self._zero_xyz(line, lineno)
+        if pending is not None and len(pending[2]) < pending[1]:
+            raise self._error(f"{pending[1]} observation types ({len(pending[2])} given) in the "
+                              f"event record of line {record.lineno}", record.lines[-1])
+        if obs_types is not None:
+            changes["obs_types"] = obs_types
+        if changes:
+            self.header = dataclasses.replace(header, **changes)
 
     def _calendar(self, fields, line, time_system):
         epoch = check_epoch(fields, time_system)
@@ -529,12 +605,13 @@ class RinexReader:
             raise self._error("a date and time 'yyyy mm dd hh mm ss.sssssss'", line)
         return epoch
 
-    def _obs_types(self, line, label, pending, obs_types, file_system):
+    def _obs_types(self, line, label, pending, obs_types, file_system, lineno=None):
         if label == "# / TYPES OF OBSERV":
             if pending is None or len(pending[2]) >= pending[1]:
                 count = line[:6].strip()
                 if not count.isdigit():
-                    raise self._error("the number of observation types in columns 1-6", line)
+                    raise self._error("the number of observation types in columns 1-6", line,
+                                      lineno)
                 pending = (None, int(count), [])
             pending[2].extend(line[6:60].split())
             if len(pending[2]) >= pending[1]:
@@ -545,12 +622,13 @@ class RinexReader:
         head = line[:6]
         if head.strip() == "":  # continuation line
             if pending is None:
-                raise self._error("a system code and a number of types in columns 1-6", line)
+                raise self._error("a system code and a number of types in columns 1-6", line,
+                                  lineno)
         else:
             code, count = head[0], head[3:6].strip()
             if code not in SYSTEMS or not count.isdigit():
                 raise self._error("a system code (G, R, E, C, J, I, S) in column 1 and a "
-                                  "number of types in columns 4-6", line)
+                                  "number of types in columns 4-6", line, lineno)
             pending = (code, int(count), [])
         pending[2].extend(line[7:60].split())
         if len(pending[2]) >= pending[1]:
@@ -563,10 +641,10 @@ class RinexReader:
         header = self.header
         parse = self._record_3 if header.major > 2 else self._record_2
         while True:
-            line = next(self._lines, None)
+            line = self._read()
             if line is None:
                 if self._pipe is not None:
-                    self._pipe.check()
+                    self._pipe.check(self.lineno + 1)
                 return
             self.lineno += 1
             if not line.strip():  # a blank line (at the end): kept as it is
@@ -617,6 +695,8 @@ class RinexReader:
         record = EpochRecord(lineno, [line], flag, epoch)
         if flag in (2, 3, 4, 5):
             self._events(record, count)
+            if flag in (3, 4):
+                self._header_change(record)
             return record
         sats = []
         for _ in range(count):
@@ -665,6 +745,8 @@ class RinexReader:
         record = EpochRecord(lineno, [line], flag, epoch)
         if flag in (2, 3, 4, 5):
             self._events(record, count)
+            if flag in (3, 4):
+                self._header_change(record)
             return record
         prns = line[32:68]
         for k in range(12, count, 12):

@@ -17,6 +17,7 @@ import os
 import shutil
 import subprocess
 import threading
+import zlib
 from importlib.resources import files
 
 from ..io import FileFormatError
@@ -103,8 +104,12 @@ class CompactRinexPipe:
         def feed():
             try:
                 shutil.copyfileobj(binary, self.process.stdin, 1 << 20)
-            except (BrokenPipeError, OSError) as error:  # crx2rnx stopped: reported below
+            except BrokenPipeError:  # crx2rnx stopped: its exit code tells why
+                pass
+            except (EOFError, OSError, zlib.error) as error:  # a truncated or broken .gz
                 self.error.append(error)
+                with contextlib.suppress(OSError):  # crx2rnx sees its input end
+                    self.process.stdin.close()
             finally:
                 with contextlib.suppress(OSError):
                     self.process.stdin.close()
@@ -117,8 +122,10 @@ class CompactRinexPipe:
         self.err_thread.start()
         self.text = io.TextIOWrapper(self.process.stdout, encoding="latin-1", newline="")
 
-    def check(self):
+    def check(self, lineno=0):
         """Raise `~astropy_feedrot.io.FileFormatError` if crx2rnx failed (at the end of its output).
+
+        ``lineno`` is the line of the decompressed file where the output ended.
 
         Examples
         --------
@@ -127,9 +134,14 @@ class CompactRinexPipe:
         code = self.process.wait()
         self.thread.join()
         self.err_thread.join()
+        if self.error:
+            error = self.error[0]
+            raise FileFormatError(self.name, lineno, "a complete compressed file that "
+                                  "decompresses",
+                                  f"{type(error).__name__}: {error}")
         if code not in (0, 2):
             message = b"".join(self.stderr).decode("latin-1").strip().splitlines()
-            raise FileFormatError(self.name, 0, "a Compact RINEX (Hatanaka) file that crx2rnx "
+            raise FileFormatError(self.name, lineno, "a Compact RINEX (Hatanaka) file that crx2rnx "
                                   "decompresses", " ".join(message)[:200] or f"exit {code}")
 
     def close(self):
@@ -206,7 +218,7 @@ def open_rinex_lines(source, stack, name):
 
 
 def comment_line(text, line_end="\n"):
-    """A RINEX header ``COMMENT`` line (text in columns 1-60).
+    """A RINEX header ``COMMENT`` line (text in columns 1-60, the label padded to 80).
 
     Raises
     ------
@@ -216,12 +228,12 @@ def comment_line(text, line_end="\n"):
     Examples
     --------
     >>> from astropy_feedrot.gnss import comment_line
-    >>> len(comment_line("hello").rstrip("\\n")), comment_line("hello")[60:]
-    (67, 'COMMENT\\n')
+    >>> len(comment_line("hello").rstrip("\\n")), comment_line("hello")[60:].rstrip()
+    (80, 'COMMENT')
     """
     if len(text) > 60:
         raise ValueError(f"a RINEX comment holds 60 characters, got {len(text)}: {text!r}")
-    return f"{text:<60}COMMENT{line_end}"
+    return f"{text:<60}{'COMMENT':<20}{line_end}"
 
 
 class RinexWriter:
@@ -278,8 +290,19 @@ class RinexWriter:
         """Flush and close the file (a file object given is left open)."""
         self._stack.close()
 
+    @property
+    def file(self):
+        """The text file object written to."""
+        return self._file
+
     def write_header(self, header, comment=None):
-        """Write the header as read, with one ``COMMENT`` line before ``END OF HEADER``.
+        """Write the header as read, with ``COMMENT`` lines before ``END OF HEADER``.
+
+        Parameters
+        ----------
+        header : `RinexHeader`
+        comment : str or list of str, optional
+            The text of one comment line, or of several.
 
         Examples
         --------
@@ -289,8 +312,9 @@ class RinexWriter:
         write = self._file.write
         for line in lines[:-1]:
             write(line)
-        if comment is not None:
-            write(comment_line(comment, header.line_end))
+        comments = [comment] if isinstance(comment, str) else comment or []
+        for text in comments:
+            write(comment_line(text, header.line_end))
         write(lines[-1])
 
     def write_record(self, record):

@@ -210,9 +210,10 @@ def write_rinex(path, version, types, sats, start, epochs, interval=30.0, *,
         ``APPROX POSITION XYZ`` (default GGAO12M of the paper's Table 3).
     zero_direction : float, optional
         ``ANTENNA: ZERODIR AZI`` in degrees, written if given.
-    lli : dict of (int, str) to int, optional
+    lli : dict of (int, str) or (int, str, str) to int, optional
         Loss-of-lock indicators of the phases of a satellite at an epoch
-        index, e.g. ``{(10, 'G05'): 1}``.
+        index, e.g. ``{(10, 'G05'): 1}``, or of one of its phases,
+        ``{(10, 'G05', 'L2W'): 1}``.
     missing : set of (int, str), optional
         (epoch, PRN) pairs not observed.
     events : dict of int to list of str, optional
@@ -275,7 +276,7 @@ def _epoch_lines(t, c, sats, types, v2, lli, missing, events):
         codes = next(iter(types.values())) if v2 else types[sat[0]]
         fields = []
         for k, code in enumerate(codes):
-            flag = lli.get((t, sat), 0) if code[0] == "L" else 0
+            flag = lli.get((t, sat, code), lli.get((t, sat), 0)) if code[0] == "L" else 0
             ssi = "7" if code[0] in "LC" else " "
             fields.append(f"{_value(t, s_index, k, code):14.3f}"
                           f"{flag if flag else ' '}{ssi}")

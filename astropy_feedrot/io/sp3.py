@@ -27,10 +27,14 @@ Format (SP3-c)" (NGS, 2010) and "(SP3-d)" (NGS, 2016). The reader relies on:
 
 What the reader refuses, with a `FileFormatError` naming the line: an epoch
 that repeats or precedes the one before it, or lies off the grid of the
-interval; a number of epochs that disagrees with line 1 (a truncated file
-closed by ``EOF``); a number that is not a fixed-point number, including
+interval; a number that is not a fixed-point number, including
 ``nan`` and ``inf``; a record cut short inside a number; besides the breaks
 of the layout above.
+
+A number of epochs on line 1 that disagrees with the epoch lines (a file
+trimmed to a few hours whose header still counts the day) is a warning
+(`~astropy_feedrot.OrbitWarning`): the epochs of the file are read, as
+RTKLIB reads them.
 
 What the reader does not interpolate, with one `~astropy_feedrot.OrbitWarning`
 per file: positions that no orbit around the Earth can have, which become
@@ -408,10 +412,12 @@ class _Reader:
         offsets, gaps = self.check_epochs(epochs, nominal["interval"])
         span = int(round(offsets[-1] / nominal["interval"])) + 1
         if nominal["epochs"] not in (nep, span):
-            raise self.error(
-                f"the number of epochs in columns 33-39 of line 1 to count the {nep} epoch "
-                f"lines of the file (or the {span} epochs of its span); is the file cut "
-                "short or joined from several?", nominal["line"], lineno=1)
+            # A trimmed file whose line 1 still counts the whole day: read as RTKLIB reads
+            # it (readsp3b never checks the count), with one warning.
+            warn_caller(
+                f"{self.name}: line 1 counts {nominal['epochs']} epochs (columns 33-39), but "
+                f"the file has {nep} epoch lines (a span of {span}); the epochs of the file "
+                "are read (a file trimmed, cut short or joined?)", OrbitWarning)
         dup = first_duplicate(ep_idx, sat_idx, nsat)
         if dup is not None:
             raise self.error(f"one record per satellite and epoch, not a second one for "
