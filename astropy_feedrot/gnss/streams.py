@@ -208,7 +208,12 @@ def open_rinex_lines(source, stack, name):
     if binary.peek(2)[:2] == b"\x1f\x8b":
         binary = stack.enter_context(gzip.GzipFile(fileobj=binary, mode="rb"))
         binary = io.BufferedReader(binary)
-    if binary.peek(80)[60:80].startswith(b"CRINEX VERS"):
+    try:
+        start = binary.peek(80)
+    except (EOFError, OSError, zlib.error) as error:  # a .gz cut short within its first block
+        raise FileFormatError(name, 1, "a complete compressed file that decompresses",
+                              f"{type(error).__name__}: {error}") from None
+    if start[60:80].startswith(b"CRINEX VERS"):
         pipe = CompactRinexPipe(binary, name)
         stack.callback(pipe.close)
         return iter(pipe.text.readline, ""), pipe
