@@ -49,6 +49,8 @@ from astropy.utils.exceptions import AstropyWarning
 
 from .config import conf
 from .exceptions import StaleEarthOrientationWarning, warn_caller
+from .iers_files import bundled_arrays
+from .io import FileFormatError
 
 __all__ = [
     "EarthOrientationStatus",
@@ -220,6 +222,15 @@ def _arrays_of(table):
                        float(table.meta.get("predictive_mjd", mjd[-1] + 1)))
 
 
+def _bundled_arrays():
+    """The arrays of the tables astropy ships, read by their columns (`iers_files`);
+    astropy's own reader where the files do not follow their format."""
+    try:
+        return TableArrays(*bundled_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE))
+    except (OSError, FileFormatError):
+        return _arrays_of(_table())
+
+
 def _kept_path():
     """Where the arrays of the bundled tables are kept, named after their files."""
     files = [iers.IERS_A_FILE, iers.IERS_B_FILE]
@@ -253,12 +264,13 @@ def table_arrays():
     """The Earth-orientation table in use, as plain arrays.
 
     Astropy reads its bundled IERS tables (``astropy-iers-data``) on first
-    use, which takes about a second. Until astropy has a table loaded (or
-    when the user has set none), these arrays are read instead from a copy
-    kept in astropy's cache directory, named after the bundled files (their
-    paths, sizes and times, and astropy's version), and written the first
-    time they are read: a fresh process then gets UT1 and polar motion in a
-    millisecond. A table set with ``iers.earth_orientation_table.set`` or
+    use, which takes about a second and a half. Until astropy has a table
+    loaded (or when the user has set none), these arrays are read instead
+    from the bundled files' own columns (`astropy_feedrot.iers_files`, bit
+    for bit astropy's values, in a few tens of milliseconds), and kept in
+    astropy's cache directory, named after the bundled files (their paths,
+    sizes and times, and astropy's version): a later process gets UT1 and
+    polar motion in a millisecond. A table set with ``iers.earth_orientation_table.set`` or
     already loaded by astropy is read directly (and with
     ``astropy_feedrot.conf.iers_auto_download`` on, astropy's own table,
     which it may refresh).
@@ -282,7 +294,7 @@ def table_arrays():
         return kept[1]
     arrays = None if table is not None else _read_kept()
     if arrays is None:
-        arrays = _arrays_of(_table() if table is None else table)
+        arrays = _arrays_of(table) if table is not None else _bundled_arrays()
         if table is None:
             _keep(arrays)
     with _ARRAYS_LOCK:
