@@ -85,10 +85,10 @@ class SP3Orbit(Orbit):
     file's epochs raise an error.
 
     With ``extrapolate``, times up to that many seconds before the first or
-    after the last epoch (at most `MAX_EXTRAPOLATION`, 900 s, as RTKLIB's
+    after the last epoch (at most ``MAX_EXTRAPOLATION``, 900 s, as RTKLIB's
     ``MAXDTE``) get the polynomial of the window at that end, evaluated
     outside it; its error grows as ``(omega h)**points`` (see
-    `points_needed`): metres for 10 points and one 15-minute interval.
+    `~astropy_feedrot.sp3_orbit.points_needed`): metres for 10 points and one 15-minute interval.
 
     The window is made only of consecutive epochs at the interval of the
     file's header where the satellite has a valid position. A hole is any
@@ -325,7 +325,7 @@ def points_needed(interval, radius=20e6, tolerance=POSITION_TOLERANCE):
         The smallest orbit radius of its satellites (m; default 20,000 km,
         below every GNSS orbit: the fastest).
     tolerance : float, optional
-        The interpolation error allowed (m; default `POSITION_TOLERANCE`).
+        The interpolation error allowed (m; default ``POSITION_TOLERANCE``, 10).
 
     Returns
     -------

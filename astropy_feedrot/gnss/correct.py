@@ -340,15 +340,19 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         without ``orbex``), the yaw-attitude model of each satellite's block
         through noon and midnight turns and shadows
         (`~astropy_feedrot.ModelAttitude`; satellites of blocks without a
-        model are left untouched), or the ORBEX quaternions.
+        model get nominal yaw, named in one warning), or the ORBEX quaternions.
     max_gap : `~astropy.units.Quantity`, optional
-        A satellite's gap longer than this starts a new arc (default 300 s).
+        A satellite's gap longer than this (plus half the sampling interval,
+        for the rounding of epoch times) starts a new arc (default 300 s).
     points : int, optional
-        Points of the Lagrange interpolation of the orbits (default 10, or
-        the number of epochs of shorter SP3 files).
+        Points of the Lagrange interpolation of the orbits (default 10).
+        Fewer than the orbits' sampling needs for 1e-4 cycle
+        (`~astropy_feedrot.sp3_orbit.points_needed`: 7 at 15 minutes for
+        GPS) are refused.
     position : array-like, shape (3,), optional
         The antenna's ITRS position in metres, if the header has no ``APPROX
-        POSITION XYZ`` (or to override it).
+        POSITION XYZ`` (or to override the header's; an event giving a new
+        position moves the antenna from there on).
     form : {'beyerle', 'wu'}, optional
         The crossed-dipole form of Eq 30 (Beyerle 2009, default) or the
         effective-dipole form of Eq 31 (Wu et al. 1993, as RTKLIB and the IGS
@@ -375,9 +379,12 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         header does not declare, ...), or an SP3/ORBEX file that breaks
         its own.
     ValueError
-        If ``output`` is the input, the SP3 files do not cover the epochs of
-        the observations, the header has no position and ``position`` is
-        not given, or for an unknown ``attitude``.
+        If ``output`` is the input, ``points`` is too few for the orbits'
+        sampling (or more than their epochs), the header has no position
+        and ``position`` is not given, the file gives ``ANTENNA: ZERODIR
+        XYZ``, or for an unknown ``attitude``.
+    TypeError
+        If ``points`` is not an integer.
     FileExistsError
         If ``output`` exists and ``overwrite`` is False.
 
@@ -387,18 +394,25 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         Once, listing the satellites whose phases were left untouched (all
         or some of them) and why: not in the SP3 files, no ORBEX attitude,
         epochs in holes of an orbit or outside the attitude's coverage,
-        degenerate geometry.
+        degenerate geometry. Once for epochs whose orbits were extrapolated
+        (up to one SP3 interval, at most 900 s, outside the SP3 files, as
+        RTKLIB does), once for epochs further out, left untouched, each
+        naming the missing day's file; once naming the satellites given
+        nominal yaw under ``attitude='model'``.
 
     Notes
     -----
     Every line of the file is written as read except the ``L`` values that
-    are corrected (their loss-of-lock and signal-strength flags are kept) and
-    one ``COMMENT`` line added before ``END OF HEADER``. The wind-up is that
-    of an RHCP receiver in cycles, subtracted from every carrier phase of a
-    satellite (the same number of cycles at every frequency); an arc starts
-    at its principal value in [-0.5, 0.5) cycles and stays continuous
-    (Eq 9) until a gap longer than ``max_gap``, a loss of lock or an epoch
-    flagged as a power failure. The epochs are read and corrected in blocks
+    are corrected (their loss-of-lock and signal-strength flags are kept;
+    blank and ``0.000`` values are missing, kept) and two ``COMMENT`` lines
+    added before ``END OF HEADER``. The wind-up is that of an RHCP receiver
+    in cycles, subtracted from every carrier phase of a satellite (the same
+    number of cycles at every frequency); an arc starts at its principal
+    value in [-0.5, 0.5) cycles and stays continuous (Eq 9) through
+    loss-of-lock flags and events, as RTKLIB keeps its ``phw``, until a gap
+    longer than ``max_gap``. Events of flags 3 and 4 that give new
+    observation types, ``APPROX POSITION XYZ`` or ``ANTENNA: ZERODIR AZI``
+    apply from the next epoch on. The epochs are read and corrected in blocks
     of `BLOCK_EPOCHS`, each with one call of the wind-up engine for all its
     epochs and satellites, so memory stays bounded for any file length.
 

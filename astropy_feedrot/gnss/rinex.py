@@ -20,6 +20,13 @@ relies on:
   each satellite's observations five fields to a line. Epoch flags 0 and 1
   are observations, 2 to 5 announce ``nnn`` header lines (events, which are
   passed on as they are), 6 announces cycle-slip records (kept as they are).
+  The header lines of events of flags 3 (new site occupation) and 4 (header
+  information) that give observation types, ``APPROX POSITION XYZ`` or
+  ``ANTENNA: ZERODIR AZI`` replace the reader's ``header`` from
+  there on (its ``lines`` stay the file's header);
+* a phase value blank or ``0.000`` is missing; one that is not a number
+  (``**************``, an overflow) is a `~astropy_feedrot.io.FileFormatError`
+  naming the line.
 
 Nothing is held beyond one epoch record: the reader yields `EpochRecord`
 objects from a stream, and `RinexWriter` writes them back, so a file of a day
