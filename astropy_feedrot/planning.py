@@ -26,6 +26,7 @@ from .frames import as_elevation_limit
 from .epochs import Epochs
 from .grid import feed_rotation_grid
 from .inputs import as_time
+from .plotting import line_styles, outside_legend
 
 __all__ = ["feed_rotation_coverage", "rank_sources", "plot_coverage"]
 
@@ -296,8 +297,10 @@ def plot_coverage(table, times, continuous, path=None):
     -------
     `matplotlib.figure.Figure`
         Continuous feed rotation (deg) against hours since the first epoch,
-        above the elevation limit only; each panel's title gives the
-        target's worst range.
+        above the elevation limit only, one colour and line style per
+        antenna (`~astropy_feedrot.plotting.line_styles`), the legend to the
+        right of the tracks; each panel's title gives the target's worst
+        range, or the stations that never see it above the limit.
 
     Raises
     ------
@@ -332,21 +335,35 @@ def plot_coverage(table, times, continuous, path=None):
                              figsize=(8, 2.2 + 2.3 * len(targets)))
     hours = (times - times[0]).to_value(u.hour)
     ranked = {row["target"]: row for row in rank_sources(table)}
+    styles = line_styles(len(antennas))
     for j, (target, ax) in enumerate(zip(targets, axes[:, 0])):
         for i, antenna in enumerate(antennas):
-            ax.plot(hours, values[:, i, j], label=antenna)
-        worst = ranked[target]
-        ax.set_title(f"{target}: worst range {worst['worst_range']:.1f} deg "
-                     f"({worst['worst_antenna']})", fontsize="medium")
+            colour, linestyle = styles[i]
+            ax.plot(hours, values[:, i, j], color=colour, linestyle=linestyle, label=antenna)
+        ax.set_title(f"{target}: {_coverage_title(ranked[target], len(antennas))}",
+                     fontsize="medium")
         ax.set_ylabel("feed rotation (deg)")
         ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize="small", ncol=min(4, len(antennas)))
+    outside_legend(axes[0, 0], fontsize="small", ncol=1 + (len(antennas) - 1) // 16)
     axes[-1, 0].set_xlabel(f"hours since {times[0].utc.isot[:19]} UTC "
                            f"(above {table.meta.get('min_elevation', 'the limit')})")
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=100, bbox_inches="tight")
     return fig
+
+
+def _coverage_title(row, stations):
+    """What a panel of `plot_coverage` says of its target: its worst range, or who
+    never sees it above the limit."""
+    worst = u.Quantity(row["worst_range"], u.deg).value
+    if np.isfinite(worst):
+        return f"worst range {worst:.1f} deg ({row['worst_antenna']})"
+    if row["stations_above"] == 0:
+        return "never above the limit at any station"
+    unseen = stations - row["stations_above"]
+    others = f" and {unseen - 1} other station{'s' if unseen > 2 else ''}" if unseen > 1 else ""
+    return f"never above the limit at {row['worst_antenna']}{others}"
 
 
 def rank_sources(table):

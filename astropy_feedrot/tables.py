@@ -106,8 +106,9 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
         parallactic angle (Eq 15), the transmitter and receiver terms
         (Eqs 21, 22), the total feed rotation wrapped to (-180, 180] deg,
         the continuous total and the rate of the feed rotation (deg/s,
-        `~astropy_feedrot.Antenna.feed_rotation_rate`). Angles are NaN below ``min_elevation``. The
-        ``meta`` records antenna, target, polarization and elevation limit.
+        `~astropy_feedrot.Antenna.feed_rotation_rate`). Angles are NaN below
+        ``min_elevation``. The ``meta`` records antenna, target, whether it
+        is a natural source (``natural``), polarization and elevation limit.
 
     Raises
     ------
@@ -141,6 +142,7 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     columns, _ = _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     table = Table({"time": times, **columns})
     table.meta.update(antenna=antenna.name or repr(antenna), target=_target_name(target),
+                      natural=not isinstance(target, Satellite),
                       polarization=str(polarization or getattr(target, "polarization", "RCP")),
                       min_elevation=str(min_elevation))
     return table
@@ -222,6 +224,7 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     table["rotation_delay"] = result.delay
     table["both_visible"] = visible
     table.meta.update(antennas=prefixes, target=_target_name(target),
+                      natural=not isinstance(target, Satellite),
                       frequency=str(u.Quantity(frequency)), min_elevation=str(min_elevation),
                       ambiguity=str(result.ambiguity))
     return table
