@@ -156,7 +156,7 @@ class SP3Orbit(Orbit):
         extrapolate = u.Quantity(extrapolate, u.s).to_value(u.s)
         if not 0 <= extrapolate <= MAX_EXTRAPOLATION:
             raise ValueError(f"extrapolate must be 0 to {MAX_EXTRAPOLATION:g} s, got "
-                             f"{extrapolate!r} s")
+                             f"{float(extrapolate)!r} s")
         self.extrapolate = extrapolate * u.s
 
     def __repr__(self):

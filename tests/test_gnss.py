@@ -534,6 +534,30 @@ def test_model_attitude(tmp_path, sp3, orbits):
             assert all(model[t, prn] == nominal[t, prn] for t in range(120)), prn
 
 
+def test_model_attitude_nominal_for_qzss_and_glonass_k1b(tmp_path):
+    """Under attitude='model', QZSS (J01-J03) and GLONASS-K1B (R09), which have no yaw law,
+    get nominal yaw and are named in one warning (issue 26: they were left untouched,
+    9,714 phases of the real ESBC00DNK file)."""
+    from astropy_feedrot.gnss.synthetic import constellation as make
+
+    named = make(START, {"G": 3, "R": 4})
+    for old, new in (("G01", "J01"), ("G02", "J02"), ("G03", "J03"), ("R04", "R09")):
+        named[new] = named.pop(old)
+    path = tmp_path / "named.sp3"
+    write_sp3(path, named, START, 17)
+    types = {"J": ("C1C", "L1C", "L2L"), "R": ("C1C", "L1C")}
+    source = tmp_path / "a.rnx"
+    write_rinex(source, "3.04", types, list(named), START + 3600 * u.s, 20, 30.0)
+    with pytest.warns(OrbitWarning, match=r"^no yaw model for J01 \(block QZS-1\), J02 \(block "
+                                          r"QZS-2I\), J03 \(block QZS-2I\), R09 \(block "
+                                          r"GLO-K1B\): nominal yaw used for them$"):
+        report = correct_rinex(source, tmp_path / "model.rnx", path, attitude="model")
+    assert report.untouched == {} and report.phases == 20 * (3 * 2 + 4)
+    correct_rinex(source, tmp_path / "nominal.rnx", path)
+    model, nominal = _phases(tmp_path / "model.rnx"), _phases(tmp_path / "nominal.rnx")
+    assert all(model[t, p] == nominal[t, p] for t in range(20) for p in ("J01", "J03", "R09"))
+
+
 def test_join_orbex_and_sp3(tmp_path, orbits, sp3):
     from astropy_feedrot.data import sample_file
     from astropy_feedrot.gnss import join_orbex

@@ -13,7 +13,7 @@ from helpers import SOURCE_KINDS, SP3_DESCRIPTORS, read_as
 from astropy import units as u
 from astropy.time import Time
 
-from astropy_feedrot import OrbitWarning
+from astropy_feedrot import OrbitWarning, SP3Orbit
 from astropy_feedrot.io import FileFormatError, SP3Data, read_sp3
 from astropy_feedrot.io.sp3 import implausible_positions
 
@@ -516,3 +516,27 @@ def test_error_is_a_value_error(tmp_path):
     err = check_error(tmp_path, {38: None}, "EOF")
     assert isinstance(err, ValueError)
     assert (err.filename, err.lineno, err.found) == (str(tmp_path / "bad.sp3"), 38, None)
+
+
+def test_sp3_orbit_extrapolates_up_to_its_limit(tmp_path):
+    """extrapolate: the end window's polynomial evaluated beyond the last epoch (as RTKLIB's
+    pephpos, up to 900 s); further out, and beyond 900 s as an option, an error."""
+    from astropy_feedrot.gnss.synthetic import constellation, write_sp3
+
+    start = Time("2023-01-25T00:00:19", scale="tai")
+    orbits = constellation(start, {"G": 1})
+    write_sp3(tmp_path / "g.sp3", orbits, start, 12)  # 00:00 to 02:45
+    data = read_sp3(tmp_path / "g.sp3")
+    orbit = SP3Orbit(data, "G01", extrapolate=900 * u.s)
+    after = data.epochs[-1] + [300, 900] * u.s
+    # Independent: the SGP4 orbit the file was written from (10-point extrapolation over
+    # one 15-minute interval: metres).
+    error = np.linalg.norm(orbit.position(after) - orbits["G01"].position(after), axis=-1)
+    assert np.all(error < 50.0)
+    before = orbit.position(data.epochs[0] - 600 * u.s)
+    assert np.linalg.norm(before - orbits["G01"].position(data.epochs[0] - 600 * u.s)) < 50.0
+    with pytest.raises(ValueError, match=r"times outside the coverage of the SP3 orbit of G01: "
+                                         r".* \(extrapolated up to 900 s beyond\)"):
+        orbit.position(data.epochs[-1] + 901 * u.s)
+    with pytest.raises(ValueError, match=r"extrapolate must be 0 to 900 s, got 1000.0 s"):
+        SP3Orbit(data, "G01", extrapolate=1000 * u.s)
