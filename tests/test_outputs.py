@@ -126,7 +126,8 @@ def idi(tmp_path):
 @pytest.mark.parametrize("name, match", [
     ("out.uvfits", r"'.*out\.uvfits': a FITS-IDI input is corrected into a FITS-IDI copy "
                    r"\(there is no conversion to other formats\); give the output one of the "
-                   r"extensions \.idifits, \.fitsidi, \.idi, \.fits, \.fit$"),
+                   r"extensions \.idifits, \.fitsidi, \.idi, \.fits, \.fit, \.fts or \.idiN "
+                   r"\(\.IDI1\)$"),
     ("out.txt", r"'.*out\.txt': a FITS-IDI input is corrected into a FITS-IDI copy"),
 ])
 def test_correct_fitsidi_output_format_checked_first(idi, tmp_path, capsys, monkeypatch, name,
@@ -145,8 +146,8 @@ def test_correct_uvfits_output_format_checked_first(tmp_path, capsys, monkeypatc
     assert main(["correct", str(VLA), "-o", str(tmp_path / "out.txt")]) == 1
     assert capsys.readouterr().err == (
         f"feedrot: error: -o/--output: cannot tell a format from the extension of "
-        f"'{tmp_path / 'out.txt'}'; use one of .uvfits, .uvh5, .h5, .hdf5, .ms, .uv, "
-        ".miriad\n")
+        f"'{tmp_path / 'out.txt'}'; use one of .uvfits, .uvf, .uvh5, .h5, .hdf5, .ms, .uv, "
+        ".miriad, .fits\n")
 
 
 def test_two_corrections_into_one_output_do_not_both_succeed(idi, tmp_path, capsys,
@@ -203,5 +204,5 @@ def test_correct_file_refuses_a_fitsidi_output_of_another_format(idi, tmp_path, 
 def test_correct_file_checks_the_output_before_reading(tmp_path, monkeypatch):
     monkeypatch.setattr(astropy_feedrot.visibilities.files, "read_uvdata", None)  # never reached
     with pytest.raises(ValueError, match=r"cannot tell a format from the extension of "
-                       r"'.*out\.txt'; use one of \.uvfits, \.uvh5"):
+                       r"'.*out\.txt'; use one of \.uvfits, \.uvf, \.uvh5"):
         correct_file(VLA, tmp_path / "out.txt")

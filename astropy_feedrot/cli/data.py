@@ -208,8 +208,9 @@ def register(commands):
         description="Remove the feed rotation from every visibility (or, with --apply, "
         "apply it to a model): into a copy, FITS-IDI to FITS-IDI (a chunk at a time) and every "
         "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
-        ".ms), the input never modified; or a Measurement Set in place (--in-place), from "
-        "one column into another (python-casacore), every other column left as it was.",
+        ".ms; .fits is the input's kind), the input never modified; or a Measurement Set "
+        "in place (--in-place), from one column into another (python-casacore), every other "
+        "column left as it was.",
         epilog=examples(EXAMPLES["correct"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")

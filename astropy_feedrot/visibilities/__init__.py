@@ -34,6 +34,7 @@ from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_
 from .catalogue import ARRAY_TOLERANCE, CATALOGUE_TOLERANCE, PAD_TOLERANCE, catalogue_receptors
 from .files import (
     FITSIDI_EXTENSIONS,
+    OUTPUT_EXTENSIONS,
     antenna_table,
     check_output_format,
     correct_file,
@@ -41,7 +42,7 @@ from .files import (
 )
 from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
 from .history import APPLY_MARK, HISTORY_MARK
-from .kinds import FILE_KINDS, existing_path, file_kind
+from .kinds import FILE_KINDS, check_header_cards, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
 from .poles import POLES, pole_context
 from .receptors import (
@@ -53,6 +54,7 @@ from .receptors import (
 )
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
 from .uvdata import (
+    PYUVDATA_TYPES,
     WRITERS,
     antennas_from_uvdata,
     correct_uvdata,
@@ -66,10 +68,12 @@ __all__ = [
     "FILE_KINDS",
     "file_kind",
     "existing_path",
+    "check_header_cards",
     "read_antennas",
     "antenna_table",
     "correct_file",
     "check_output_format",
+    "OUTPUT_EXTENSIONS",
     "FITSIDI_EXTENSIONS",
     "feed_rotation_rows",
     "frame_position_angle",
@@ -106,4 +110,5 @@ __all__ = [
     "read_uvdata",
     "write_uvdata",
     "WRITERS",
+    "PYUVDATA_TYPES",
 ]

@@ -18,6 +18,7 @@ used by ``feedrot antennas`` and ``feedrot correct``:
 
 import contextlib
 import os
+import re
 import shutil
 import tempfile
 from pathlib import Path
@@ -32,7 +33,7 @@ from .kinds import existing_path, file_kind
 from .ms import ms_antennas
 from .poles import pole_context
 from .uvdata import (
-    WRITERS,
+    PYUVDATA_TYPES,
     antennas_from_uvdata,
     correct_uvdata,
     read_uvdata,
@@ -41,10 +42,24 @@ from .uvdata import (
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
-           "check_output_format"]
+           "OUTPUT_EXTENSIONS", "check_output_format"]
 
-#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into FITS-IDI).
-FITSIDI_EXTENSIONS = (".idifits", ".fitsidi", ".idi", ".fits", ".fit")
+#: The kind of output each extension names (lower case; ``.idi`` followed by
+#: digits, the EVN archive's ``.IDI1``, is FITS-IDI too). ``None``: the FITS
+#: extensions that FITS-IDI and UVFITS files both use, whose kind is the input's.
+OUTPUT_EXTENSIONS = {
+    ".idifits": "fits-idi", ".fitsidi": "fits-idi", ".idi": "fits-idi",
+    ".fits": None, ".fit": None, ".fts": None,
+    ".uvfits": "uvfits", ".uvf": "uvfits",
+    ".uvh5": "uvh5", ".h5": "uvh5", ".hdf5": "uvh5",
+    ".ms": "ms", ".uv": "miriad", ".miriad": "miriad",
+}
+
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into
+#: FITS-IDI), and ``.idi`` followed by digits (``.IDI1``), in any case.
+FITSIDI_EXTENSIONS = tuple(e for e, k in OUTPUT_EXTENSIONS.items() if k in ("fits-idi", None))
+
+_NUMBERED_IDI = re.compile(r"\.idi[0-9]+")
 
 
 def read_antennas(path, *, vertical="geodetic"):
@@ -89,7 +104,7 @@ def read_antennas(path, *, vertical="geodetic"):
     if kind == "ms":
         return ms_antennas(path, vertical=vertical), "casacore"
 
-    uv = read_uvdata(path, read_data=False)
+    uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
     return antennas_from_uvdata(uv, vertical=vertical), "pyuvdata"
 
 
@@ -169,26 +184,45 @@ def _check_output(source, output, overwrite):
 
 
 def check_output_format(kind, output):
-    """Refuse an output whose extension does not name what `correct_file` writes.
+    """The kind of file `correct_file` writes for an input of ``kind`` into ``output``.
+
+    The output's kind follows its extension where the extension names one
+    kind (`OUTPUT_EXTENSIONS`: ``.uvfits``/``.uvf``, ``.uvh5``, ``.ms``,
+    ``.IDI1``, ``.idifits``...), and the input's kind where it names two:
+    ``.fits`` (and ``.fit``, ``.fts``, any case) is FITS-IDI for a FITS-IDI
+    input, UVFITS for a UVFITS input. A FITS-IDI input is always corrected
+    into FITS-IDI (there is no conversion); other inputs are written by
+    pyuvdata, which writes no FITS-IDI.
 
     Parameters
     ----------
     kind : str
-        The input's kind, one of `~astropy_feedrot.visibilities.FILE_KINDS`.
+        The input's kind, one of `~astropy_feedrot.visibilities.FILE_KINDS`
+        (`~astropy_feedrot.visibilities.file_kind`: by content, whatever
+        its name).
     output : str or path-like
         The output's name.
+
+    Returns
+    -------
+    str
+        The output's kind: ``'fits-idi'``, ``'uvfits'``, ``'uvh5'``,
+        ``'ms'`` or ``'miriad'``.
 
     Raises
     ------
     ValueError
-        A FITS-IDI input is corrected into FITS-IDI (`FITSIDI_EXTENSIONS`;
-        there is no conversion); any other input into a format pyuvdata
-        writes, named by the extension (`~astropy_feedrot.visibilities.WRITERS`).
+        For an extension that names no kind, another kind than FITS-IDI for
+        a FITS-IDI input, FITS-IDI for another input, or ``.fits`` for an
+        input that is not FITS; the message lists the extensions to use.
 
     Examples
     --------
     >>> from astropy_feedrot.visibilities import check_output_format
     >>> check_output_format("uvfits", "out.uvh5")
+    'uvh5'
+    >>> check_output_format("uvfits", "out.FITS"), check_output_format("fits-idi", "x.IDI1")
+    ('uvfits', 'fits-idi')
     >>> check_output_format("fits-idi", "out.uvfits")
     Traceback (most recent call last):
     ...
@@ -196,14 +230,32 @@ def check_output_format(kind, output):
     """
     text = os.fspath(output)
     extension = Path(text.rstrip("/" + os.sep)).suffix.lower()
+    if _NUMBERED_IDI.fullmatch(extension):
+        named = "fits-idi"
+    else:
+        named = OUTPUT_EXTENSIONS.get(extension, "unknown")
+    pyuvdata = ", ".join(e for e, k in OUTPUT_EXTENSIONS.items() if k not in ("fits-idi", None))
     if kind == "fits-idi":
-        if extension not in FITSIDI_EXTENSIONS:
-            raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
-                             "(there is no conversion to other formats); give the output one "
-                             f"of the extensions {', '.join(FITSIDI_EXTENSIONS)}")
-    elif extension not in WRITERS:
+        if named in ("fits-idi", None):
+            return "fits-idi"
+        raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
+                         "(there is no conversion to other formats); give the output one "
+                         f"of the extensions {', '.join(FITSIDI_EXTENSIONS)} or .idiN "
+                         "(.IDI1)")
+    if named == "fits-idi":
+        raise ValueError(f"{text!r}: {extension} names a FITS-IDI file, but a {kind} input "
+                         "is written by pyuvdata, which writes no FITS-IDI; use one of "
+                         f"{pyuvdata}")
+    if named is None:
+        if kind == "uvfits":
+            return "uvfits"
+        raise ValueError(f"{text!r}: {extension} is used by both FITS-IDI and UVFITS; a "
+                         f"{kind} input is written as UVFITS with .uvfits (or .uvf), or use "
+                         f"one of {pyuvdata}")
+    if named == "unknown":
         raise ValueError(f"cannot tell a format from the extension of {text!r}; use one of "
-                         f"{', '.join(WRITERS)}")
+                         f"{pyuvdata}" + (", .fits" if kind == "uvfits" else ""))
+    return named
 
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
@@ -217,8 +269,9 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         The input, of any kind of `FILE_KINDS`; never modified.
     output : str or path-like
         Where to write. A FITS-IDI input gives a FITS-IDI output; any other
-        input is written in the format of the output's extension (``.uvfits``,
-        ``.uvh5``, ``.ms``...), as pyuvdata writes it.
+        input is written by pyuvdata in the format its extension names
+        (``.uvfits``, ``.uvh5``, ``.ms``...; ``.fits`` is UVFITS for a UVFITS
+        input): `~astropy_feedrot.visibilities.check_output_format`.
     frame : str, optional
         ``'apparent'`` (default) or a celestial frame such as ``'icrs'``:
         north of the corrected polarization angles (see
@@ -290,7 +343,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     """
     source = existing_path(path)
     kind = file_kind(source)
-    check_output_format(kind, output)  # before any work
+    written = check_output_format(kind, output)  # before any work
     target = _check_output(source, output, overwrite)
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
@@ -298,14 +351,14 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
                         pole=pole, client=client, catalogue=catalogue)
         return target
 
-    uv = read_uvdata(source)
+    uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
     with pole_context(pole):
         correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
                        direction=direction, feeds=feeds, redo=redo, catalogue=catalogue)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name
-        write_uvdata(uv, temporary)
+        write_uvdata(uv, temporary, kind=written)
         publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     finally:
         with contextlib.suppress(OSError):

@@ -25,12 +25,13 @@ from astropy.time import Time
 from ..correction import correct_receptor_visibilities
 from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
-from ..outputs import publish, same_file
+from ..outputs import new_file_mode, publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .catalogue import catalogue_receptors
 from .history import check_direction, check_history, history_entry
+from .kinds import check_header_cards
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, with_receptors
 from .tasks import in_order, task_groups, worker_count
@@ -659,6 +660,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         raise ValueError(f"chunk_bytes must be positive, got {chunk_bytes}")
     frame_name = frame if isinstance(frame, str) else type(frame).__name__
     with open_fits(source) as hdul:
+        check_header_cards(hdul, source)
         primary = hdul[0].header
         check_history(_history(primary), direction, f"{source} (HISTORY of the primary "
                       "header)", redo=redo)
@@ -680,6 +682,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{os.path.basename(target)}.",
                                          suffix=".part")
     os.close(handle)
+    # mkstemp makes the file 0600: the copy gets the mode of a new file under the umask
+    # (or of the file it replaces), as every other output.
+    os.chmod(temporary, new_file_mode(Path(target)))
     try:
         with open_fits(source) as hdul:
             plans = [_Plan(hdul, index, source) for index in indices]

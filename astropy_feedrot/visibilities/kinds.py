@@ -7,7 +7,9 @@ from pathlib import Path
 
 from astropy.io import fits
 
-__all__ = ["FILE_KINDS", "file_kind", "existing_path"]
+from .antenna_tables import FITSFormatError
+
+__all__ = ["FILE_KINDS", "file_kind", "existing_path", "check_header_cards"]
 
 #: The kinds of visibility file recognised, and the module of
 #: `astropy_feedrot.visibilities` that reads and corrects each (with the
@@ -55,6 +57,72 @@ def existing_path(path, what="file"):
     return path
 
 
+def check_header_cards(hdus, path):
+    """Refuse a FITS file with a header card astropy cannot parse, naming the card.
+
+    Parameters
+    ----------
+    hdus : `~astropy.io.fits.HDUList`
+        The open file.
+    path : str or path-like
+        Its name, for the message.
+
+    Raises
+    ------
+    FITSFormatError
+        For the first card whose value cannot be read (e.g. ``EQUINOX =
+        2.0OOE+03``), with the card as written and what to do: a one-line
+        message instead of the ``VerifyError`` astropy raises where the
+        value is first used.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from astropy.io import fits
+    >>> from astropy_feedrot.visibilities import check_header_cards
+    >>> path = Path(tempfile.mkdtemp()) / "bad.fits"
+    >>> fits.PrimaryHDU(header=fits.Header({"EQUINOX": 2000.0})).writeto(path)
+    >>> data = path.read_bytes().replace(b"EQUINOX =               2000.0",
+    ...                                  b"EQUINOX =            2.0OOE+03")
+    >>> _ = path.write_bytes(data)
+    >>> with fits.open(path) as hdus:
+    ...     check_header_cards(hdus, "bad.fits")
+    Traceback (most recent call last):
+    ...
+    astropy_feedrot.visibilities.antenna_tables.FITSFormatError: bad.fits, table PRIMARY ...
+    """
+    for index, hdu in enumerate(hdus):
+        for card in hdu.header.cards:
+            try:
+                card.value  # parsed here: astropy reads a card's value when first used
+            except (fits.VerifyError, ValueError):
+                raise FITSFormatError(
+                    os.fspath(path), f"{hdu.name or index} (HDU {index}) header",
+                    f"a readable value in the card {card.keyword} (correct or remove the "
+                    "card in a copy, e.g. with astropy: hdul.verify('fix'))",
+                    _as_written(hdu, path, card.keyword)) from None
+
+
+def _as_written(hdu, path, keyword):
+    """The first card ``keyword`` of ``hdu``'s header as the file ``path`` has it
+    (astropy's ``Card.image`` would show it repaired, with a warning)."""
+    info = hdu.fileinfo()  # HDUList.fileinfo would render the header (and warn)
+    if not info:
+        return keyword
+    try:
+        with open(path, "rb") as handle:
+            handle.seek(info["hdrLoc"])
+            raw = handle.read(info["datLoc"] - info["hdrLoc"])
+    except (OSError, TypeError):
+        return keyword
+    for start in range(0, len(raw), 80):
+        card = raw[start:start + 80].decode("ascii", "replace")
+        if card[:8].rstrip() == keyword:
+            return card.rstrip()
+    return keyword
+
+
 def file_kind(path):
     """The kind of a visibility file, from its content.
 
@@ -83,7 +151,8 @@ def file_kind(path):
         If nothing is at ``path``.
     ValueError
         If the content is none of the known kinds, or a FITS file is cut
-        short.
+        short; a `FITSFormatError` (a ValueError) names a header card that
+        cannot be read (`check_header_cards`).
 
     Examples
     --------
@@ -120,6 +189,7 @@ def file_kind(path):
                               and int(header.get("NAXIS", 0)) >= 2
                               and int(header.get("NAXIS1", -1)) == 0)
                     names = {hdu.name for hdu in hdus[1:]}
+                    check_header_cards(hdus, path)
             except OSError as error:
                 raise ValueError(f"{str(path)!r} cannot be read as FITS ({error}); the file "
                                  "may be cut short") from None

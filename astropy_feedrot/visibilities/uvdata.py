@@ -49,6 +49,7 @@ __all__ = [
     "read_uvdata",
     "write_uvdata",
     "WRITERS",
+    "PYUVDATA_TYPES",
 ]
 
 __doctest_requires__ = {("*",): ["pyuvdata"]}
@@ -56,6 +57,7 @@ __doctest_requires__ = {("*",): ["pyuvdata"]}
 #: Writers by file name extension (lower case), used by `write_uvdata`.
 WRITERS = {
     ".uvfits": "write_uvfits",
+    ".uvf": "write_uvfits",
     ".uvh5": "write_uvh5",
     ".h5": "write_uvh5",
     ".hdf5": "write_uvh5",
@@ -63,6 +65,19 @@ WRITERS = {
     ".uv": "write_miriad",
     ".miriad": "write_miriad",
 }
+
+# Writers by kind of file (`write_uvdata`'s ``kind``).
+_KIND_WRITERS = {"uvfits": "write_uvfits", "uvh5": "write_uvh5", "ms": "write_ms",
+                 "miriad": "write_miriad"}
+
+#: pyuvdata's ``file_type`` of each kind of `~astropy_feedrot.visibilities.FILE_KINDS`
+#: it reads: files are read as their content says, whatever their names.
+PYUVDATA_TYPES = {"uvfits": "uvfits", "uvh5": "uvh5", "ms": "ms", "miriad": "miriad",
+                  "mir": "mir"}
+
+# The epoch of catalogue frames whose entries pyuvdata leaves without one (AIPS
+# and HOPS UVFITS: EQUINOX 2000 read as ICRS), which its write_uvfits needs.
+_FRAME_EPOCHS = {"icrs": 2000.0, "fk5": 2000.0, "fk4": 1950.0}
 
 # pyuvdata polarization codes of correlation products (AIPS Memo 117); the
 # first letter is the receptor of ant_1.
@@ -682,7 +697,41 @@ def read_uvdata(path, **kwargs):
         return pyuvdata.UVData.from_file(path, **kwargs)
 
 
-def write_uvdata(uv, path, overwrite=False):
+# The distances from the geocentre (m) at which pyuvdata reads a UVFITS file's array
+# centre (ARRAYX/Y/Z); pyuvdata puts the centre of VLBI files, whose ARRAYX/Y/Z are
+# 0, at the mean of their antennas, deep inside the Earth, and writes it there.
+_SURFACE = (6.35e6, 6.39e6)
+
+
+@contextlib.contextmanager
+def _ready_for_uvfits(uv):
+    """While pyuvdata writes UVFITS: phase centres of J2000 (ICRS, FK5) or B1950 (FK4)
+    frames without an epoch given it (their EPOCH card), and an array centre off the
+    Earth's surface moved onto it (the ellipsoid below it), the antennas' offsets from it
+    changed so that their positions stay the same; both restored afterwards."""
+    missing = [(entry, _FRAME_EPOCHS[entry.get("cat_frame")])
+               for entry in (uv.phase_center_catalog or {}).values()
+               if entry.get("cat_epoch") is None and entry.get("cat_frame") in _FRAME_EPOCHS]
+    telescope = uv.telescope
+    location, offsets = telescope.location, telescope.antenna_positions
+    if isinstance(location, EarthLocation):
+        centre = np.array([c.to_value(u.m) for c in (location.x, location.y, location.z)])
+        if not _SURFACE[0] <= np.linalg.norm(centre) <= _SURFACE[1]:
+            surface = EarthLocation.from_geodetic(location.lon, location.lat, 0.0)
+            below = np.array([c.to_value(u.m) for c in (surface.x, surface.y, surface.z)])
+            telescope.location = surface
+            telescope.antenna_positions = offsets + (centre - below)
+    for entry, epoch in missing:
+        entry["cat_epoch"] = epoch
+    try:
+        yield
+    finally:
+        for entry, _ in missing:
+            entry["cat_epoch"] = None
+        telescope.location, telescope.antenna_positions = location, offsets
+
+
+def write_uvdata(uv, path, overwrite=False, kind=None):
     """Write a `~pyuvdata.UVData` object, in the format its file name's extension names.
 
     Parameters
@@ -695,6 +744,9 @@ def write_uvdata(uv, path, overwrite=False):
         ``.uvh5``/``.h5``/``.hdf5``, ``.ms``, ``.uv``/``.miriad``.
     overwrite : bool, optional
         Replace an existing file (default False).
+    kind : {'uvfits', 'uvh5', 'ms', 'miriad'}, optional
+        The format, whatever the extension (e.g. UVFITS named ``.fits``;
+        `~astropy_feedrot.visibilities.check_output_format` tells it).
 
     Raises
     ------
@@ -703,7 +755,17 @@ def write_uvdata(uv, path, overwrite=False):
     TypeError
         If ``uv`` is not a `~pyuvdata.UVData` object.
     ValueError
-        For an extension without a writer.
+        For an extension without a writer, or an unknown ``kind``.
+
+    Notes
+    -----
+    UVFITS needs the epoch of each phase centre's coordinates; pyuvdata
+    leaves none for J2000 entries of AIPS and HOPS files (read as ICRS), and
+    they are written with ``EPOCH = 2000`` (B1950 for FK4). The array centre
+    of a VLBI file (``ARRAYX/Y/Z`` = 0, which pyuvdata puts at the mean of the
+    antennas, inside the Earth) is written on the ellipsoid below that
+    point, with the antennas where they were: pyuvdata reads back no centre
+    off the surface. ``uv`` is left as it was.
     FileExistsError
         If ``path`` exists and ``overwrite`` is False.
 
@@ -720,12 +782,20 @@ def write_uvdata(uv, path, overwrite=False):
     _check_uvdata(uv)
     path = os.fspath(path)
     extension = os.path.splitext(path.rstrip("/" + os.sep))[1].lower()
-    if extension not in WRITERS:
+    if kind is not None:
+        if kind not in _KIND_WRITERS:
+            raise ValueError(f"kind must be one of {tuple(_KIND_WRITERS)} (pyuvdata writes "
+                             f"no other), got {kind!r}")
+        method = _KIND_WRITERS[kind]
+    elif extension in WRITERS:
+        method = WRITERS[extension]
+    else:
         raise ValueError(f"cannot tell the format of {os.path.basename(path)!r} from its "
-                         f"extension {extension!r}; use one of {', '.join(WRITERS)}")
+                         f"extension {extension!r}; use one of {', '.join(WRITERS)} (or "
+                         "give kind=)")
     if os.path.exists(path) and not overwrite:
         raise FileExistsError(f"{path!r} exists; pass overwrite=True to replace it")
-    writer = getattr(uv, WRITERS[extension])
+    writer = getattr(uv, method)
     # Written beside the target and published in one step: exclusively unless overwrite,
     # so that a file made meanwhile by another program is never replaced.
     name = os.path.basename(path.rstrip("/" + os.sep))
@@ -733,8 +803,9 @@ def write_uvdata(uv, path, overwrite=False):
     try:
         temporary = os.path.join(work, name)
         with _offline():
-            if WRITERS[extension] == "write_uvfits":
-                writer(temporary)
+            if method == "write_uvfits":
+                with _ready_for_uvfits(uv):
+                    writer(temporary)
             else:
                 writer(temporary, clobber=True)
         publish(temporary, path, overwrite=overwrite)
