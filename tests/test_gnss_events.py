@@ -7,6 +7,7 @@ import io
 import numpy as np
 import pytest
 from astropy import units as u
+from astropy.coordinates import EarthLocation
 from astropy.time import Time
 
 from astropy_feedrot.gnss import RinexReader, correct_rinex
@@ -212,3 +213,39 @@ def test_stream_input(sp3, tmp_path):
     text = _rnx(tmp_path).read_text()
     report = correct_rinex(io.StringIO(text), tmp_path / "b.rnx", sp3)
     assert report.phases == 6 * 4 * 2
+
+
+def test_position_given_survives_an_event_without_one(tmp_path, sp3):
+    """position= overrides the header's; a later event that gives no position keeps it."""
+    path = _rnx(tmp_path)  # the header's position: GGAO12M
+    lines = _lines(path)
+    k = _epoch_index(lines, 3)
+    event = _event(["G    4 C1C L1C L2W S1C                                      "
+                    "SYS / # / OBS TYPES"])
+    (tmp_path / "e.rnx").write_text("".join(lines[:k] + event + lines[k:]))
+    site = EarthLocation.from_geodetic(-70 * u.deg, 45 * u.deg, 0 * u.m)  # not the header's
+    xyz = np.array(site.to_value(u.m).tolist())
+    plain = correct_rinex(path, tmp_path / "p.rnx", sp3, position=xyz, table=True)
+    again = correct_rinex(tmp_path / "e.rnx", tmp_path / "f.rnx", sp3, position=xyz, table=True)
+    np.testing.assert_array_equal(plain.windup["windup"], again.windup["windup"])
+
+
+def test_flag_4_more_types_rinex_2(tmp_path, sp3):
+    """RINEX 2.11: an event raising the number of types from 2 to 6 (two lines per
+    satellite from there on) is followed by the reader."""
+    path = _rnx(tmp_path, version="2.11")
+    lines = _lines(path)
+    starts = [i for i, line in enumerate(lines) if line[28:29] == "0" and line[:3].strip()]
+    k = starts[3]
+    event = _event(["     6    C1    L1    L2    P2    S1    S2                  "
+                    "# / TYPES OF OBSERV"], version="2")
+    out = lines[:k] + event
+    for i in starts[3:]:
+        out.append(lines[i])
+        for j in range(4):  # each satellite's one line becomes two
+            one = lines[i + 1 + j].rstrip("\n")
+            out += [one + f"{100000000.5:14.3f}  {20000000.0:14.3f}  {45.0:14.3f}  \n",
+                    f"{46.0:14.3f}  \n"]
+    (tmp_path / "e.rnx").write_text("".join(out))
+    report = correct_rinex(tmp_path / "e.rnx", tmp_path / "f.rnx", sp3)
+    assert report.phases == 3 * 4 + 3 * 4 * 2

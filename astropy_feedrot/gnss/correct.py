@@ -603,7 +603,8 @@ class _Block:
         """Take the header in effect from now on (events of flags 3 and 4 change it)."""
         if header is self.header:
             return
-        if self.header is not None and header.position is not None:
+        if (self.header is not None and header.position is not None
+                and header.position is not self.header.position):  # an event's new position
             self.xyz = header.position
         self.header = header
         self.axes = receiver_axes(self.xyz, header.zero_direction)
