@@ -220,3 +220,33 @@ def test_truncated_compact_rinex(tmp_path):
                                               r"'EOFError: Compressed file ended"):
         correct_rinex(cut, tmp_path / "b.rnx", SP3)
     assert not (tmp_path / "b.rnx").exists()
+
+
+@pytest.mark.parametrize("name, counted, held", [
+    ("COD0OPSRAP_20230730000_01D_05M_ORB.SP3", 289, 3),
+    ("GFZ0MGXRAP_20201380000_01D_05M_ORB.SP3", 288, 3),
+    ("grg21553.sp3", 288, 55),
+])
+def test_gnss_lib_py_trimmed_sp3(name, counted, held):
+    """gnss_lib_py's test SP3 files, trimmed with line 1 still counting the day: read with
+    one warning (they were refused before issue 26; RTKLIB reads them)."""
+    from astropy_feedrot.io import read_sp3
+
+    with pytest.warns(OrbitWarning, match=rf"{name}: line 1 counts {counted} epochs \(columns "
+                                          rf"33-39\), but the file has {held} epoch lines"):
+        data = read_sp3(REAL / name)
+    assert len(data.epochs) == held
+
+
+def test_correct_with_gnss_lib_py_orbits(tmp_path):
+    """A RINEX file of 2021-04-28 19:00-19:30 GPS corrected with grg21553.sp3 (18:00-22:30 at
+    5 minutes, line 1 counting 288 epochs): every phase corrected, as with a whole day."""
+    from astropy_feedrot.gnss.synthetic import write_rinex
+
+    obs = tmp_path / "obs.rnx"
+    sats = ["G01", "G10", "R01", "R24"]
+    write_rinex(obs, "3.04", {"G": ("C1C", "L1C", "L2W"), "R": ("C1C", "L1C")}, sats,
+                Time("2021-04-28T19:00:19", scale="tai"), 60, 30.0, position=tuple(ESBC))
+    with pytest.warns(OrbitWarning, match="grg21553.sp3: line 1 counts 288 epochs"):
+        report = correct_rinex(obs, tmp_path / "out.rnx", REAL / "grg21553.sp3")
+    assert report.phases == 60 * (2 * 2 + 2) and report.arcs == 4 and not report.untouched
