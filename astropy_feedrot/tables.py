@@ -68,6 +68,10 @@ def _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     elevation = angles.elevation.rad
     visible = np.isfinite(elevation) & (elevation >= lowest)
     columns = {name: getattr(angles, name).to(u.deg) for name in COLUMNS[:-2]}
+    if not isinstance(target, Satellite):
+        # A natural source has no transmitter term (Eq 21 is zero by definition;
+        # the engine's value is rounding, ~1e-16 deg).
+        columns["transmitter"] = np.zeros_like(columns["transmitter"].value) * u.deg
     columns["continuous"] = unwrap(columns["total"], mask=~visible, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
     columns["rate"] = antenna.feed_rotation_rate(target, times, polarization,

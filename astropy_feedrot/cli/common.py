@@ -7,7 +7,6 @@ import argparse
 import math
 import os
 import re
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +28,7 @@ from ..outputs import (
     write_files,
 )
 from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
+from .views import FORMATS, output_format, print_table
 
 __all__ = [
     "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",
@@ -362,14 +362,16 @@ def table_outputs(args):
     return paths
 
 
-def write_table(table, paths, kind, overwrite=False):
+def write_table(table, paths, kind, overwrite=False, form=None):
+    """Write ``table`` to ``paths`` (table, figure), or print it: as ``form``
+    (`~astropy_feedrot.cli.views.output_format`) when no table file is given."""
     output, figure = paths
     files = []
     if output is not None:
         files.append((output, table_writer(table, table_format(output))))
     if figure is not None:
         files.append((figure, drawer(table, kind, figure)))
-    then = None if output is not None else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
+    then = None if output is not None else (lambda: print_table(table, output_format(form)))
     write_files(files, then, overwrite=overwrite)
 
 
@@ -440,6 +442,10 @@ def add_common_options(parser):
     group.add_argument("-o", "--output", metavar="FILE",
                        help="write the table here instead of standard output, in the format of "
                        "its extension: " + ", ".join(TABLE_FORMATS))
+    group.add_argument("--format", choices=FORMATS,
+                       help="the table on standard output: text (aligned, 0.001 deg; the "
+                       "default on a terminal), ecsv (every digit; the default on a pipe) or "
+                       "csv")
     group.add_argument("--plot", metavar="FILE.png", help="also draw the table (needs "
                        "matplotlib; .png, .pdf, .svg...)")
     group.add_argument("--overwrite", action="store_true",

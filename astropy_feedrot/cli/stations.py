@@ -21,6 +21,7 @@ from astropy.table import Table
 
 from ..outputs import TABLE_FORMATS, CommandError, check_outputs
 from .common import examples, input_files, one_line, station_catalogue, write_table
+from .views import FORMATS, output_format
 
 __all__ = ["register"]
 
@@ -29,8 +30,6 @@ LISTING = ("name", "networks", "mount", "focus", "aliases")
 
 #: Stations ``--near`` lists unless ``--limit`` says otherwise.
 NEAR_LIMIT = 10
-
-FORMATS = ("text", "ecsv", "csv")
 
 
 def _names(table):
@@ -142,7 +141,7 @@ def _run_stations(args):
     if output is not None:
         write_table(selected, (output, None), "stations", overwrite=args.overwrite)
         return 0
-    form = args.format or ("text" if sys.stdout.isatty() else "ecsv")
+    form = output_format(args.format)
     if form == "text":
         columns = [c for c in (*LISTING, "distance") if c in selected.colnames]
         listing = selected[columns]

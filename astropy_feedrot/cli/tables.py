@@ -192,7 +192,7 @@ def _run_single(args):
                          index=table.colnames.index("continuous") + 1)
     if getattr(args, "units", None) is not None:
         in_units(table, args.units, _PHASE_COLUMNS)
-    write_table(table, paths, "feed_rotation", overwrite=args.overwrite)
+    write_table(table, paths, "feed_rotation", overwrite=args.overwrite, form=args.format)
     return 0
 
 
@@ -218,7 +218,7 @@ def _run_baseline(args):
                            polarization=args.polarization, min_elevation=min_elevation)
     in_units(table, args.units, [f"{antenna}_{name}" for antenna in table.meta["antennas"]
                                  for name in _PHASE_COLUMNS])
-    write_table(table, paths, "baseline", overwrite=args.overwrite)
+    write_table(table, paths, "baseline", overwrite=args.overwrite, form=args.format)
     return 0
 
 
