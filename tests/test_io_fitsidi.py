@@ -268,7 +268,8 @@ def test_degenerate_rows_are_nan_with_zero_weight(tmp_path):
 def test_already_corrected_is_refused(tmp_path):
     source, _ = run(tmp_path)
     correct_fitsidi(source, tmp_path / "out.idifits")
-    with pytest.raises(ValueError, match=r"removed already .*pass redo=True \(--redo\)"):
+    with pytest.raises(ValueError, match=r"removed already .*would remove it twice: pass "
+                                         r"redo=True to correct all the same$"):
         correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits")
     assert not (tmp_path / "again.idifits").exists()
     correct_fitsidi(tmp_path / "out.idifits", tmp_path / "again.idifits", redo=True)

@@ -30,6 +30,7 @@ from astropy_feedrot.receptors import Receptors  # noqa: E402
 from astropy_feedrot.visibilities import (  # noqa: E402
     APPLY_MARK,
     HISTORY_MARK,
+    CorrectionRefused,
     MSError,
     correct_ms,
     ms_antennas,
@@ -133,10 +134,17 @@ def test_twice_is_refused_unless_asked(circular):
     ms, _ = circular
     correct_ms(ms)
     before = digests(ms)
-    with pytest.raises(ValueError, match=r"HISTORY of CORRECTED_DATA.*removed already.*"
-                                         r"redo=True \(--redo\)"):
+    # DATA -> CORRECTED_DATA again would recompute the same values.
+    with pytest.raises(CorrectionRefused, match=r"CORRECTED_DATA holds DATA with the feed "
+                       r"rotation removed already \(the history records 'Feed rotation "
+                       r"removed by astropy_feedrot' \(DATA -> CORRECTED_DATA\)\); the same "
+                       r"correction again would only compute it anew: pass redo=True to do "
+                       r"so$"):
         correct_ms(ms)
-    with pytest.raises(ValueError, match=r"HISTORY of CORRECTED_DATA.*removed already"):
+    # CORRECTED_DATA corrected again would be corrected twice.
+    with pytest.raises(CorrectionRefused, match=r"\(HISTORY of CORRECTED_DATA\): the feed "
+                       r"rotation was removed already .*correcting again would remove it "
+                       r"twice .*: pass redo=True to correct all the same$"):
         correct_ms(ms, data_column="CORRECTED_DATA", corrected_column="OTHER")
     assert digests(ms) == before
     correct_ms(ms, redo=True)
@@ -217,7 +225,8 @@ def _unchanged(ms, call, error, match):
 def test_no_data_column(circular):
     ms, _ = circular
     _unchanged(ms, lambda: correct_ms(ms, data_column="MODEL_DATA"), MSError,
-               r"has no column 'MODEL_DATA' \(its data columns: \['DATA'\]\)")
+               r"has no column 'MODEL_DATA' \(its visibility columns: \['DATA'\]\); choose one "
+               r"with data_column=$")
 
 
 def test_rows_of_a_feed_id_that_feed_lacks(circular):
@@ -363,7 +372,10 @@ def test_command_in_place(circular, capsys):
     np.testing.assert_allclose(got, np.broadcast_to(model["expected"][:, None, :], got.shape),
                                rtol=0, atol=2e-6)
     assert main(["correct", str(ms), "--in-place", "--quiet"]) == 1
-    assert "--redo" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    # One line, in the command line's words.
+    assert err.count("\n") == 1 and err.endswith("pass --redo to do so\n"), err
+    assert "redo=True" not in err
     assert main(["correct", str(ms), "--in-place", "--data-column", "CORRECTED_DATA",
                  "--column", "MODEL_DATA", "--apply", "--quiet"]) == 0
     np.testing.assert_allclose(column(ms, "MODEL_DATA"), column(ms, "DATA"), rtol=0,

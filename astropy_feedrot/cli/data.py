@@ -22,6 +22,7 @@ from ..outputs import (
     write_files,
 )
 from ..visibilities import (
+    CorrectionRefused,
     antenna_table,
     check_output_format,
     correct_file,
@@ -142,11 +143,18 @@ def _run_in_place(args, options):
                            "files are corrected into a copy (-o OUTPUT)")
     try:
         with _client(args) as client:
-            correct_ms(args.input, data_column=args.data_column, corrected_column=args.column,
-                       client=client, **options)
+            correct_ms(args.input, client=client, **_columns(args), **options)
     except ImportError as error:
         raise CommandError(one_line(error)) from None
+    except CorrectionRefused as error:  # in the command line's words (--redo)
+        raise CommandError(one_line(error.command_line())) from None
     return 0
+
+
+def _columns(args):
+    """The columns of a Measurement Set read and written (--data-column, --column)."""
+    return dict(data_column=args.data_column, corrected_column=args.column or "CORRECTED_DATA",
+                overwrite_column=args.overwrite_column)
 
 
 def _run_correct(args):
@@ -158,11 +166,17 @@ def _run_correct(args):
     if args.output is None:
         raise CommandError("give -o/--output OUTPUT for the corrected copy, or --in-place "
                            "for a Measurement Set")
-    for option, value in (("--data-column", args.data_column != "DATA"),
-                          ("--column", args.column != "CORRECTED_DATA")):
-        if value:
-            raise CommandError(f"{option} is for a Measurement Set corrected --in-place")
     target = check_correct_output(args.input, args.output, args.overwrite)
+    columns = {}
+    if file_kind(args.input) == "ms" and target.suffix.lower() == ".ms":
+        columns = _columns(args)
+    else:
+        for option, value in (("--data-column", args.data_column is not None),
+                              ("--column", args.column is not None),
+                              ("--overwrite-column", args.overwrite_column)):
+            if value:
+                raise CommandError(f"{option} is for a Measurement Set, corrected --in-place "
+                                   "or into a Measurement Set copy (-o OUTPUT.ms)")
     # Corrected into a directory of its own beside the target, then published in one
     # step: exclusively unless --overwrite, so two runs into one name cannot both succeed.
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
@@ -170,9 +184,11 @@ def _run_correct(args):
         temporary = work / target.name
         try:
             with _client(args) as client:
-                correct_file(args.input, temporary, client=client, **options)
+                correct_file(args.input, temporary, client=client, **columns, **options)
         except ImportError as error:
             raise CommandError(one_line(error)) from None
+        except CorrectionRefused as error:  # in the command line's words (--redo)
+            raise CommandError(one_line(error.command_line())) from None
         try:
             publish(temporary, target, overwrite=args.overwrite)
         except FileExistsError as error:
@@ -219,11 +235,17 @@ def register(commands):
     correct.add_argument("--in-place", action="store_true",
                          help="correct a Measurement Set in place: read --data-column, write "
                          "--column")
-    correct.add_argument("--data-column", default="DATA", metavar="COLUMN",
-                         help="with --in-place: the column read (default DATA)")
-    correct.add_argument("--column", default="CORRECTED_DATA", metavar="COLUMN",
-                         help="with --in-place: the column written, created if missing "
-                         "(default CORRECTED_DATA)")
+    correct.add_argument("--data-column", metavar="COLUMN",
+                         help="Measurement Sets: the column read (default DATA; with --apply, "
+                         "--column itself: a model corrupted in place)")
+    correct.add_argument("--column", metavar="COLUMN",
+                         help="Measurement Sets (--in-place, or -o OUTPUT.ms: a casacore copy "
+                         "corrected in place): the visibility column written, created if "
+                         "missing (default CORRECTED_DATA)")
+    correct.add_argument("--overwrite-column", action="store_true",
+                         help="write into an existing column that feedrot did not write "
+                         "(MODEL_DATA, a CORRECTED_DATA that CASA filled): its values are "
+                         "replaced")
     correct.add_argument("--apply", action="store_true",
                          help="apply the feed rotation (corrupt a sky model) instead of "
                          "removing it")
@@ -236,7 +258,9 @@ def register(commands):
                          "of the file's telescope alike (said in a warning)")
     correct.add_argument("--redo", action="store_true",
                          help="correct data whose history says they were corrected in the "
-                         "same direction already")
+                         "same direction already (by feedrot, by AIPS CLCOR PANG, by CASA "
+                         "applycal parang=True), or recompute a column that holds this "
+                         "correction already")
     correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
                          help="north of the corrected polarization angles: the pole of date "
                          "(default, as in Python, CASA and AIPS) or a catalogue frame such "

@@ -16,11 +16,13 @@ One module per format, on shared steps:
   catalogue for antennas a file gives none, matched by name or by position
   (`catalogue_receptors`);
 * `~astropy_feedrot.visibilities.history`: the one history mark
-  (`HISTORY_MARK`, `APPLY_MARK`);
+  (`HISTORY_MARK`, `APPLY_MARK`), and the records of AIPS and CASA of the
+  same correction, refused unless asked for (`CorrectionRefused`);
 * formats: `~astropy_feedrot.visibilities.fitsidi` (FITS-IDI, astropy,
   in chunks), `~astropy_feedrot.visibilities.uvfits` (UVFITS antenna
   tables), `~astropy_feedrot.visibilities.ms` (Measurement Sets in place,
-  python-casacore), `~astropy_feedrot.visibilities.uvdata` (everything
+  python-casacore; `~astropy_feedrot.visibilities.ms_tables`: the columns
+  it may write, and casacore copies), `~astropy_feedrot.visibilities.uvdata` (everything
   pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the
   antenna tables FITS-IDI and UVFITS share;
 * `~astropy_feedrot.visibilities.files`: any file, by its kind
@@ -41,7 +43,7 @@ from .files import (
     read_antennas,
 )
 from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
-from .history import APPLY_MARK, HISTORY_MARK
+from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused
 from .kinds import FILE_KINDS, check_header_cards, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
 from .poles import POLES, pole_context
@@ -92,6 +94,7 @@ __all__ = [
     "ARRAY_TOLERANCE",
     "HISTORY_MARK",
     "APPLY_MARK",
+    "CorrectionRefused",
     "fitsidi_antennas",
     "correct_fitsidi",
     "STOKES_CODES",

@@ -13,7 +13,10 @@ used by ``feedrot antennas`` and ``feedrot correct``:
   python-casacore, Miriad, SMA Mir) is corrected through
   `astropy_feedrot.visibilities.uvdata` and written in the format of the
   output's extension; a Measurement Set is corrected in place by
-  `~astropy_feedrot.visibilities.correct_ms`.
+  `~astropy_feedrot.visibilities.correct_ms`, and into a new Measurement Set
+  (``.ms``) by copying it with casacore (`~astropy_feedrot.visibilities.ms_tables.copy_ms`)
+  and correcting the copy in place: every column and subtable as the input's,
+  whatever pyuvdata would make of it.
 """
 
 import contextlib
@@ -29,8 +32,10 @@ from ..labels import label_from_mount
 from ..outputs import publish, same_file
 from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
+from .history import CorrectionRefused
 from .kinds import existing_path, file_kind
-from .ms import ms_antennas
+from .ms import correct_ms, ms_antennas
+from .ms_tables import MSError, copy_ms
 from .poles import pole_context
 from .uvdata import (
     PYUVDATA_TYPES,
@@ -260,7 +265,8 @@ def check_output_format(kind, output):
 
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
                  progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
-                 client=None, catalogue=None):
+                 client=None, catalogue=None, data_column=None,
+                 corrected_column="CORRECTED_DATA", overwrite_column=False):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -268,10 +274,13 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     path : str or path-like
         The input, of any kind of `FILE_KINDS`; never modified.
     output : str or path-like
-        Where to write. A FITS-IDI input gives a FITS-IDI output; any other
-        input is written by pyuvdata in the format its extension names
-        (``.uvfits``, ``.uvh5``, ``.ms``...; ``.fits`` is UVFITS for a UVFITS
-        input): `~astropy_feedrot.visibilities.check_output_format`.
+        Where to write. A FITS-IDI input gives a FITS-IDI output; a
+        Measurement Set written as ``.ms`` is a casacore copy of the input
+        corrected in place (`~astropy_feedrot.visibilities.correct_ms`,
+        ``data_column`` into ``corrected_column``); any other input is
+        written by pyuvdata in the format its extension names (``.uvfits``,
+        ``.uvh5``, ``.ms``...; ``.fits`` is UVFITS for a UVFITS input):
+        `~astropy_feedrot.visibilities.check_output_format`.
     frame : str, optional
         ``'apparent'`` (default) or a celestial frame such as ``'icrs'``:
         north of the corrected polarization angles (see
@@ -293,7 +302,8 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     pole : {'itrs', 'casa'}, optional
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
     client : `dask.distributed.Client`, optional
-        For FITS-IDI, correct the chunks of rows on its workers.
+        For FITS-IDI and Measurement Sets, correct the chunks of rows on its
+        workers.
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs: the station catalogue's receptors of the station of
@@ -305,6 +315,11 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         `~astropy_feedrot.visibilities.ARRAY_TOLERANCE`
         (`~astropy_feedrot.visibilities.catalogue_receptors`). The embedded
         catalogue by default, another one, or False for none.
+    data_column, corrected_column, overwrite_column : optional
+        For a Measurement Set copied into a Measurement Set: as in
+        `~astropy_feedrot.visibilities.correct_ms` (the copy's
+        ``corrected_column`` holds the correction; ``DATA`` and every
+        other column are the input's).
 
     Returns
     -------
@@ -344,7 +359,38 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     source = existing_path(path)
     kind = file_kind(source)
     written = check_output_format(kind, output)  # before any work
+    copy = kind == "ms" and written == "ms"
+    columns = dict(data_column=data_column, corrected_column=corrected_column,
+                   overwrite_column=overwrite_column)
+    if not copy and (data_column is not None or overwrite_column or
+                     corrected_column != "CORRECTED_DATA"):
+        raise ValueError("data_column, corrected_column and overwrite_column are for a "
+                         "Measurement Set written as a Measurement Set (.ms)")
     target = _check_output(source, output, overwrite)
+    if copy:
+        if catalogue is not None and catalogue is not False:
+            raise ValueError("catalogue= is not read for Measurement Sets (their FEED "
+                             "table gives the receptors; feeds= replaces them)")
+        work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+        try:
+            temporary = copy_ms(source, work / target.name)
+            try:
+                correct_ms(temporary, direction=direction, frame=frame, vertical=vertical,
+                           progress=progress, feeds=feeds, redo=redo, pole=pole,
+                           client=client, **columns)
+            except CorrectionRefused as error:  # named as the input, not the copy
+                raise type(error)(error.template.replace(str(temporary), str(source))) \
+                    from None
+            except MSError as error:
+                raise MSError(str(error).replace(str(temporary), str(source))) from None
+            except KeyboardInterrupt:
+                raise KeyboardInterrupt(f"{str(target)!r} was not written (the copy being "
+                                        "corrected is removed)") from None
+            publish(temporary, target, overwrite=overwrite)
+        finally:
+            with contextlib.suppress(OSError):
+                shutil.rmtree(work)
+        return target
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
                         vertical=vertical, direction=direction, feeds=feeds, redo=redo,

@@ -273,7 +273,7 @@ def _sources(hdul, name):
 
 
 def _history(header):
-    return "".join(str(card) for card in header.get("HISTORY", []))
+    return "\n".join(str(card) for card in header.get("HISTORY", []))
 
 
 class _Plan:

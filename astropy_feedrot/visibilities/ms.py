@@ -32,10 +32,11 @@ from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..labels import mount_from_label
 from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
-from .history import check_direction, check_history, history_entry
+from .history import check_direction, history_entry, ms_column_history, refusal
 from .kinds import existing_path, file_kind
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
+from .ms_tables import OWN_COLUMN, MSError, check_columns
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
 
@@ -54,17 +55,6 @@ _PARTIAL = "FEEDROT_PARTIAL"
 # PHASE_DIR reference frames read as celestial coordinates.
 _FRAMES = {"J2000": lambda: FK5(equinox="J2000"), "ICRS": ICRS,
            "B1950": lambda: FK4(equinox="B1950"), "B1950_VLA": lambda: FK4(equinox="B1950")}
-
-
-class MSError(ValueError):
-    """A Measurement Set cannot be corrected as asked: one line saying why and what to do.
-
-    Examples
-    --------
-    >>> from astropy_feedrot.visibilities import MSError
-    >>> issubclass(MSError, ValueError)
-    True
-    """
 
 
 def _ms_path(ms):
@@ -450,7 +440,7 @@ def _add_column(table, source, name):
     tables = _tables()
     description = table.getcoldesc(source)
     description.pop("keywords", None)
-    description["comment"] = f"{name} written by astropy_feedrot from {source}"
+    description["comment"] = f"{name} {OWN_COLUMN} from {source}"
     info = table.getdminfo(source)
     group = f"Tiled{name}"
     dminfo = {"TYPE": info["TYPE"] if info["TYPE"].startswith("Tiled") else "TiledShapeStMan",
@@ -462,11 +452,30 @@ def _add_column(table, source, name):
     table.addcols(tables.maketabdesc(tables.makecoldesc(name, description)), dminfo)
 
 
-def _history_text(path):
+def _history_rows(path):
+    """(ORIGIN, APPLICATION, MESSAGE) of every HISTORY row."""
     with contextlib.closing(_sub(path, "HISTORY")) as table:
         if table.nrows() == 0:
-            return ""
-        return "\n".join(_text(m) for m in table.getcol("MESSAGE"))
+            return []
+        columns = [table.getcol(c) if c in table.colnames() else [""] * table.nrows()
+                   for c in ("ORIGIN", "APPLICATION", "MESSAGE")]
+    return [tuple(_text(v) for v in row) for row in zip(*columns)]
+
+
+def _check_history(path, records, data_column, corrected_column, direction, redo):
+    """Refuse a correction of data the HISTORY says are corrected already (twice), or the
+    same correction into the same column again (a recomputation), unless ``redo``."""
+    if redo:
+        return
+    source = records.get(data_column)
+    if source is not None and source.state == direction:
+        raise refusal(f"{str(path)!r} (HISTORY of {data_column})", direction, source.record)
+    target = records.get(corrected_column)
+    if corrected_column != data_column and target is not None and \
+            target.writer == "astropy_feedrot" and target.source == data_column and \
+            target.direction == direction:
+        raise refusal(repr(str(path)), direction, target.record,
+                      recompute=f"{corrected_column} holds {data_column}")
 
 
 def _add_history(path, message):
@@ -544,9 +553,10 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
     return plans
 
 
-def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
+def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
                direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
-               progress=False, feeds=None, redo=False, pole="itrs", client=None):
+               progress=False, feeds=None, redo=False, pole="itrs", client=None,
+               overwrite_column=False):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -558,11 +568,16 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     ms : str or path-like
         The Measurement Set.
     data_column : str, optional
-        The column read (``'DATA'``; ``'MODEL_DATA'`` to corrupt a model).
+        The column read: ``'DATA'`` to remove the feed rotation,
+        ``corrected_column`` itself to apply it (a model, e.g.
+        ``'MODEL_DATA'``, corrupted in place), unless given.
     corrected_column : str, optional
-        The column written (``'CORRECTED_DATA'``); created when missing, as
+        The column written (``'CORRECTED_DATA'``), a visibility column of
+        the type and cell shape of ``data_column``; created when missing, as
         CASA creates it (the description of ``data_column``, tiled storage of
-        its own). It may be ``data_column`` itself.
+        its own). It may be ``data_column`` itself. An existing column that
+        this package did not write (a ``MODEL_DATA``, a ``CORRECTED_DATA``
+        that CASA filled) is written only with ``overwrite_column``.
     direction : {'remove', 'apply'}, optional
         ``'remove'`` (default): receptors fixed on the sky (R and L, or X
         north and Y east of ``frame``). ``'apply'``: the inverse, from a sky
@@ -584,8 +599,11 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         Receptors to use instead of ``FEED`` (all antennas, or ``{antenna
         number or name: Receptors}``).
     redo : bool, optional
-        Allow a correction in the direction the ``HISTORY`` says was made
-        already to either column.
+        Correct ``data_column`` although the ``HISTORY`` says its data were
+        corrected in that direction already (by this package, by CASA's
+        ``applycal(parang=True)`` into ``CORRECTED_DATA``, or by AIPS before
+        the set was imported), or recompute a ``corrected_column`` that holds
+        this correction of ``data_column`` already.
     pole : {'itrs', 'casa'}, optional
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`):
         the Earth-fixed z axis with polar motion (default), or CASA's (no polar
@@ -598,6 +616,9 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         process records them in order. The result is bit for bit the serial
         one. On Ctrl-C the chunks the workers have taken are waited for
         (a running task cannot be stopped) and recorded.
+    overwrite_column : bool, optional
+        Write into an existing ``corrected_column`` that this package did
+        not write (its values are replaced).
 
     Returns
     -------
@@ -612,10 +633,17 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
         For a path that is not a Measurement Set, a missing ``data_column``,
         an antenna without ``FEED`` rows, receptors of the other basis than
         the products (a circular-linear baseline), Stokes products, a set
-        that is read-only or locked by another process, a correction the
-        ``HISTORY`` says was made already, or a correction of a column into
-        itself whose interrupted run left chunks in an unknown state; nothing
-        is written then.
+        that is read-only or locked by another process, or a correction of a
+        column into itself whose interrupted run left chunks in an unknown
+        state; nothing is written then.
+    CorrectionRefused
+        (a ValueError) For a correction the ``HISTORY`` says was made
+        already (unless ``redo``), and for columns that cannot be read or
+        written as asked (`~astropy_feedrot.visibilities.ms_tables.check_columns`):
+        an output column that is no visibility column like ``data_column``
+        (``UVW``, ``FLAG``, a name that is no column name), or one this
+        package did not write (unless ``overwrite_column``); nothing is
+        written then.
 
     Warns
     -----
@@ -648,28 +676,27 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
     direction = check_direction(direction)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
+    if data_column is None:
+        data_column = "DATA" if direction == "remove" else corrected_column
     path = _ms_path(ms)
     _tables()
     # Before casacore opens anything: it would wait for another process's lock.
     _check_writable(path)
-    with _open(path) as table:
-        columns = table.colnames()
-        if data_column not in columns:
-            data = [c for c in columns if table.getcoldesc(c).get("valueType") == "complex"]
-            raise MSError(f"{str(path)!r} has no column {data_column!r} (its data columns: "
-                          f"{data}); choose one with data_column= (--data-column)")
-        if table.getcoldesc(data_column).get("valueType") != "complex":
-            raise MSError(f"{str(path)!r}: column {data_column!r} is not complex "
-                          "visibilities")
-        partial = None
-        if corrected_column in columns:
-            partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
-        meta = _meta(table)
-        step_rows = _chunk_rows(table, data_column, chunk_rows)
     what = f"{data_column} -> {corrected_column}"
+    records = ms_column_history(_history_rows(path))
+    with _open(path) as table:
+        partial = None
+        if isinstance(corrected_column, str) and corrected_column in table.colnames():
+            partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
+        resuming = partial is not None and partial.get("what") == what \
+            and partial.get("direction") == direction
+        meta = _meta(table)
+        firsts = np.unique(meta["DATA_DESC_ID"], return_index=True)[1].tolist()
+        check_columns(table, path, data_column, corrected_column, records, firsts,
+                      overwrite_column=overwrite_column, resuming=resuming)
+        step_rows = _chunk_rows(table, data_column, chunk_rows)
     progress_record = Progress(what, direction, step_rows)
-    if partial is not None and partial.get("what") == what \
-            and partial.get("direction") == direction:
+    if resuming:
         # Go on with the chunks of the interrupted run.
         progress_record = Progress.resumed(partial, what, direction)
         if progress_record.unknown and data_column == corrected_column:
@@ -678,10 +705,7 @@ def correct_ms(ms, *, data_column="DATA", corrected_column="CORRECTED_DATA",
                           f"cannot go on from there: restore {data_column} from a copy")
         step_rows = progress_record.chunk_rows
     else:
-        history = _history_text(path)
-        for column in dict.fromkeys([corrected_column, data_column]):
-            check_history(history, direction, f"{str(path)!r} (HISTORY of {column})",
-                          redo=redo, what=f"-> {column}")
+        _check_history(path, records, data_column, corrected_column, direction, redo)
     antennas = ms_antennas(path, vertical=vertical)
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
