@@ -6,6 +6,10 @@
 U = 0.08) for 8 hours with four antennas of the VLA (circular feeds) or ALMA
 (linear feeds), and predicts the data from a component list.
 
+``python casa_sim.py simulate vla2 OUT.ms``: the VLA set with two spectral
+windows (5 and 8 GHz), observed one after the other in each scan: the same
+times in two scans (pyuvdata refuses such sets).
+
 ``python casa_sim.py check``: CASA starts (imports) here.
 
 ``python casa_sim.py applycal MS``: CASA's ``applycal(parang=True)``, no
@@ -26,7 +30,7 @@ def simulate(kind, out):
     import casatools
 
     me, sm, cl = casatools.measures(), casatools.simulator(), casatools.componentlist()
-    if kind == "vla":
+    if kind in ("vla", "vla2"):
         observatory, stokes, feed = "VLA", "RR RL LR LL", "perfect R L"
         # Pads near the VLA centre (ITRF, m).
         xyz = np.array([[-1601185.4, -5041977.5, 3554875.9],
@@ -48,6 +52,9 @@ def simulate(kind, out):
                  referencelocation=me.observatory(observatory))
     sm.setspwindow(spwname="spw0", freq="5GHz", deltafreq="1MHz", freqresolution="1MHz",
                    nchannels=2, stokes=stokes)
+    if kind == "vla2":
+        sm.setspwindow(spwname="spw1", freq="8GHz", deltafreq="2MHz", freqresolution="2MHz",
+                       nchannels=3, stokes=stokes)
     sm.setfeed(mode=feed)
     sm.setfield(sourcename="src", sourcedirection=me.direction(*source))
     sm.setlimits(shadowlimit=0.001, elevationlimit="8deg")
@@ -55,6 +62,8 @@ def simulate(kind, out):
     sm.settimes(integrationtime="600s", usehourangle=True,
                 referencetime=me.epoch("utc", "2023/01/25/00:00:00"))
     sm.observe("src", "spw0", starttime="-5h", stoptime="5h")
+    if kind == "vla2":
+        sm.observe("src", "spw1", starttime="-5h", stoptime="5h")
     cl.addcomponent(flux=[1.0, 0.06, 0.08, 0.0], fluxunit="Jy", polarization="Stokes",
                     dir=me.direction(*source), shape="point", freq="5GHz")
     cl.rename(out + ".cl")

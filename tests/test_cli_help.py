@@ -53,6 +53,20 @@ def test_examples_are_whole_lines():
         assert not line.endswith("\\"), line
 
 
+def _add_model(ms):
+    """A MODEL_DATA column (a sky model, as CASA's ft or setjy would leave): the DATA."""
+    try:
+        from casacore.tables import makecoldesc, maketabdesc, table
+    except ImportError:  # the Measurement Set examples say so themselves
+        return
+    with table(str(ms), readonly=False, ack=False) as t:
+        description = t.getcoldesc("DATA")
+        description.pop("keywords", None)
+        t.addcols(maketabdesc(makecoldesc("MODEL_DATA", description)),
+                  {"TYPE": "TiledShapeStMan", "NAME": "TiledMODEL", "SPEC": {}})
+        t.putcol("MODEL_DATA", t.getcol("DATA"))
+
+
 @pytest.fixture
 def files(tmp_path, monkeypatch):
     """The files the examples name, made from the samples, in the working directory."""
@@ -66,6 +80,7 @@ def files(tmp_path, monkeypatch):
     with tarfile.open(DATA / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms.tar.gz") as archive:
         archive.extractall(tmp_path, filter="data")
     (tmp_path / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms").rename(tmp_path / "vla.ms")
+    _add_model(tmp_path / "vla.ms")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
