@@ -32,7 +32,7 @@ from ..labels import label_from_mount
 from ..outputs import publish, same_file
 from .antenna_tables import writing_program
 from .fitsidi import correct_fitsidi, fitsidi_antennas
-from .history import CorrectionRefused
+from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
 from .ms import correct_ms, ms_antennas
 from .ms_tables import MSError, copy_ms
@@ -398,6 +398,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         return target
 
     uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
+    check_history(uv.history, direction, str(source), redo=redo)  # the file named
     with pole_context(pole):
         correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
                        direction=direction, feeds=feeds, redo=redo, catalogue=catalogue)
