@@ -536,9 +536,11 @@ def ms_column_history(rows):
             direction = min(own)[1]
             source, target = what.group("source"), what.group("target")
             before = columns.get(source, ColumnRecord())
+            # A column corrected in place stays whose it was (a model turned is a model).
+            writer = before.writer if source == target else "astropy_feedrot"
             columns[target] = ColumnRecord(compose(before.state, direction),
                                            repr(_MARKS[direction]) + f" ({source} -> {target})",
-                                           "astropy_feedrot", source, direction)
+                                           writer, source, direction)
             continue
         if message.strip().startswith("taskname="):
             finish()
