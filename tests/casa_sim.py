@@ -10,6 +10,9 @@ U = 0.08) for 8 hours with four antennas of the VLA (circular feeds) or ALMA
 windows (5 and 8 GHz), observed one after the other in each scan: the same
 times in two scans (pyuvdata refuses such sets).
 
+``python casa_sim.py split MS OUT``: CASA's ``split(datacolumn="corrected")``:
+CORRECTED_DATA into the DATA of a new set.
+
 ``python casa_sim.py check``: CASA starts (imports) here.
 
 ``python casa_sim.py applycal MS``: CASA's ``applycal(parang=True)``, no
@@ -84,6 +87,12 @@ def applycal(ms):
     task(vis=ms, parang=True)
 
 
+def split(ms, out):
+    from casatasks import split as task
+
+    task(vis=ms, outputvis=out, datacolumn="corrected")
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "check":
         for name in ("casatools", "casatasks"):
@@ -92,6 +101,8 @@ if __name__ == "__main__":
         simulate(sys.argv[2], sys.argv[3])
     elif sys.argv[1] == "importfitsidi":
         importfitsidi(sys.argv[2], sys.argv[3])
+    elif sys.argv[1] == "split":
+        split(sys.argv[2], sys.argv[3])
     else:
         applycal(sys.argv[2])
     print("done")
