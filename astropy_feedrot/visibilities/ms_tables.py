@@ -79,9 +79,17 @@ def column_is_ours(table, column, record):
 
     Examples
     --------
+    >>> import tarfile, tempfile, pathlib
+    >>> from astropy_feedrot.visibilities.ms_chunks import tables
     >>> from astropy_feedrot.visibilities.ms_tables import column_is_ours
-    >>> column_is_ours(None, "CORRECTED_DATA", None) if False else "needs a table"
-    'needs a table'
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> with tarfile.open("tests/data/uvdata/day2_TDEM0003_10s_norx_1src_1spw_2ints"
+    ...                   ".ms.tar.gz") as archive:
+    ...     archive.extractall(where, filter="data")
+    >>> with tables().table(str(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms"),
+    ...                     ack=False) as table:
+    ...     column_is_ours(table, "DATA", None)  # CASA's importuvfits wrote it
+    False
     """
     if record is not None and record.writer is not None:
         return record.writer == "astropy_feedrot"
@@ -127,9 +135,20 @@ def check_columns(table, path, data_column, corrected_column, records, firsts, *
 
     Examples
     --------
+    >>> import tarfile, tempfile, pathlib
+    >>> from astropy_feedrot.visibilities.ms_chunks import tables
     >>> from astropy_feedrot.visibilities.ms_tables import check_columns
-    >>> callable(check_columns)
-    True
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> with tarfile.open("tests/data/uvdata/day2_TDEM0003_10s_norx_1src_1spw_2ints"
+    ...                   ".ms.tar.gz") as archive:
+    ...     archive.extractall(where, filter="data")
+    >>> with tables().table(str(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms"),
+    ...                     ack=False) as table:
+    ...     check_columns(table, "vla.ms", "DATA", "CORRECTED_DATA", {}, [0])  # a new column
+    ...     check_columns(table, "vla.ms", "DATA", "UVW", {}, [0])
+    Traceback (most recent call last):
+    ...
+    astropy_feedrot...ColumnRefused: 'vla.ms': column 'UVW' is not a visibility column ...
     """
     where = repr(str(path))
     column_name(data_column, "<<data_column>>", where)
