@@ -76,3 +76,13 @@ def test_points_needed_against_a_dense_reference(tmp_path):
     # The measured margin: the default 10 points are 1e-6 cycle off or better.
     default = correct_rinex(obs, tmp_path / "d.rnx", coarse, table=True).windup
     assert np.max(np.abs(default["windup"] - reference["windup"]).to_value(u.cycle)) < 1e-6
+
+
+def test_arcs_interval_learnt_after_a_one_epoch_block():
+    arcs = Arcs(max_gap=30.0)
+    prn = np.array(["G01"], dtype=object)
+    arcs.apply(prn, np.array([0.0]), np.array([0.1]))  # no step to learn the interval from
+    assert arcs.interval is None
+    arcs.apply(np.array(["G01"] * 3, dtype=object), np.array([30.000001, 60.0, 89.999999]),
+               np.array([0.1, 0.1, 0.1]))
+    assert arcs.arcs == 1 and arcs.interval == pytest.approx(30.0, abs=1e-5)

@@ -70,10 +70,10 @@ class Arcs:
 
     def tolerance(self, seconds):
         """Seconds by which a gap may exceed ``max_gap`` (a fraction of the interval)."""
-        if self.interval is None:
-            steps = np.diff(np.unique(seconds))
-            self.interval = float(steps.min()) if steps.size else 0.0
-        return GAP_TOLERANCE * self.interval + 1e-6
+        if not self.interval:  # unknown: the smallest step seen (kept once there is one)
+            steps = np.diff(np.unique(np.round(seconds, 6)))
+            self.interval = float(steps.min()) if steps.size else None
+        return GAP_TOLERANCE * (self.interval or 0.0) + 1e-6
 
     def apply(self, prns, seconds, wrapped):
         """Continuous wind-up (cycles) of rows given in time order per PRN.
