@@ -57,7 +57,7 @@ from ..outputs import same_file, write_files
 from ..sp3_orbit import MAX_EXTRAPOLATION, points_needed
 from ..yaw_models import LAWS, ModelAttitude, default_metadata
 from .arcs import Arcs, orbit_file_name
-from .rinex import RinexReader, record_times
+from .rinex import SYSTEMS, RinexReader, record_times
 from .streams import RinexWriter
 
 __all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]
@@ -516,8 +516,9 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
 def _check_points(points, orbits):
     """The interpolation points, refused before any work if too few for the orbits' sampling."""
     epochs = len(orbits.epochs)
-    radii = [np.nanmin(np.linalg.norm(xyz, axis=-1)) for xyz in orbits.positions.values()
-             if np.any(np.isfinite(xyz))]
+    # The GNSS satellites' smallest radius (a LEO in the file is never a RINEX PRN).
+    radii = [np.nanmin(np.linalg.norm(xyz, axis=-1)) for sat, xyz in orbits.positions.items()
+             if sat[:1] in SYSTEMS and np.any(np.isfinite(xyz))]
     needed = points_needed(orbits.interval, min(radii) if radii else 20e6)
     if points is None:
         points = min(10, epochs)
