@@ -323,3 +323,42 @@ def test_two_windows_copied_and_corrected(tmp_path, capsys):
     # The correction did something: CORRECTED_DATA is no longer DATA.
     assert all(np.abs(c - d).max() > 0.01 for c, d in zip(by_window(out, "CORRECTED_DATA"),
                                                           by_window(out, "DATA")))
+
+
+@pytest.mark.filterwarnings("ignore:The uvw_array does not match")
+def test_data_split_from_casa_corrected_data_refused_into_any_format(vla, tmp_path):
+    # split(datacolumn="corrected") after applycal(parang=True): DATA holds CASA's
+    # correction, for the copy (.ms) and for pyuvdata's formats alike.
+    ms, _ = vla
+    add_casa_history(ms, parang=True)
+    with table(str(ms / "HISTORY"), readonly=False, ack=False) as history:
+        start = history.nrows()
+        history.addrows(2)
+        for k, message in enumerate(["taskname=split", 'datacolumn  = "corrected"']):
+            history.putcell("MESSAGE", start + k, message)
+            history.putcell("ORIGIN", start + k, "split")
+    for name in ("out.ms", "out.uvh5"):
+        with pytest.raises(CorrectionRefused, match=r"\(HISTORY of DATA\): the feed rotation "
+                           r"was removed already \(the history records CASA applycal\(parang="
+                           r"True\), then CASA split\(datacolumn='corrected'\)\)"):
+            correct_file(ms, tmp_path / name)
+        assert not (tmp_path / name).exists()
+    pytest.importorskip("pyuvdata")
+    correct_file(ms, tmp_path / "out.uvh5", redo=True)
+
+
+def test_aips_history_imported_into_a_measurement_set(vla):
+    # importuvfits of an AIPS file that SPLIT after CLCOR PANG: the cards in HISTORY.
+    ms, _ = vla
+    cards = ["CLCOR   OPCODE = 'PANG' / Operation code",
+             "CLCOR   CLPARM(1)=  1. / Parallactic angle correction APPLIED",
+             "SPLIT GAINUSE =  6 / CL table"]
+    with table(str(ms / "HISTORY"), readonly=False, ack=False) as history:
+        start = history.nrows()
+        history.addrows(len(cards))
+        for k, message in enumerate(cards):
+            history.putcell("MESSAGE", start + k, message)
+            history.putcell("ORIGIN", start + k, "importuvfits")
+    unchanged(ms, lambda: correct_ms(ms), r"\(HISTORY of DATA\): the feed rotation was "
+              r"removed already \(the history records AIPS CLCOR OPCODE = 'PANG'")
+    correct_ms(ms, direction="apply", data_column="DATA")  # undoing AIPS's is allowed

@@ -35,7 +35,7 @@ from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
 from .ms import correct_ms, ms_antennas
-from .ms_tables import MSError, copy_ms
+from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import pole_context
 from .uvdata import (
     PYUVDATA_TYPES,
@@ -397,6 +397,8 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
                         pole=pole, client=client, catalogue=catalogue)
         return target
 
+    if kind == "ms":  # pyuvdata reads DATA: what the HISTORY says of it (CASA's too)
+        check_column_history(source, column_records(source), "DATA", "DATA", direction, redo)
     uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
     check_history(uv.history, direction, str(source), redo=redo)  # the file named
     with pole_context(pole):

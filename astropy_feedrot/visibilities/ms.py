@@ -32,11 +32,11 @@ from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..labels import mount_from_label
 from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
-from .history import check_direction, history_entry, ms_column_history, refusal
+from .history import check_direction, history_entry
 from .kinds import existing_path, file_kind
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
-from .ms_tables import OWN_COLUMN, MSError, check_columns
+from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
 
@@ -452,32 +452,6 @@ def _add_column(table, source, name):
     table.addcols(tables.maketabdesc(tables.makecoldesc(name, description)), dminfo)
 
 
-def _history_rows(path):
-    """(ORIGIN, APPLICATION, MESSAGE) of every HISTORY row."""
-    with contextlib.closing(_sub(path, "HISTORY")) as table:
-        if table.nrows() == 0:
-            return []
-        columns = [table.getcol(c) if c in table.colnames() else [""] * table.nrows()
-                   for c in ("ORIGIN", "APPLICATION", "MESSAGE")]
-    return [tuple(_text(v) for v in row) for row in zip(*columns)]
-
-
-def _check_history(path, records, data_column, corrected_column, direction, redo):
-    """Refuse a correction of data the HISTORY says are corrected already (twice), or the
-    same correction into the same column again (a recomputation), unless ``redo``."""
-    if redo:
-        return
-    source = records.get(data_column)
-    if source is not None and source.state == direction:
-        raise refusal(f"{str(path)!r} (HISTORY of {data_column})", direction, source.record)
-    target = records.get(corrected_column)
-    if corrected_column != data_column and target is not None and \
-            target.writer == "astropy_feedrot" and target.source == data_column and \
-            target.direction == direction:
-        raise refusal(repr(str(path)), direction, target.record,
-                      recompute=f"{corrected_column} holds {data_column}")
-
-
 def _add_history(path, message):
     tables = _tables()
     with contextlib.closing(tables.table(str(path / "HISTORY"), readonly=False,
@@ -683,7 +657,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     # Before casacore opens anything: it would wait for another process's lock.
     _check_writable(path)
     what = f"{data_column} -> {corrected_column}"
-    records = ms_column_history(_history_rows(path))
+    records = column_records(path)
     with _open(path) as table:
         partial = None
         if isinstance(corrected_column, str) and corrected_column in table.colnames():
@@ -705,7 +679,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
                           f"cannot go on from there: restore {data_column} from a copy")
         step_rows = progress_record.chunk_rows
     else:
-        _check_history(path, records, data_column, corrected_column, direction, redo)
+        check_column_history(path, records, data_column, corrected_column, direction, redo)
     antennas = ms_antennas(path, vertical=vertical)
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)

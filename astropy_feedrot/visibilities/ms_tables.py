@@ -7,6 +7,8 @@ a Measurement Set.
   ``FLAG``, a name that is no column name), and an existing column that
   this package did not write (``MODEL_DATA``, a ``CORRECTED_DATA`` that CASA
   filled) unless ``overwrite_column`` is given.
+* `column_records` reads what the ``HISTORY`` table says each column holds,
+  and `check_column_history` refuses a correction made already.
 * `copy_ms` copies a Measurement Set with casacore's own table copy.
 
 python-casacore is imported on first use
@@ -19,11 +21,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .history import CorrectionRefused
+from .history import CorrectionRefused, ms_column_history, refusal
 from .ms_chunks import tables
 
 __all__ = ["MSError", "ColumnRefused", "OWN_COLUMN", "VISIBILITY_TYPES", "check_columns",
-           "column_is_ours", "copy_ms", "column_name"]
+           "column_is_ours", "copy_ms", "column_name", "column_records",
+           "check_column_history"]
 
 #: The words of the comment of a column this package created.
 OWN_COLUMN = "written by astropy_feedrot"
@@ -226,3 +229,87 @@ def copy_ms(source, target):
         # copied as they are stored, subtables included.
         table.copy(str(target), deep=True).close()
     return target
+
+
+def column_records(ms):
+    """What the ``HISTORY`` table of a Measurement Set says each column holds.
+
+    Parameters
+    ----------
+    ms : str or path-like
+        The Measurement Set.
+
+    Returns
+    -------
+    dict
+        ``{column: ColumnRecord}``
+        (`~astropy_feedrot.visibilities.history.ms_column_history`); empty
+        without a ``HISTORY`` table.
+
+    Examples
+    --------
+    >>> import tarfile, tempfile, pathlib
+    >>> from astropy_feedrot.visibilities.ms_tables import column_records
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> with tarfile.open("tests/data/uvdata/day2_TDEM0003_10s_norx_1src_1spw_2ints"
+    ...                   ".ms.tar.gz") as archive:
+    ...     archive.extractall(where, filter="data")
+    >>> column_records(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms")  # importuvfits
+    {}
+    """
+    path = Path(ms) / "HISTORY"
+    if not path.is_dir():
+        return {}
+    with contextlib.closing(tables().table(str(path), ack=False)) as table:
+        if table.nrows() == 0:
+            return {}
+        columns = [table.getcol(c) if c in table.colnames() else [""] * table.nrows()
+                   for c in ("ORIGIN", "APPLICATION", "MESSAGE")]
+    text = [[v.decode() if isinstance(v, bytes) else str(v) for v in c] for c in columns]
+    return ms_column_history(zip(*text))
+
+
+def check_column_history(path, records, data_column, corrected_column, direction, redo):
+    """Refuse a correction of data the ``HISTORY`` says are corrected already (it would
+    correct them twice), or the same correction into the same column again (a
+    recomputation), unless ``redo``.
+
+    Parameters
+    ----------
+    path : path-like
+        The Measurement Set, for messages.
+    records : dict
+        `column_records` of it.
+    data_column, corrected_column : str
+        The column read and the column written.
+    direction : {'remove', 'apply'}
+        The correction asked for.
+    redo : bool
+        Allow it all the same.
+
+    Raises
+    ------
+    CorrectionRefused
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.history import ColumnRecord
+    >>> from astropy_feedrot.visibilities.ms_tables import check_column_history
+    >>> records = {"CORRECTED_DATA": ColumnRecord("remove", "CASA applycal(parang=True)")}
+    >>> check_column_history("x.ms", records, "DATA", "CORRECTED_DATA", "remove", False)
+    >>> check_column_history("x.ms", records, "CORRECTED_DATA", "OURS", "remove", False)
+    Traceback (most recent call last):
+    ...
+    astropy_feedrot...CorrectionRefused: 'x.ms' (HISTORY of CORRECTED_DATA): the feed ...
+    """
+    if redo:
+        return
+    source = records.get(data_column)
+    if source is not None and source.state == direction:
+        raise refusal(f"{str(path)!r} (HISTORY of {data_column})", direction, source.record)
+    target = records.get(corrected_column)
+    if corrected_column != data_column and target is not None and \
+            target.writer == "astropy_feedrot" and target.source == data_column and \
+            target.direction == direction:
+        raise refusal(repr(str(path)), direction, target.record,
+                      recompute=f"{corrected_column} holds {data_column}")
