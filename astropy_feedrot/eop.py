@@ -226,7 +226,7 @@ def _bundled_arrays():
     """The arrays of the tables astropy ships, read by their columns (`iers_files`);
     astropy's own reader where the files do not follow their format."""
     try:
-        return TableArrays(*bundled_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE))
+        return TableArrays(*bundled_arrays())
     except (OSError, FileFormatError):
         return _arrays_of(_table())
 

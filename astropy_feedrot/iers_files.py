@@ -22,17 +22,28 @@ astropy's ``IERS_Auto`` does:
 The arrays are bit for bit those astropy's table gives
 (``tests/test_iers_files.py`` compares them); `bundled_arrays` is what
 `astropy_feedrot.eop.table_arrays` reads when astropy has no table loaded yet.
+Astropy 6, offline, serves the IERS-B table alone (`COMBINES_OFFLINE`), and
+so does `bundled_arrays` there.
 Nothing here is used for a table a user set or astropy downloaded.
 """
 
 from typing import NamedTuple
 
+import astropy
 import numpy as np
 from astropy import units as u
+from astropy.utils import iers
+from astropy.utils.introspection import minversion
 
 from .io import FileFormatError
 
-__all__ = ["EarthOrientationColumns", "read_finals2000a", "read_eopc04", "bundled_arrays"]
+__all__ = ["EarthOrientationColumns", "read_finals2000a", "read_eopc04", "combined_arrays",
+           "c04_arrays", "bundled_arrays", "COMBINES_OFFLINE"]
+
+#: Whether astropy's ``IERS_Auto``, offline (``iers.conf.auto_download = False``),
+#: combines the bundled IERS-A and IERS-B tables (astropy 7.0 and later) rather
+#: than serving the IERS-B table alone (astropy 6; astropy pull request 16187).
+COMBINES_OFFLINE = minversion(astropy, "7.0")
 
 
 class EarthOrientationColumns(NamedTuple):
@@ -208,8 +219,8 @@ def read_eopc04(path):
                                    _numbers(table, 39, 50, path, "PM_y"))
 
 
-def bundled_arrays(finals, eopc04):
-    """The Earth-orientation table astropy's ``IERS_Auto`` makes of two files, as arrays.
+def combined_arrays(finals, eopc04):
+    """The Earth-orientation table astropy's ``IERS_Auto.read`` makes of two files, as arrays.
 
     Parameters
     ----------
@@ -233,8 +244,8 @@ def bundled_arrays(finals, eopc04):
     Examples
     --------
     >>> from astropy.utils import iers
-    >>> from astropy_feedrot.iers_files import bundled_arrays
-    >>> mjd, ut1_utc, xp, yp, predictive = bundled_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE)
+    >>> from astropy_feedrot.iers_files import combined_arrays
+    >>> mjd, ut1_utc, xp, yp, predictive = combined_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE)
     >>> bool(mjd[0] < predictive <= mjd[-1] + 1)
     True
     """
@@ -264,3 +275,65 @@ def bundled_arrays(finals, eopc04):
     predictive = (float(a.mjd[first_prediction]) if first_prediction < len(a.mjd)
                   else float(a.mjd[-1] + 1))
     return a.mjd, ut1_utc, xp, yp, predictive
+
+
+def c04_arrays(eopc04):
+    """The Earth-orientation table astropy's ``IERS_B`` makes of a C04 file, as arrays.
+
+    Parameters
+    ----------
+    eopc04 : str or os.PathLike
+        An ``eopc04.1962-now`` file (astropy's ``iers.IERS_B_FILE``).
+
+    Returns
+    -------
+    mjd, ut1_utc, xp, yp : numpy.ndarray
+        Days (MJD, UTC), UT1 - UTC (s) and polar motion (rad).
+    predictive_mjd : float
+        The day after the table (the series has no predictions).
+
+    Raises
+    ------
+    astropy_feedrot.io.FileFormatError
+        A file that does not follow its format.
+
+    Examples
+    --------
+    >>> from astropy.utils import iers
+    >>> from astropy_feedrot.iers_files import c04_arrays
+    >>> mjd, ut1_utc, xp, yp, predictive = c04_arrays(iers.IERS_B_FILE)
+    >>> bool(predictive == mjd[-1] + 1)
+    True
+    """
+    c04 = read_eopc04(eopc04)
+    return (c04.mjd, c04.ut1_utc, (c04.pm_x * u.arcsec).to_value(u.rad),
+            (c04.pm_y * u.arcsec).to_value(u.rad), float(c04.mjd[-1] + 1))
+
+
+def bundled_arrays():
+    """The table astropy's ``IERS_Auto`` uses offline with the files astropy ships.
+
+    `combined_arrays` of ``iers.IERS_A_FILE`` and ``iers.IERS_B_FILE`` with
+    astropy 7.0 and later, `c04_arrays` of ``iers.IERS_B_FILE`` with astropy 6
+    (`COMBINES_OFFLINE`).
+
+    Returns
+    -------
+    mjd, ut1_utc, xp, yp, predictive_mjd
+        As `combined_arrays` returns them.
+
+    Raises
+    ------
+    astropy_feedrot.io.FileFormatError
+        A file that does not follow its format.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.iers_files import bundled_arrays
+    >>> mjd, ut1_utc, xp, yp, predictive = bundled_arrays()
+    >>> bool(mjd[0] < predictive <= mjd[-1] + 1)
+    True
+    """
+    if COMBINES_OFFLINE:
+        return combined_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE)
+    return c04_arrays(iers.IERS_B_FILE)

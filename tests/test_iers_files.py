@@ -11,18 +11,40 @@ from astropy import units as u
 from astropy.utils import iers
 
 from astropy_feedrot import eop
-from astropy_feedrot.iers_files import bundled_arrays, read_eopc04, read_finals2000a
+from astropy_feedrot.iers_files import (
+    COMBINES_OFFLINE,
+    bundled_arrays,
+    c04_arrays,
+    combined_arrays,
+    read_eopc04,
+    read_finals2000a,
+)
 from astropy_feedrot.io import FileFormatError
+
+
+def _columns(table):
+    mjd = table["MJD"].to_value(u.day)
+    return (mjd, u.Quantity(table["UT1_UTC"]).to_value(u.s),
+            u.Quantity(table["PM_x"]).to_value(u.rad), u.Quantity(table["PM_y"]).to_value(u.rad),
+            float(table.meta.get("predictive_mjd", mjd[-1] + 1)))
 
 
 @pytest.fixture(scope="module")
 def astropys():
-    """astropy's own table of the bundled files, read by astropy's reader."""
+    """astropy's own combination of the bundled files, read by astropy's reader."""
     with iers.conf.set_temp("auto_download", False):
-        table = iers.IERS_Auto.read(iers.IERS_A_FILE)
-    return (table["MJD"].to_value(u.day), u.Quantity(table["UT1_UTC"]).to_value(u.s),
-            u.Quantity(table["PM_x"]).to_value(u.rad), u.Quantity(table["PM_y"]).to_value(u.rad),
-            float(table.meta["predictive_mjd"]))
+        return _columns(iers.IERS_Auto.read(iers.IERS_A_FILE))
+
+
+@pytest.fixture
+def offline():
+    """The table astropy's IERS_Auto serves offline, read afresh by astropy."""
+    with iers.conf.set_temp("auto_download", False):
+        kept, iers.IERS_Auto.iers_table = iers.IERS_Auto.iers_table, None
+        try:
+            yield _columns(iers.IERS_Auto.open())
+        finally:
+            iers.IERS_Auto.iers_table = kept
 
 
 def _same(ours, astropys):
@@ -32,7 +54,18 @@ def _same(ours, astropys):
 
 
 def test_bundled_tables_bit_for_bit_astropys(astropys):
-    _same(bundled_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE), astropys)
+    _same(combined_arrays(iers.IERS_A_FILE, iers.IERS_B_FILE), astropys)
+
+
+def test_the_table_astropy_serves_offline(offline):
+    # Astropy 7 combines A and B offline; astropy 6 serves B alone.
+    _same(bundled_arrays(), offline)
+    assert (offline[0][0] == 37665.0) != COMBINES_OFFLINE  # C04 starts in 1962
+
+
+def test_c04_alone_is_astropys_iers_b():
+    with iers.conf.set_temp("auto_download", False):
+        _same(c04_arrays(iers.IERS_B_FILE), _columns(iers.IERS_B.open(iers.IERS_B_FILE)))
 
 
 def test_c04_columns_are_astropys():
@@ -49,7 +82,7 @@ def test_lines_of_other_lengths_read_alike(astropys, tmp_path):
     lines = Path(iers.IERS_A_FILE).read_bytes().splitlines()
     finals = tmp_path / "finals2000A.all"
     finals.write_bytes(b"".join(line.rstrip() + b"\r\n" for line in lines))
-    _same(bundled_arrays(finals, iers.IERS_B_FILE), astropys)
+    _same(combined_arrays(finals, iers.IERS_B_FILE), astropys)
 
 
 def test_blank_bulletin_b_is_nan():
@@ -94,14 +127,14 @@ def test_c04_days_that_do_not_match(tmp_path):
     path = tmp_path / "eopc04.1962-now"
     path.write_bytes(b"".join(lines[:day] + lines[day + 1:]))
     with pytest.raises(FileFormatError, match="expected the days of the Bulletin B values"):
-        bundled_arrays(iers.IERS_A_FILE, path)
+        combined_arrays(iers.IERS_A_FILE, path)
 
 
-def test_astropys_reader_where_the_columns_do_not_parse(monkeypatch, astropys):
+def test_astropys_reader_where_the_columns_do_not_parse(monkeypatch, offline):
     # eop falls back on astropy's own reader (the same arrays, slower).
-    def damaged(finals, eopc04):
-        raise FileFormatError(str(finals), 1, "a number", "x")
+    def damaged():
+        raise FileFormatError("finals2000A.all", 1, "a number", "x")
 
     monkeypatch.setattr(eop, "bundled_arrays", damaged)
     with iers.conf.set_temp("auto_download", False):
-        _same(eop._bundled_arrays(), astropys)
+        _same(eop._bundled_arrays(), offline)
