@@ -13,7 +13,8 @@ See :doc:`/gnss`.
 """
 
 from .correct import ATTITUDES, RinexCorrection, correct_rinex, join_orbex, receiver_axes
-from .rinex import SYSTEMS, EpochRecord, RinexHeader, RinexReader, read_rinex_header
+from .rinex import EpochRecord, RinexReader, read_rinex_header
+from .rinex_header import SYSTEMS, RinexHeader
 from .streams import RinexWriter, comment_line
 
 __all__ = [

@@ -57,7 +57,8 @@ from ..outputs import same_file, write_files
 from ..sp3_orbit import MAX_EXTRAPOLATION, points_needed
 from ..yaw_models import LAWS, ModelAttitude, default_metadata
 from .arcs import Arcs, orbit_file_name
-from .rinex import SYSTEMS, RinexReader, record_times
+from .rinex import RinexReader, record_times
+from .rinex_header import SYSTEMS
 from .streams import RinexWriter
 
 __all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]

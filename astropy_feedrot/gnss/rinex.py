@@ -50,156 +50,23 @@ import zlib
 import numpy as np
 
 from ..io import TIME_SYSTEMS, FileFormatError, check_epoch, epochs_to_time
+from .rinex_header import (
+    DEFAULT_TIME_SYSTEM,
+    FIELD,
+    PER_LINE_2,
+    SYSTEMS,
+    VALUE_WIDTH,
+    VERSIONS,
+    RinexHeader,
+)
 from .streams import open_rinex_lines, source_name
 
 __all__ = [
-    "SYSTEMS",
-    "RinexHeader",
     "EpochRecord",
     "RinexReader",
     "read_rinex_header",
     "record_times",
 ]
-
-#: The satellite systems of RINEX: code -> name.
-SYSTEMS = {"G": "GPS", "R": "GLONASS", "E": "Galileo", "C": "BeiDou", "J": "QZSS",
-           "I": "NavIC", "S": "SBAS"}
-
-#: The time system of a file whose ``TIME OF FIRST OBS`` leaves it blank, by the
-#: satellite system of the first line (RINEX 3.05, section 6.2).
-_DEFAULT_TIME_SYSTEM = {"G": "GPS", "M": "GPS", " ": "GPS", "R": "GLO", "E": "GAL",
-                        "C": "BDT", "J": "QZS", "I": "IRN", "S": "GPS"}
-
-#: The versions read: 2.10-2.11, 3.00-3.05, 4.00-4.02.
-_VERSIONS = ("2.10", "2.11", "2.12", "3.00", "3.01", "3.02", "3.03", "3.04", "3.05",
-             "4.00", "4.01", "4.02")
-
-#: Width of one observation field: F14.3, LLI, SSI.
-FIELD = 16
-_VALUE = 14
-
-#: Observations per line of a RINEX 2 satellite record.
-_PER_LINE_2 = 5
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class RinexHeader:
-    """The header of a RINEX observation file, as read by `RinexReader`.
-
-    Attributes
-    ----------
-    name : str
-        The file's name (``'<stream>'`` for an unnamed stream).
-    version : str
-        As written in columns 1-9 of the first line, e.g. ``'3.04'``.
-    major : int
-        2, 3 or 4.
-    system : str
-        Satellite system of the file (column 41): ``'G'``, ``'R'``, ``'E'``,
-        ``'C'``, ``'J'``, ``'I'``, ``'S'`` or ``'M'`` (mixed).
-    lines : tuple of str
-        Every line of the header with its line end, ``END OF HEADER`` last.
-    position : ndarray, shape (3,), or None
-        ``APPROX POSITION XYZ`` in metres (ITRS); None if absent or zero.
-    zero_direction : float
-        ``ANTENNA: ZERODIR AZI``: azimuth of the antenna's zero direction
-        in degrees from north through east; 0 if the header does not give it.
-    obs_types : dict of str to tuple of str
-        Observation types per satellite system (RINEX 2: the same tuple, e.g.
-        ``('C1', 'L1', 'L2')``, under every system code; RINEX 3 and 4: e.g.
-        ``{'G': ('C1C', 'L1C', ...), 'E': (...)}``).
-    interval : float or None
-        ``INTERVAL`` in seconds, None if absent.
-    time_system : str
-        The time system of the epochs (a key of
-        `~astropy_feedrot.io.TIME_SYSTEMS`): ``TIME OF FIRST OBS`` columns
-        49-51, or the system's own when blank.
-    first_obs, last_obs : tuple or None
-        ``TIME OF FIRST OBS`` and ``TIME OF LAST OBS`` as ``(year, month,
-        day, hour, minute, second)``; None if absent.
-
-    Examples
-    --------
-    >>> import io
-    >>> from astropy_feedrot.gnss import RinexReader
-    >>> text = '''     3.04           OBSERVATION DATA    M                   RINEX VERSION / TYPE
-    ...   1130730.1790 -4831245.9540  3994228.2410                  APPROX POSITION XYZ
-    ...         90.0000                                             ANTENNA: ZERODIR AZI
-    ... G    2 C1C L1C                                              SYS / # / OBS TYPES
-    ...   2023    01    25    00    00    0.0000000     GPS         TIME OF FIRST OBS
-    ...                                                             END OF HEADER
-    ... '''
-    >>> with RinexReader(io.StringIO(text)) as reader:
-    ...     header = reader.header
-    >>> header.version, header.obs_types, header.zero_direction, header.time_system
-    ('3.04', {'G': ('C1C', 'L1C')}, 90.0, 'GPS')
-    """
-
-    name: str
-    version: str
-    major: int
-    system: str
-    lines: tuple
-    position: np.ndarray = None
-    zero_direction: float = 0.0
-    obs_types: dict = dataclasses.field(default_factory=dict)
-    interval: float = None
-    time_system: str = "GPS"
-    first_obs: tuple = None
-    last_obs: tuple = None
-
-    def phase_fields(self, system):
-        """Where the carrier phases (``L`` types) of a system's satellites are.
-
-        Parameters
-        ----------
-        system : str
-            A satellite system code, e.g. ``'G'``.
-
-        Returns
-        -------
-        list of (int, int, str)
-            For each ``L`` observation type of the system: the line of the
-            satellite's record it is on (0 for the first), the column where
-            its 14-character value starts (0-based) and the type.
-
-        Raises
-        ------
-        KeyError
-            If the header declares no observation types for ``system``.
-
-        Examples
-        --------
-        >>> from astropy_feedrot.gnss import RinexHeader
-        >>> header = RinexHeader("x", "3.04", 3, "G", (), obs_types={"G": ("C1C", "L1C")})
-        >>> header.phase_fields("G")
-        [(0, 19, 'L1C')]
-        """
-        types = self.obs_types[system]
-        if self.major == 2:
-            return [(k // _PER_LINE_2, FIELD * (k % _PER_LINE_2), code)
-                    for k, code in enumerate(types) if code.startswith("L")]
-        return [(0, 3 + FIELD * k, code) for k, code in enumerate(types) if code.startswith("L")]
-
-    def record_lines(self, system):
-        """Number of lines of one satellite's observations (1 in RINEX 3 and 4).
-
-        Examples
-        --------
-        >>> from astropy_feedrot.gnss import RinexHeader
-        >>> header = RinexHeader("x", "2.11", 2, "G", (), obs_types={"G": ("C1", "L1") * 4})
-        >>> header.record_lines("G")
-        2
-        """
-        if self.major > 2:
-            return 1
-        return max(1, -(-len(self.obs_types[system]) // _PER_LINE_2))
-
-    @property
-    def line_end(self):
-        """The line end of the header's first line (``'\\n'`` or ``'\\r\\n'``)."""
-        first = self.lines[0] if self.lines else "\n"
-        return "\r\n" if first.endswith("\r\n") else "\n"
 
 
 class EpochRecord:
@@ -276,7 +143,7 @@ class EpochRecord:
         --------
         See `EpochRecord`.
         """
-        field = self._field(i, line, col)[:_VALUE]
+        field = self._field(i, line, col)[:VALUE_WIDTH]
         return float(field) if field.strip() else None
 
     def lli(self, i, line, col):
@@ -286,7 +153,7 @@ class EpochRecord:
         --------
         See `EpochRecord`.
         """
-        flag = self._field(i, line, col)[_VALUE:_VALUE + 1]
+        flag = self._field(i, line, col)[VALUE_WIDTH:VALUE_WIDTH + 1]
         return int(flag) if flag.strip() else 0
 
     def phases(self, i, fields, name="<stream>"):
@@ -323,7 +190,7 @@ class EpochRecord:
         start = self.starts[i]
         for line, col, code in fields:
             text = self.lines[start + line]
-            field = text[col:col + _VALUE]
+            field = text[col:col + VALUE_WIDTH]
             value = None
             if field.strip():
                 try:
@@ -334,12 +201,12 @@ class EpochRecord:
                     raise FileFormatError(
                         name, self.lineno + start + line,
                         f"a carrier phase {code} of {self.satellites[i]} as an F14.3 number "
-                        f"in columns {col + 1}-{col + _VALUE} (blank or 0.000 if missing)",
+                        f"in columns {col + 1}-{col + VALUE_WIDTH} (blank or 0.000 if missing)",
                         text.rstrip("\r\n"))
                 if value == 0.0:
                     value = None
             values.append(value)
-            flag = text[col + _VALUE:col + _VALUE + 1]
+            flag = text[col + VALUE_WIDTH:col + VALUE_WIDTH + 1]
             if flag.isdigit() and int(flag) & 1:
                 lost = True
         return values, lost
@@ -377,12 +244,12 @@ class EpochRecord:
             if value is None:
                 continue
             new = f"{value - amount:14.3f}"
-            if len(new) != _VALUE:
+            if len(new) != VALUE_WIDTH:
                 raise ValueError(f"{value - amount!r} does not fit the 14 characters (F14.3) of "
                                  f"a RINEX observation (satellite {self.satellites[i]}, epoch "
                                  f"{self.epoch})")
             text = self.lines[start + line]
-            self.lines[start + line] = text[:col] + new + text[col + _VALUE:]
+            self.lines[start + line] = text[:col] + new + text[col + VALUE_WIDTH:]
             changed += 1
         return changed
 
@@ -401,10 +268,10 @@ class EpochRecord:
         k = self.starts[i] + line
         text = self.lines[k]
         new = f"{value:14.3f}"
-        if len(new) != _VALUE:
+        if len(new) != VALUE_WIDTH:
             raise ValueError(f"{value!r} does not fit the 14 characters (F14.3) of a RINEX "
                              f"observation (satellite {self.satellites[i]}, epoch {self.epoch})")
-        self.lines[k] = text[:col] + new + text[col + _VALUE:]
+        self.lines[k] = text[:col] + new + text[col + VALUE_WIDTH:]
 
 
 class RinexReader:
@@ -509,10 +376,10 @@ class RinexReader:
     def _read_header(self):
         first = self._next("the 'RINEX VERSION / TYPE' line")
         version = first[:9].strip()
-        if first[60:80].strip() != "RINEX VERSION / TYPE" or version not in _VERSIONS:
+        if first[60:80].strip() != "RINEX VERSION / TYPE" or version not in VERSIONS:
             raise self._error(
                 "'RINEX VERSION / TYPE' in columns 61-80 and a version (columns 1-9) of "
-                f"{', '.join(_VERSIONS)}", first)
+                f"{', '.join(VERSIONS)}", first)
         if first[20:21] != "O":
             raise self._error("an observation file ('O' in column 21 of the first line)",
                               first)
@@ -556,7 +423,7 @@ class RinexReader:
         if not fields["obs_types"]:
             raise self._error("a header declaring its observation types ('SYS / # / OBS "
                               "TYPES' or '# / TYPES OF OBSERV') before 'END OF HEADER'", line)
-        fields.setdefault("time_system", _DEFAULT_TIME_SYSTEM.get(system, "GPS"))
+        fields.setdefault("time_system", DEFAULT_TIME_SYSTEM.get(system, "GPS"))
         return RinexHeader(self.name, version, major, system, tuple(lines), **fields)
 
     def _numbers(self, line, count, width, what, lineno=None):
@@ -673,7 +540,7 @@ class RinexReader:
             for k in range(header.record_lines(system)):
                 line = self._next(f"observations of {sat} ({len(record.satellites)} "
                                   f"satellites announced by the epoch line {record.lineno})")
-                width = FIELD * min(_PER_LINE_2, len(types) - _PER_LINE_2 * k)
+                width = FIELD * min(PER_LINE_2, len(types) - PER_LINE_2 * k)
                 if len(line.rstrip()) > width:
                     raise self._error(f"at most {len(types)} observations of {sat} (the "
                                       f"types the header declares for system {system}: "
