@@ -196,3 +196,27 @@ def test_package_rows_in_a_measurement_set():
     rows = [("pyuvdata", "pyuvdata", "Read/written with pyuvdata. " + mark)]
     assert ms_column_history(rows)["DATA"].state == "remove"
     assert np.all([r.writer is None for r in ms_column_history(rows).values()])
+
+
+@pytest.mark.filterwarnings("ignore:The uvw_array does not match")
+@pytest.mark.filterwarnings("ignore:The telescope frame is set to")
+def test_mojave_record_is_true_a_second_correction_spreads_the_phases():
+    # The reason for the refusal, measured on the file itself: AIPS's calibration left
+    # the parallel hands of this compact source in phase (|sum V| / sum |V| over the
+    # unflagged cross-correlations: 0.990 for RR and LL); removing the parallactic angle
+    # again turns RR and LL by the difference of the two antennas' angles, which spreads
+    # them (0.864 and 0.876).
+    from astropy_feedrot.visibilities import correct_uvdata, read_uvdata
+
+    uv = read_uvdata(MOJAVE)
+
+    def coherence(data, product):
+        k = list(data.polarization_array).index(product)
+        cross = data.ant_1_array != data.ant_2_array
+        values = data.data_array[cross, :, k][~data.flag_array[cross, :, k]]
+        return abs(values.sum()) / abs(values).sum()
+
+    twice = correct_uvdata(uv, redo=True)
+    for product in (-1, -2):  # RR, LL
+        assert coherence(uv, product) > 0.985
+        assert coherence(twice, product) < 0.88
