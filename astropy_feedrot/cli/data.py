@@ -222,11 +222,14 @@ def register(commands):
     correct = commands.add_parser(
         "correct", help="remove (or apply) the feed rotation of a visibility file",
         description="Remove the feed rotation from every visibility (or, with --apply, "
-        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (a chunk at a time) and every "
+        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (a chunk at a time), a "
+        "Measurement Set to .ms as a casacore copy corrected as --in-place would, and every "
         "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
         ".ms; .fits is the input's kind), the input never modified; or a Measurement Set "
         "in place (--in-place), from one column into another (python-casacore), every other "
-        "column left as it was.",
+        "column left as it was. Data whose history says they were corrected already (by "
+        "feedrot, AIPS CLCOR PANG or CASA applycal parang=True) are refused without --redo, "
+        "and columns feedrot did not write without --overwrite-column.",
         epilog=examples(EXAMPLES["correct"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
