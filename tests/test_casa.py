@@ -4,7 +4,7 @@ Measurement Set simulated by CASA's simulator, correct_ms on another.
 
 CASA (casatools, casatasks, casadata) runs in a subprocess configured offline
 (tests/casa_offline.py). The tests are skipped, saying why, without the three
-packages (``pip install casatools casatasks casadata``).
+packages (``python -m pip install -e ".[test-casa]"``).
 
 What is compared: the EVPA of CORRECTED_DATA, row by row. The reference is
 CASA's own output; the tolerances are those documented in
