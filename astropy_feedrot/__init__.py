@@ -26,10 +26,12 @@ from .correction import (
 from .eop import earth_orientation_status
 from .epochs import Epochs
 from .exceptions import (
+    CatalogueMountWarning,
     CatalogueReceptorsWarning,
     DegenerateGeometryWarning,
     OrbitWarning,
     StaleEarthOrientationWarning,
+    UncorrectedBaselinesWarning,
 )
 from .focus import (
     BeamWaveguideFocus,
@@ -138,6 +140,8 @@ __all__ = [
     "StaleEarthOrientationWarning",
     "OrbitWarning",
     "CatalogueReceptorsWarning",
+    "CatalogueMountWarning",
+    "UncorrectedBaselinesWarning",
     "ContinuityWarning",
     "FileFormatError",
 ]

@@ -9,7 +9,8 @@ import warnings
 from astropy.utils.exceptions import AstropyUserWarning
 
 __all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning",
-           "CatalogueReceptorsWarning", "warn_caller"]
+           "CatalogueReceptorsWarning", "CatalogueMountWarning", "UncorrectedBaselinesWarning",
+           "warn_caller"]
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
@@ -116,5 +117,38 @@ class CatalogueReceptorsWarning(AstropyUserWarning):
     --------
     >>> from astropy_feedrot import CatalogueReceptorsWarning
     >>> issubclass(CatalogueReceptorsWarning, UserWarning)
+    True
+    """
+
+
+class CatalogueMountWarning(AstropyUserWarning):
+    """A visibility file and the station catalogue describe an antenna differently.
+
+    Emitted once per call, naming each antenna of the file that lies within
+    `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a catalogue
+    station whose mount or focus differs from the file's (``MNTSTA`` 0, the
+    placeholder of many writers, for a Nasmyth station; a casacore
+    ``'ALT-AZ'`` for a beam waveguide), with both; and which of the two was
+    used (``mounts='file'``, the default, or ``'catalogue'``; ``--mounts``).
+
+    Examples
+    --------
+    >>> from astropy_feedrot import CatalogueMountWarning
+    >>> issubclass(CatalogueMountWarning, UserWarning)
+    True
+    """
+
+
+class UncorrectedBaselinesWarning(AstropyUserWarning):
+    """Some baselines of a visibility file were left as they were.
+
+    Emitted once per correction, naming the antennas (orbiting antennas,
+    whose feed turns with a spacecraft whose attitude the file does not give)
+    and counting the rows left untouched; the other baselines are corrected.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import UncorrectedBaselinesWarning
+    >>> issubclass(UncorrectedBaselinesWarning, UserWarning)
     True
     """

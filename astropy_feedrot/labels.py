@@ -44,7 +44,8 @@ from .label_tables import (
 )
 from .mounts import FixedAxisMount, StationaryMount, as_mount
 
-__all__ = ["SOFTWARE", "KNOWN_LABELS", "known_labels", "mount_from_label", "label_from_mount"]
+__all__ = ["SOFTWARE", "KNOWN_LABELS", "known_labels", "mount_from_label", "label_from_mount",
+           "is_orbiting"]
 
 
 def known_labels(software):
@@ -76,6 +77,45 @@ def known_labels(software):
     ['AZEL', 'EQUA', 'X-YN', 'X-YE', 'RICH', 'NASR', 'NASP', 'NASL', 'NASM', 'BWG', 'GNSS']
     """
     return list(KNOWN_LABELS[check_software(software)])
+
+
+def is_orbiting(label, software):
+    """Whether a mount label names an orbiting antenna (space VLBI).
+
+    Parameters
+    ----------
+    label : int or str
+        One label, as `mount_from_label` takes it.
+    software : str
+        Whose convention: one of `SOFTWARE`.
+
+    Returns
+    -------
+    bool
+        True for the labels of orbiting antennas (``MNTSTA`` 2; casacore
+        ``ORBITING`` and ``SPACE-HALCA``; DiFX ``SPACE``; pyuvdata
+        ``orbiting``); False for every other label, known or not.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``software``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.labels import is_orbiting
+    >>> is_orbiting(2, "fits-idi:difx"), is_orbiting("SPACE-HALCA", "casacore")
+    (True, True)
+    >>> is_orbiting(0, "fits-idi:difx")
+    False
+    """
+    software = check_software(software)
+    try:
+        key = label_key(software, one_scalar(label))
+    except (TypeError, ValueError):
+        return False
+    entry = LOOKUP[software].get(key)
+    return entry is not None and entry[1] == "orbiting"
 
 
 def _join(words, conjunction="and"):

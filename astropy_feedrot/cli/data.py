@@ -22,6 +22,7 @@ from ..outputs import (
     write_files,
 )
 from ..visibilities import (
+    MOUNTS,
     CorrectionRefused,
     antenna_table,
     check_output_format,
@@ -38,22 +39,31 @@ __all__ = ["EXAMPLES", "check_correct_output", "register"]
 #: Examples of ``feedrot antennas`` and ``feedrot correct``, one command line each.
 EXAMPLES = {
     "antennas": ["feedrot antennas experiment.idifits",
-                 "feedrot antennas vla.ms -o antennas.ecsv"],
+                 "feedrot antennas vla.ms -o antennas.ecsv",
+                 "feedrot antennas vla.uvfits --mounts catalogue"],
     "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
                 "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
                 "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric",
                 "feedrot correct vla.ms --in-place",
                 "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
                 "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
+                "feedrot correct vla.uvfits -o vla_catalogue.uvfits --mounts catalogue",
                 "feedrot correct vla.ms --in-place --vertical geocentric --pole casa "
                 "--workers 2"],
 }
 
 
+#: The help of ``--mounts``.
+MOUNTS_HELP = ("whose mount and focus an antenna within 100 m of a station of the catalogue "
+               "takes where the two differ (said in a warning): the file's (default; many "
+               "writers put MNTSTA 0, alt-az, for every antenna) or the catalogue's, which "
+               "also gives its mount to an antenna whose MOUNT is empty or unknown")
+
+
 def _run_antennas(args):
     paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
                           [("FILE", args.file)], args.overwrite)
-    antennas, software = read_antennas(args.file, vertical=args.vertical)
+    antennas, software = read_antennas(args.file, vertical=args.vertical, mounts=args.mounts)
     table = antenna_table(antennas, software)
     table.meta["file"] = str(args.file)
     table.meta["labels"] = software
@@ -160,7 +170,7 @@ def _columns(args):
 def _run_correct(args):
     options = dict(direction="apply" if args.apply else "remove", frame=args.frame,
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
-                   feeds=_feeds(args), redo=args.redo, pole=args.pole)
+                   feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts)
     if args.in_place:
         return _run_in_place(args, options)
     if args.output is None:
@@ -206,12 +216,17 @@ def register(commands):
         "antennas", help="the antennas of a visibility file, as read",
         description="The antennas of a visibility file (FITS-IDI, UVFITS, uvh5, Measurement "
         "Set, Miriad, SMA Mir) as read for the correction: number, name, ITRF position, "
-        "mount label (in the file's convention), mount, focus, receptors and their angles.",
+        "mount label (in the file's convention), mount, focus, receptors and their angles, "
+        "the station catalogue's station within 100 m with its mount and focus, and what "
+        "keeps an antenna from being corrected as the file gives it (an orbiting antenna, a "
+        "mount without a model, receptors that cannot be used, a mount that differs from "
+        "the catalogue's).",
         epilog=examples(EXAMPLES["antennas"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     antennas.add_argument("file", metavar="FILE", help="a visibility file or directory")
     antennas.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
                           help="the local vertical (geocentric reproduces CASA)")
+    antennas.add_argument("--mounts", choices=MOUNTS, default="file", help=MOUNTS_HELP)
     antennas.add_argument("-o", "--output", metavar="FILE",
                           help="write the table here (format of its extension) instead of "
                           "standard output")
@@ -254,11 +269,14 @@ def register(commands):
                          "removing it")
     correct.add_argument("--feeds", metavar="R,L|X,Y",
                          help="receptors for antennas the file gives none (ATCA Miriad, old "
-                         "UVFITS): two letters with optional angles in degrees, e.g. "
-                         "X:0,Y:90; without it, such antennas take the station catalogue's "
-                         "receptors where it states them: for the station of their name "
-                         "within 100 m, else for the pad within 5 m, else for every station "
-                         "of the file's telescope alike (said in a warning)")
+                         "UVFITS) or unusable ones (linear dipoles both at angle 0, as LWA and "
+                         "PAPER Measurement Sets give): two letters with optional angles in "
+                         "degrees, e.g. X:0,Y:90; without it, antennas without receptors take "
+                         "the station catalogue's where it states them: for the station of "
+                         "their name within 100 m, else for the pad within 5 m, else for every "
+                         "station of the file's telescope alike (said in a warning); antennas "
+                         "with unusable ones are refused, named")
+    correct.add_argument("--mounts", choices=MOUNTS, default="file", help=MOUNTS_HELP)
     correct.add_argument("--redo", action="store_true",
                          help="correct data whose history says they were corrected in the "
                          "same direction already (by feedrot, by AIPS CLCOR PANG, by CASA "

@@ -14,7 +14,11 @@ One module per format, on shared steps:
   (`with_receptors`, `parse_feeds`);
 * `~astropy_feedrot.visibilities.catalogue`: receptors from the station
   catalogue for antennas a file gives none, matched by name or by position
-  (`catalogue_receptors`);
+  (`catalogue_receptors`), and the file's mounts against the catalogue's
+  (`catalogue_mounts`, `catalogue_stations`);
+* `~astropy_feedrot.visibilities.unusable`: antennas a file describes in a
+  way that cannot be corrected (orbiting, a mount without a model,
+  receptors that are not a pair), kept as `UnusableAntenna`;
 * `~astropy_feedrot.visibilities.history`: the one history mark
   (`HISTORY_MARK`, `APPLY_MARK`), and the records of AIPS and CASA of the
   same correction, refused unless asked for (`CorrectionRefused`);
@@ -33,7 +37,16 @@ pyuvdata and python-casacore are optional and imported on first use.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
-from .catalogue import ARRAY_TOLERANCE, CATALOGUE_TOLERANCE, PAD_TOLERANCE, catalogue_receptors
+from .catalogue import (
+    ARRAY_TOLERANCE,
+    CATALOGUE_TOLERANCE,
+    MOUNTS,
+    PAD_TOLERANCE,
+    StationMatch,
+    catalogue_mounts,
+    catalogue_receptors,
+    catalogue_stations,
+)
 from .files import (
     FITSIDI_EXTENSIONS,
     OUTPUT_EXTENSIONS,
@@ -64,6 +77,7 @@ from .uvdata import (
     read_uvdata,
     write_uvdata,
 )
+from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 
 __all__ = [
@@ -89,6 +103,11 @@ __all__ = [
     "with_receptors",
     "parse_feeds",
     "catalogue_receptors",
+    "catalogue_mounts",
+    "catalogue_stations",
+    "StationMatch",
+    "MOUNTS",
+    "UnusableAntenna",
     "CATALOGUE_TOLERANCE",
     "PAD_TOLERANCE",
     "ARRAY_TOLERANCE",

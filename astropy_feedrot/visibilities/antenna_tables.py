@@ -19,9 +19,10 @@ from astropy.coordinates import EarthLocation
 from astropy.io import fits
 
 from ..antenna import Antenna
-from ..labels import SOFTWARE, mount_from_label
+from ..labels import SOFTWARE, is_orbiting, mount_from_label
 from ..receptors import Receptors
 from ..io import FileFormatError
+from .unusable import UnusableAntenna, check_unusable, orbiting_reason
 
 __all__ = ["FITSFormatError", "WritingProgram", "writing_program", "read_antennas",
            "open_fits", "FORMATS"]
@@ -395,8 +396,10 @@ def _letter(value):
     return str(value).strip().upper()
 
 
-def _receptor_rows(hdu, name, numbers_column):
-    """{antenna number: Receptors or (error)} from POLTYA/POLAA/POLTYB/POLAB rows."""
+def _receptor_rows(hdu, name, numbers_column, problems=None):
+    """{antenna number: Receptors} from POLTYA/POLAA/POLTYB/POLAB rows; with a dict
+    ``problems``, receptors that cannot be used (parallel, unknown types) go there as
+    {number: reason} instead of raising."""
     table = hdu.name
     data = hdu.data
     columns = hdu.columns.names
@@ -441,7 +444,10 @@ def _receptor_rows(hdu, name, numbers_column):
             out[number] = (Receptors.paired(types, angles[0] * u.deg) if len(types) == 1
                            else Receptors(types, list(angles) * u.deg))
         except ValueError as error:
-            raise ValueError(f"{name}, table {table}: antenna {number}: {error}") from None
+            if problems is None:
+                raise ValueError(f"{name}, table {table}: antenna {number}: {error}") from None
+            problems[number] = (f"table {table}: {error}; give its receptors (feeds=, "
+                                "--feeds X,Y)")
     return out
 
 
@@ -455,7 +461,7 @@ def _check_software(software):
     return software.strip().lower()
 
 
-def read_antennas(path, kind, *, vertical="geodetic", software=None):
+def read_antennas(path, kind, *, vertical="geodetic", software=None, unusable="raise"):
     """The antennas of a FITS-IDI or UVFITS file.
 
     `~astropy_feedrot.visibilities.fitsidi_antennas` and
@@ -473,11 +479,18 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
         The ``MNTSTA`` convention (a ``fits-idi:*`` name of
         `~astropy_feedrot.labels.SOFTWARE`); by default that of the program
         that wrote the file (`writing_program`).
+    unusable : {'raise', 'keep'}, optional
+        What to do with an antenna that cannot be described: its ``MNTSTA``
+        code has no model (orbiting, phased, other) or cannot be read, or
+        its receptors cannot be used (linear ones at one angle): raise
+        (default), or keep it as an
+        `~astropy_feedrot.visibilities.UnusableAntenna` with the reason.
 
     Returns
     -------
     dict
-        ``{antenna number: Antenna}``.
+        ``{antenna number: Antenna}`` (or `~astropy_feedrot.visibilities.UnusableAntenna`
+        with ``unusable='keep'``).
 
     Raises
     ------
@@ -501,6 +514,8 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
     if kind not in FORMATS:
         raise ValueError(f"kind must be one of {tuple(FORMATS)}, got {kind!r}")
     software = _check_software(software)
+    keep = check_unusable(unusable) == "keep"
+    problems = {} if keep else None
     name = os.fspath(path)
     with open_fits(name) as hdul:
         geometries = (_tables(hdul, name, FORMATS[kind]) if kind == "fits-idi"
@@ -529,23 +544,42 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None):
                                   f"{numbers[k]}, {names[k]})", str(xyz[k].tolist()),
                                   column="STABXYZ")
         if kind == "fits-idi":
-            receptors = _receptor_rows(_table(hdul, name, "ANTENNA"), name, "ANTENNA_NO")
+            receptors = _receptor_rows(_table(hdul, name, "ANTENNA"), name, "ANTENNA_NO",
+                                       problems)
         else:
-            receptors = _receptor_rows(geometry, name, "NOSTA")
+            receptors = _receptor_rows(geometry, name, "NOSTA", problems)
     convention = software or program.software
     antennas = {}
     for number, label, code, position, table in zip(numbers, names, codes, xyz, where):
         where = f"{name}, table {table}, antenna {number} ({label})"
+        location = EarthLocation.from_geocentric(*position, unit=u.m)
+        problem, reason = None, None
         if convention is None and int(code) not in program.codes:
-            raise ValueError(f"{where}: MNTSTA {int(code)} cannot be read: {program.reason}")
+            problem, reason = "mount", f"MNTSTA {int(code)} cannot be read: {program.reason}"
+        else:
+            try:
+                mount, focus = mount_from_label(int(code), convention or "fits-idi:casacore")
+            except ValueError as error:
+                if not keep:
+                    raise ValueError(f"{where}: {error}") from None
+                problem, reason = "mount", str(error)
+                if is_orbiting(int(code), convention or "fits-idi:casacore"):
+                    problem, reason = "orbiting", orbiting_reason(f"MNTSTA {int(code)}")
+        if problem is not None and not keep:
+            raise ValueError(f"{where}: {reason}")
+        if problem is not None:
+            antennas[number] = UnusableAntenna(
+                location, label, problem, reason, label=int(code), vertical=vertical,
+                receptors=receptors.get(number), receptors_problem=problems.get(number))
+            continue
+        if keep and number in problems:
+            antennas[number] = UnusableAntenna(
+                location, label, "receptors", problems[number], label=int(code),
+                mount=mount, focus=focus, vertical=vertical)
+            continue
         try:
-            mount, focus = mount_from_label(int(code), convention or "fits-idi:casacore")
-        except ValueError as error:
-            raise ValueError(f"{where}: {error}") from None
-        try:
-            antennas[number] = Antenna(
-                EarthLocation.from_geocentric(*position, unit=u.m), mount, focus,
-                name=label, vertical=vertical, receptors=receptors.get(number))
+            antennas[number] = Antenna(location, mount, focus, name=label, vertical=vertical,
+                                       receptors=receptors.get(number))
         except ValueError as error:
             raise ValueError(f"{where}: {error}") from None
     return antennas

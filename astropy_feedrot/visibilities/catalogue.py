@@ -21,17 +21,36 @@ station:
 
 `catalogue_receptors` gives each antenna the receptors of its station and
 says which antennas it matched, how, and why not the others.
+
+`catalogue_mounts` compares each antenna's mount and focus with those of the
+catalogue's station within `CATALOGUE_TOLERANCE` of it (the station of its
+name, else the nearest), warns once where they differ, and with
+``mounts='catalogue'`` takes the catalogue's: many writers put a placeholder
+in the mount code (HOPS and pyuvdata before 3.2 write ``MNTSTA`` 0 for
+every antenna, Nasmyth ones included).
 """
+
+import functools
+from typing import NamedTuple
 
 import numpy as np
 from astropy import units as u
 
 from ..antenna import Antenna
-from ..exceptions import CatalogueReceptorsWarning, warn_caller
+from ..focus import CassegrainFocus
+from ..labels import mount_from_label
+from ..exceptions import CatalogueMountWarning, CatalogueReceptorsWarning, warn_caller
 from ..stations import StationCatalogue, default_catalogue, read_catalogue
 from .receptors import with_receptors
+from .unusable import UnusableAntenna
 
-__all__ = ["catalogue_receptors", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE", "ARRAY_TOLERANCE"]
+__all__ = ["catalogue_receptors", "catalogue_mounts", "catalogue_stations", "StationMatch",
+           "MOUNTS", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE", "ARRAY_TOLERANCE"]
+
+#: Whose mounts and foci a correction uses: the file's (``'file'``, the
+#: default) or, for antennas within `CATALOGUE_TOLERANCE` of a station, the
+#: station catalogue's (``'catalogue'``); see `catalogue_mounts`.
+MOUNTS = ("file", "catalogue")
 
 #: Largest distance between an antenna of a file and the catalogue's station of
 #: its name for the station to lend the antenna its receptors
@@ -301,3 +320,293 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
                 f"not to {'; '.join(refused[n] for n in sorted(refused)[:10])}"
                 + (f" and {len(refused) - 10} more" if len(refused) > 10 else ""))
     return with_receptors(antennas, given), note
+
+
+class StationMatch(NamedTuple):
+    """The catalogue's station of an antenna of a file (`catalogue_stations`).
+
+    Attributes
+    ----------
+    station : str
+        The station's name in the catalogue.
+    distance : float
+        Its distance from the antenna, in m.
+    mount, focus
+        The catalogue's mount and focus of the station.
+    agrees : bool
+        Whether the file gives the antenna the same mount and an equivalent
+        focus (prime, Cassegrain and Gregorian foci are alike); False where
+        the file's mount has no model.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import AltAzMount, CassegrainFocus
+    >>> from astropy_feedrot.visibilities import StationMatch
+    >>> StationMatch("FD-VLBA", 0.0, AltAzMount(), CassegrainFocus(), True).station
+    'FD-VLBA'
+    """
+
+    station: str
+    distance: float
+    mount: object
+    focus: object
+    agrees: bool
+
+
+def _same_optics(mount, focus, other_mount, other_focus):
+    """Whether two mounts and foci give the same feed rotation."""
+    if mount is None or mount != other_mount:
+        return False
+    focus = CassegrainFocus() if focus is None else focus
+    other_focus = CassegrainFocus() if other_focus is None else other_focus
+    if focus.closed_form is not None and other_focus.closed_form is not None:
+        return tuple(focus.closed_form) == tuple(other_focus.closed_form)
+    return focus == other_focus
+
+
+def _optics(mount, focus):
+    """A mount and focus, for messages."""
+    if mount is None:
+        return "no model"
+    return f"{mount!r} {CassegrainFocus() if focus is None else focus!r}"
+
+
+def check_mounts_option(mounts):
+    """``mounts`` checked: one of `MOUNTS`.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.catalogue import check_mounts_option
+    >>> check_mounts_option("catalogue")
+    'catalogue'
+    """
+    if mounts not in MOUNTS:
+        raise ValueError(f"mounts must be one of {MOUNTS}, got {mounts!r}")
+    return mounts
+
+
+@functools.lru_cache(maxsize=8)
+def _positions(catalogue):
+    """The catalogue's stations' geocentric positions (m), (N, 3), in its order."""
+    return np.array([_xyz(catalogue.location(name)) for name in catalogue.names])
+
+
+def _closed_form_of(catalogue, station):
+    """The focus a station's mount code names (the closed form of traced mirrors)."""
+    row = catalogue.names.index(station)
+    code = str(catalogue.table["mount"][row])
+    return mount_from_label(code, "geodetic")[1]
+
+
+def catalogue_stations(antennas, catalogue=None, *, tolerance=CATALOGUE_TOLERANCE,
+                       pad_tolerance=PAD_TOLERANCE):
+    """The catalogue's station of each antenna of a file, within ``tolerance``.
+
+    An antenna's station is the station of its name (or alias) within
+    ``tolerance`` of it; else the station nearest to it within ``tolerance``
+    if no station with another mount or focus lies within ``tolerance`` too
+    (an observatory with several telescopes), or if it lies within
+    ``pad_tolerance`` (the antenna's own pad). Orbiting antennas have none
+    (the position a file gives them is that of a tracking station, or
+    nothing).
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{antenna number: Antenna or UnusableAntenna}``.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, str, path-like or False, optional
+        The catalogue (default: the embedded one); False for none.
+    tolerance : `~astropy.units.Quantity`, optional
+        Largest distance between an antenna and its station
+        (`CATALOGUE_TOLERANCE`).
+    pad_tolerance : `~astropy.units.Quantity`, optional
+        Distance within which the nearest station is the antenna's whatever
+        other stations lie within ``tolerance`` (`PAD_TOLERANCE`).
+
+    Returns
+    -------
+    dict
+        ``{antenna number: StationMatch}`` for the antennas with a station.
+
+    Examples
+    --------
+    The EHT's APEX as a file with ``MNTSTA`` 0 gives it (a plain alt-az
+    mount), where the catalogue has a right-handed Nasmyth focus:
+
+    >>> from astropy_feedrot import AltAzMount, Antenna, get_antenna
+    >>> from astropy_feedrot.visibilities import catalogue_stations
+    >>> ap = Antenna(get_antenna("APEX").location, AltAzMount(), name="AP")
+    >>> match = catalogue_stations({2: ap})[2]
+    >>> match.station, match.focus, match.agrees
+    ('APEX', NasmythFocus(handedness='right'), False)
+    """
+    if catalogue is False:
+        return {}
+    catalogue = _as_catalogue(catalogue)
+    xyz = _positions(catalogue)
+    limit = tolerance.to_value(u.m)
+    known = {}
+
+    def station_antenna(name):
+        if name not in known:
+            known[name] = catalogue.get_antenna(name)
+        return known[name]
+
+    def optics(row):
+        """A station's mount and focus, as comparable values."""
+        antenna = station_antenna(catalogue.names[row])
+        return (antenna.mount, antenna.focus)
+
+    out = {}
+    for number, antenna in antennas.items():
+        if isinstance(antenna, UnusableAntenna) and antenna.problem == "orbiting":
+            continue
+        station, _ = _station_of(antenna, catalogue, tolerance)
+        here = _xyz(antenna.location)
+        if station is None:
+            distance = np.linalg.norm(xyz - here, axis=-1)
+            near = np.flatnonzero(distance <= limit)
+            if not near.size:
+                continue
+            nearest = int(near[np.argmin(distance[near])])
+            # By position alone, the station must be the only one that near, or all
+            # those that near alike (the ATA's dishes lie within 100 m of both the ATA
+            # and the old Hat Creek equatorial antenna), unless it is the antenna's pad.
+            if distance[nearest] > pad_tolerance.to_value(u.m) and len(
+                    {optics(int(k)) for k in near}) > 1:
+                continue
+            station = catalogue.names[nearest]
+        found = station_antenna(station)
+        distance = float(np.linalg.norm(_xyz(found.location) - here))
+        focus = found.focus
+        if focus.closed_form is None:
+            # Mirrors traced one by one (YEBES40M, WARK30M): a file can only give the
+            # closed form its mount code names (NASR, BWG), to which they reduce.
+            focus = _closed_form_of(catalogue, station)
+        out[number] = StationMatch(station, distance, found.mount, found.focus,
+                                   _same_optics(antenna.mount, antenna.focus, found.mount,
+                                                focus))
+    return out
+
+
+def catalogue_mounts(antennas, mounts="file", catalogue=None, *, numbers=None,
+                     tolerance=CATALOGUE_TOLERANCE, where="the file"):
+    """The antennas with the file's or the catalogue's mounts, and where they differ.
+
+    Each antenna is compared with its station in the catalogue
+    (`catalogue_stations`: the station of its name within ``tolerance``, else
+    the nearest within ``tolerance``). Where the mounts or foci differ, one
+    warning names every such antenna with both; ``mounts`` chooses which is
+    used. An antenna whose mount label has no model (an empty or unknown
+    ``MOUNT``, an unreadable ``MNTSTA`` code) takes its station's mount with
+    ``mounts='catalogue'``; with ``'file'`` it stays unusable, its reason
+    naming the station.
+
+    Parameters
+    ----------
+    antennas : mapping
+        ``{antenna number: Antenna or UnusableAntenna}``, as read from a file.
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus to use where they differ (`MOUNTS`).
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, str, path-like or False, optional
+        The catalogue (default: the embedded one); False for none (the
+        antennas are returned as they are).
+    numbers : iterable of int, optional
+        Only these antennas (those the data use); default all.
+    tolerance : `~astropy.units.Quantity`, optional
+        Largest distance between an antenna and its station.
+    where : str, optional
+        The file, for the messages.
+
+    Returns
+    -------
+    antennas : dict
+        A new ``{antenna number: Antenna or UnusableAntenna}``.
+    matches : dict
+        ``{antenna number: StationMatch}`` (`catalogue_stations`).
+
+    Raises
+    ------
+    ValueError
+        For a ``mounts`` not in `MOUNTS`.
+
+    Warns
+    -----
+    CatalogueMountWarning
+        Once, if the file's mount or focus of some antennas differs from
+        their station's: which, both, and which was used.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from astropy_feedrot import AltAzMount, Antenna, get_antenna
+    >>> from astropy_feedrot.visibilities import catalogue_mounts
+    >>> ap = Antenna(get_antenna("APEX").location, AltAzMount(), name="AP")
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     antennas, matches = catalogue_mounts({2: ap}, "catalogue")
+    >>> antennas[2].focus
+    NasmythFocus(handedness='right')
+    >>> print(caught[0].message)  # doctest: +ELLIPSIS
+    the file: the station catalogue's mounts are used where they differ from the file's: ...
+    """
+    mounts = check_mounts_option(mounts)
+    wanted = None if numbers is None else {int(n) for n in numbers}
+    chosen = {n: a for n, a in antennas.items() if wanted is None or int(n) in wanted}
+    matches = catalogue_stations(chosen, catalogue, tolerance=tolerance)
+    out = dict(antennas)
+    differ = []
+    for number, match in matches.items():
+        antenna = antennas[number]
+        if match.agrees:
+            continue
+        station = f"the catalogue's {match.station}, {match.distance:.1f} m away"
+        if isinstance(antenna, UnusableAntenna) and antenna.problem == "mount":
+            if mounts == "catalogue":
+                out[number] = antenna.with_mount(match.mount, match.focus)
+                differ.append(f"{_name(number, antenna)}: file {antenna.reason}; "
+                              f"{match.station} ({match.distance:.1f} m) "
+                              f"{_optics(match.mount, match.focus)}")
+            else:
+                out[number] = UnusableAntenna(
+                    antenna.location, antenna.name, "mount",
+                    f"{antenna.reason}; {station}, has {_optics(match.mount, match.focus)}: "
+                    "pass mounts='catalogue' (--mounts catalogue) to use it",
+                    label=antenna.label, vertical=antenna.vertical, rotator=antenna.rotator,
+                    receptors=antenna.receptors, receptors_problem=antenna.receptors_problem)
+            continue
+        if antenna.mount is None:
+            continue
+        differ.append(f"{_name(number, antenna)}: file {_optics(antenna.mount, antenna.focus)}"
+                      f", {match.station} ({match.distance:.1f} m) "
+                      f"{_optics(match.mount, match.focus)}")
+        if mounts == "catalogue":
+            out[number] = _with_optics(antenna, match.mount, match.focus)
+    if differ:
+        limit = f"{tolerance.to_value(u.m):g} m"
+        if mounts == "catalogue":
+            head = "the station catalogue's mounts are used where they differ from the file's"
+            tail = "pass mounts='file' (--mounts file) to use the file's"
+        else:
+            head = (f"the file's mounts differ from those of the station catalogue's stations "
+                    f"within {limit}")
+            tail = ("the file's are used: pass mounts='catalogue' (--mounts catalogue) to use "
+                    "the catalogue's")
+        warn_caller(f"{where}: {head}: {'; '.join(differ)}; {tail}", CatalogueMountWarning)
+    return out, matches
+
+
+def _name(number, antenna):
+    return f"antenna {number} ({antenna.name})" if antenna.name else f"antenna {number}"
+
+
+def _with_optics(antenna, mount, focus):
+    """``antenna`` (an Antenna, or an UnusableAntenna of problem 'receptors') with
+    another mount and focus."""
+    if isinstance(antenna, UnusableAntenna):
+        return UnusableAntenna(antenna.location, antenna.name, antenna.problem,
+                               antenna.reason, label=antenna.label, mount=mount, focus=focus,
+                               vertical=antenna.vertical, rotator=antenna.rotator)
+    return Antenna(antenna.location, mount, focus, name=antenna.name,
+                   vertical=antenna.vertical, receptors=antenna.receptors,
+                   rotator=antenna.rotator)

@@ -26,11 +26,19 @@ import shutil
 import tempfile
 from pathlib import Path
 
+import numpy as np
 from astropy.table import Table
 
+from ..focus import CassegrainFocus
 from ..labels import label_from_mount
 from ..outputs import publish, same_file
 from .antenna_tables import writing_program
+from .catalogue import (
+    CATALOGUE_TOLERANCE,
+    catalogue_mounts,
+    catalogue_stations,
+    check_mounts_option,
+)
 from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
@@ -44,6 +52,7 @@ from .uvdata import (
     read_uvdata,
     write_uvdata,
 )
+from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
@@ -67,7 +76,7 @@ FITSIDI_EXTENSIONS = tuple(e for e, k in OUTPUT_EXTENSIONS.items() if k in ("fit
 _NUMBERED_IDI = re.compile(r"\.idi[0-9]+")
 
 
-def read_antennas(path, *, vertical="geodetic"):
+def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
     """The antennas of a visibility file.
 
     Parameters
@@ -77,11 +86,22 @@ def read_antennas(path, *, vertical="geodetic"):
     vertical : {'geodetic', 'geocentric'}, optional
         The local vertical of the antennas (see `~astropy_feedrot.Antenna`;
         ``'geocentric'`` reproduces CASA).
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus an antenna within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
+        the catalogue takes where the two differ: the file's (default) or
+        the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`).
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        The station catalogue the mounts are compared with (default: the
+        embedded one); False for none.
 
     Returns
     -------
     antennas : dict
-        ``{antenna number: Antenna}``, with names, mounts, foci and receptors.
+        ``{antenna number: Antenna}``, with names, mounts, foci and
+        receptors; an antenna that cannot be described (an orbiting
+        antenna, a mount with no model, receptors that cannot be used) is an
+        `~astropy_feedrot.visibilities.UnusableAntenna` saying why.
     software : str
         The label convention of the file (one of
         `~astropy_feedrot.labels.SOFTWARE`), in which `antenna_table`
@@ -93,6 +113,12 @@ def read_antennas(path, *, vertical="geodetic"):
         As `file_kind` and the readers; ImportError if a pyuvdata format
         is read without pyuvdata.
 
+    Warns
+    -----
+    CatalogueMountWarning
+        Once, naming them, if the mounts or foci of some antennas differ
+        from those of their stations in the catalogue.
+
     Examples
     --------
     >>> from astropy_feedrot.data import sample_file
@@ -101,36 +127,55 @@ def read_antennas(path, *, vertical="geodetic"):
     >>> len(antennas), software
     (19, 'fits-idi:casacore')
     """
+    check_mounts_option(mounts)
     kind = file_kind(path)
     if kind == "fits-idi":
-        return fitsidi_antennas(path, vertical=vertical), writing_program(path)[1]
-    if kind == "uvfits":
-        return uvfits_antennas(path, vertical=vertical), writing_program(path)[1]
-    if kind == "ms":
-        return ms_antennas(path, vertical=vertical), "casacore"
+        antennas = fitsidi_antennas(path, vertical=vertical, unusable="keep")
+        software = writing_program(path)[1]
+    elif kind == "uvfits":
+        antennas = uvfits_antennas(path, vertical=vertical, unusable="keep")
+        software = writing_program(path)[1]
+    elif kind == "ms":
+        antennas, software = ms_antennas(path, vertical=vertical, unusable="keep"), "casacore"
+    else:
+        uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
+        antennas = antennas_from_uvdata(uv, vertical=vertical, unusable="keep")
+        software = "pyuvdata"
+    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=str(path))
+    return antennas, software
 
-    uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
-    return antennas_from_uvdata(uv, vertical=vertical), "pyuvdata"
 
-
-def antenna_table(antennas, software=None):
-    """The antennas as a table: number, name, position, label, mount, focus, receptors.
+def antenna_table(antennas, software=None, *, catalogue=None):
+    """The antennas as a table: number, name, position, label, mount, focus, receptors,
+    the catalogue's station and what prevents a correction.
 
     Parameters
     ----------
     antennas : dict
-        ``{antenna number: Antenna}``.
+        ``{antenna number: Antenna or UnusableAntenna}``.
     software : str, optional
         A convention of `~astropy_feedrot.labels.SOFTWARE`: adds the column
         ``label``, the mount label of each antenna in that convention (empty
-        where the convention has none).
+        where the convention has none; the file's own label for an
+        antenna that cannot be described).
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        Adds the catalogue's station of each antenna
+        (`~astropy_feedrot.visibilities.catalogue_stations`): the embedded
+        catalogue by default, another, or False for none.
 
     Returns
     -------
     `~astropy.table.Table`
         One row per antenna, ordered by number: ``number``, ``name``, ``x``,
         ``y``, ``z`` (ITRF, m), [``label``], ``mount``, ``focus``,
-        ``receptors`` (letters, e.g. ``RL``) and ``receptor_angles`` (deg).
+        ``receptors`` (letters, e.g. ``RL``), ``receptor_angles`` (deg),
+        [``station``, ``station_distance`` (m), ``station_mount``,
+        ``station_focus``: the catalogue's station within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` and its mount
+        and focus, empty where there is none] and ``problem``: empty, or
+        why the antenna cannot be corrected as the file gives it (an
+        orbiting antenna, a mount without a model, receptors that cannot be
+        used), or that its mount or focus differs from the catalogue's.
 
     Examples
     --------
@@ -141,34 +186,59 @@ def antenna_table(antennas, software=None):
     [['W09', 'E02', 'E09'], ['0', '0', '0'], ['RL', 'RL', 'RL']]
     >>> str(table["mount"][0]), str(table["focus"][0])
     ('AltAzMount()', 'CassegrainFocus()')
+    >>> str(table["station"][0]), str(table["problem"][0])
+    ('VLA_W9', '')
 
     (casacore wrote a blank ``POLTYB`` for this file: the second receptor
     is completed from the first, `~astropy_feedrot.Receptors.paired`.)
     """
     numbers = sorted(antennas)
+    matches = catalogue_stations(antennas, catalogue)
     rows = []
     for number in numbers:
         antenna = antennas[number]
         x, y, z = (getattr(antenna.location, c).to_value("m") for c in "xyz")
         receptors = antenna.receptors
         row = dict(number=number, name=antenna.name or "", x=x, y=y, z=z)
+        unusable = isinstance(antenna, UnusableAntenna)
         if software is not None:
-            try:
-                row["label"] = str(label_from_mount(antenna.mount, antenna.focus, software))
-            except ValueError:
-                row["label"] = ""
-        row.update(mount=repr(antenna.mount), focus=repr(antenna.focus),
+            row["label"] = ""
+            if unusable and antenna.mount is None:
+                row["label"] = "" if antenna.label is None else str(antenna.label)
+            else:
+                with contextlib.suppress(ValueError):
+                    row["label"] = str(label_from_mount(antenna.mount, antenna.focus,
+                                                        software))
+        row.update(mount="" if antenna.mount is None else repr(antenna.mount),
+                   focus="" if antenna.mount is None else repr(antenna.focus or
+                                                               CassegrainFocus()),
                    receptors="" if receptors is None else receptors.types,
                    receptor_angles=" ".join(f"{a:g}" for a in receptors.angles.value)
                    if receptors is not None else "")
+        problem = antenna.reason if unusable else ""
+        if catalogue is not False:
+            match = matches.get(number)
+            row.update(station="" if match is None else match.station,
+                       station_distance=np.nan if match is None else match.distance,
+                       station_mount="" if match is None else repr(match.mount),
+                       station_focus="" if match is None else repr(match.focus))
+            if match is not None and not match.agrees and not unusable:
+                problem = (f"the file's mount and focus differ from the catalogue's "
+                           f"{match.station}: --mounts catalogue takes the catalogue's")
+        row["problem"] = problem
         rows.append(row)
     table = Table(rows=rows) if rows else Table(names=["number", "name", "x", "y", "z"])
-    for column in ("x", "y", "z"):
+    for column in ("x", "y", "z", "station_distance"):
         if column in table.colnames:
             table[column].unit = "m"
-            table[column].format = ".4f"
+            table[column].format = ".4f" if column != "station_distance" else ".1f"
     if "receptor_angles" in table.colnames:
         table["receptor_angles"].description = "angles of the receptors in the antenna (deg)"
+    if "station" in table.colnames:
+        table["station"].description = ("the station catalogue's station within "
+                                        f"{CATALOGUE_TOLERANCE:g}")
+    if "problem" in table.colnames:
+        table["problem"].description = "why the antenna cannot be corrected as the file gives it"
     return table
 
 
@@ -266,7 +336,8 @@ def check_output_format(kind, output):
 def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
                  progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
                  client=None, catalogue=None, data_column=None,
-                 corrected_column="CORRECTED_DATA", overwrite_column=False):
+                 corrected_column="CORRECTED_DATA", overwrite_column=False,
+                 mounts="file"):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -320,6 +391,11 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         `~astropy_feedrot.visibilities.correct_ms` (the copy's
         ``corrected_column`` holds the correction; ``DATA`` and every
         other column are the input's).
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus an antenna within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
+        ``catalogue`` takes where the two differ: the file's (default) or the
+        catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`).
 
     Returns
     -------
@@ -340,6 +416,12 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     CatalogueReceptorsWarning
         Once, naming the antennas, their stations and the source, if some
         took their receptors from the station catalogue.
+    CatalogueMountWarning
+        Once, naming them with both, if the file's mount or focus of some
+        antennas differs from their catalogue station's.
+    UncorrectedBaselinesWarning
+        Once, if some rows are on baselines to an orbiting antenna: they
+        are left as they were, the others corrected.
 
     Notes
     -----
@@ -368,16 +450,15 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
                          "Measurement Set written as a Measurement Set (.ms)")
     target = _check_output(source, output, overwrite)
     if copy:
-        if catalogue is not None and catalogue is not False:
-            raise ValueError("catalogue= is not read for Measurement Sets (their FEED "
-                             "table gives the receptors; feeds= replaces them)")
+        # The FEED table gives the receptors (feeds= replaces them); the catalogue is
+        # only compared with the mounts.
         work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
         try:
             temporary = copy_ms(source, work / target.name)
             try:
                 correct_ms(temporary, direction=direction, frame=frame, vertical=vertical,
                            progress=progress, feeds=feeds, redo=redo, pole=pole,
-                           client=client, **columns)
+                           client=client, mounts=mounts, catalogue=catalogue, **columns)
             except CorrectionRefused as error:  # named as the input, not the copy
                 raise type(error)(error.template.replace(str(temporary), str(source))) \
                     from None
@@ -394,7 +475,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
                         vertical=vertical, direction=direction, feeds=feeds, redo=redo,
-                        pole=pole, client=client, catalogue=catalogue)
+                        pole=pole, client=client, catalogue=catalogue, mounts=mounts)
         return target
 
     if kind == "ms":  # pyuvdata reads DATA: what the HISTORY says of it (CASA's too)
@@ -403,7 +484,8 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     check_history(uv.history, direction, str(source), redo=redo)  # the file named
     with pole_context(pole):
         correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
-                       direction=direction, feeds=feeds, redo=redo, catalogue=catalogue)
+                       direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
+                       mounts=mounts)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -29,12 +29,13 @@ from ..outputs import new_file_mode, publish, same_file
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, basis_of
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
-from .catalogue import catalogue_receptors
+from .catalogue import catalogue_mounts, catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, with_receptors
 from .tasks import in_order, task_groups, worker_count
+from .unusable import UnusableAntenna, given_feeds, usable_antennas, warn_skipped
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -51,7 +52,7 @@ _CHUNK_BYTES = 16 * 2**20
 _FLOAT_FORMATS = ("E", "D")
 
 
-def fitsidi_antennas(path, *, vertical="geodetic", software=None):
+def fitsidi_antennas(path, *, vertical="geodetic", software=None, unusable="raise"):
     """The antennas of a FITS-IDI file.
 
     Parameters
@@ -67,6 +68,10 @@ def fitsidi_antennas(path, *, vertical="geodetic", software=None):
         ``'fits-idi:casacore<3.2'`` or ``'fits-idi:pyuvdata'``. By default the
         convention of the program that wrote the file
         (`~astropy_feedrot.visibilities.writing_program`).
+    unusable : {'raise', 'keep'}, optional
+        Raise for an antenna that cannot be described (default), or keep it
+        as an `~astropy_feedrot.visibilities.UnusableAntenna` (see
+        `~astropy_feedrot.visibilities.antenna_tables.read_antennas`).
 
     Returns
     -------
@@ -120,7 +125,8 @@ def fitsidi_antennas(path, *, vertical="geodetic", software=None):
     >>> antennas[2].name, antennas[2].mount  # DiFX's 6 is XYNS
     ('LA', XYMount(axis='north'))
     """
-    return read_antennas(path, "fits-idi", vertical=vertical, software=software)
+    return read_antennas(path, "fits-idi", vertical=vertical, software=software,
+                         unusable=unusable)
 
 
 # --- the layout of UV_DATA ---------------------------------------------------------
@@ -261,7 +267,11 @@ def _sources(hdul, name):
         key = int(data[id_column][row])
         ra, dec = float(data["RAEPO"][row]), float(data["DECEPO"][row])
         if not (np.isfinite(ra) and np.isfinite(dec) and -90 <= dec <= 90):
-            raise FITSFormatError(name, "SOURCE", "finite RAEPO and DECEPO (degrees)",
+            label = data["SOURCE"][row] if "SOURCE" in columns else ""
+            label = (label.decode("ascii", "replace") if isinstance(label, bytes)
+                     else str(label)).strip()
+            raise FITSFormatError(name, "SOURCE", f"finite RAEPO and DECEPO (degrees) for "
+                                  f"source {key}{f' ({label})' if label else ''}",
                                   f"{ra}, {dec}", column="RAEPO")
         entry = (ra, dec, equinox[row].strip().upper(), float(pmra[row]), float(pmdec[row]))
         if key in table and table[key][0] != entry:
@@ -311,6 +321,8 @@ class _Plan:
         self.weight_column = "WEIGHT" if "WEIGHT" in columns else None
         # Plain values only: a plan goes to dask workers.
         self.scales = {c.name: (c.bscale, c.bzero) for c in hdu.columns}
+        # Antennas whose rows are left as they are (orbiting), and how many rows.
+        self.skip, self.skipped_rows = (), 0
 
 
 def _rows_of(plan, records, name):
@@ -366,6 +378,16 @@ def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, n
         finally:
             del records
     a1, a2, jd, source = (np.concatenate(values) for values in zip(*parts))
+    # Rows on baselines to an orbiting antenna are left as they are (plan.skip).
+    antennas, skipped = usable_antennas(antennas, np.concatenate([a1, a2]),
+                                        f"{name}, table UV_DATA")
+    plan.skip = tuple(skipped)
+    if skipped:
+        kept = ~(np.isin(a1, skipped) | np.isin(a2, skipped))
+        plan.skipped_rows = int(np.count_nonzero(~kept))
+        a1, a2, jd, source = a1[kept], a2[kept], jd[kept], source[kept]
+        if not a1.size:
+            return None
     return ReceptorAngleTable(
         antennas, jd, source, a1, a2, sources, lambda t: Time(t, format="jd", scale=scale),
         products=plan.products, frame=frame, where=f"{name}, table UV_DATA",
@@ -374,7 +396,23 @@ def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, n
 
 
 def _correct_chunk(records, plan, table, sources, name, direction):
-    """Correct the FLUX of a chunk of records in place; the number of NaN rows."""
+    """Correct the FLUX of a chunk of records in place, but the rows on baselines to
+    the antennas ``plan.skip``; the number of NaN rows."""
+    if plan.skip:
+        a1, a2 = _rows_of(plan, records, name)[:2]
+        kept = ~(np.isin(a1, plan.skip) | np.isin(a2, plan.skip))
+        if not kept.all():
+            if not kept.any():
+                return 0
+            rows = records[kept]  # a copy, corrected and put back
+            count = _correct_rows(rows, plan, table, sources, name, direction)
+            records[kept] = rows
+            return count
+    return _correct_rows(records, plan, table, sources, name, direction)
+
+
+def _correct_rows(records, plan, table, sources, name, direction):
+    """Correct the FLUX of records in place; the number of NaN rows."""
     a1, a2, jd, source = _row_sources(plan, records, sources, name)
     n = len(a1)
     theta1, theta2 = table(jd, source, a1), table(jd, source, a2)
@@ -544,7 +582,8 @@ def _copy_range(fin, fout, begin, end, shift):
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
                     software=None, vertical="geodetic", chunk_bytes=None, direction="remove",
-                    feeds=None, redo=False, pole="itrs", client=None, catalogue=None):
+                    feeds=None, redo=False, pole="itrs", client=None, catalogue=None,
+                    mounts="file"):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -595,7 +634,13 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, else by position, else by the primary header's
         ``TELESCOP``): the embedded station catalogue by default, another,
-        or False.
+        or False. It is also the catalogue ``mounts`` compares with.
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus an antenna within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a catalogue
+        station takes where the two differ: the file's ``MNTSTA`` (default)
+        or the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`;
+        an antenna whose ``MNTSTA`` has no model takes its station's).
 
     Returns
     -------
@@ -618,7 +663,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         False; for Stokes parameters instead of
         correlation products, linear products without all four, receptors of
         the other basis or missing, and everything `fitsidi_antennas`
-        refuses.
+        refuses but orbiting antennas; antennas whose ``MNTSTA`` has no model
+        or whose receptors cannot be used (linear ones at one angle, unless
+        ``feeds`` gives them) are named, all in one message.
 
     Warns
     -----
@@ -629,6 +676,13 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     CatalogueReceptorsWarning
         Once, naming them, if antennas took their receptors from the
         station catalogue.
+    CatalogueMountWarning
+        Once, naming them with both, if the ``MNTSTA`` of some antennas
+        differs from their catalogue station's mount or focus.
+    UncorrectedBaselinesWarning
+        Once, naming them and counting the rows, if some rows are on
+        baselines to an orbiting antenna (``MNTSTA`` 2): those rows are
+        left byte for byte as they were, the others corrected.
 
     Notes
     -----
@@ -670,11 +724,16 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         scale = _time_scale(hdul, source)
         sources = _sources(hdul, source)
         header_end = int(hdul.fileinfo(0)["datLoc"])
-    antennas = fitsidi_antennas(source, vertical=vertical, software=software)
+    antennas = fitsidi_antennas(source, vertical=vertical, software=software,
+                                unusable="keep")
+    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=source)
+    antennas = given_feeds(antennas, feeds)
+    ground = {n: a for n, a in antennas.items() if not isinstance(a, UnusableAntenna)}
     if feeds is not None:
-        antennas = with_receptors(antennas, feeds)
-    antennas, note = catalogue_receptors(antennas, catalogue,
-                                         telescope=str(primary.get("TELESCOP", "")).strip())
+        ground = with_receptors(ground, feeds)
+    ground, note = catalogue_receptors(ground, catalogue,
+                                       telescope=str(primary.get("TELESCOP", "")).strip())
+    antennas.update(ground)
     new_header = _with_history(source, header_end, history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row", frame=frame_name, vertical=vertical))
@@ -718,4 +777,6 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         warn_caller(f"the feed rotation is undefined in {nan_rows} of {total_rows} rows (an "
                     "alt-az antenna pointing at the zenith, or an equatorial one at the "
                     "pole): their FLUX is NaN and their weight 0", DegenerateGeometryWarning)
+    warn_skipped(antennas, sorted({n for plan in plans for n in plan.skip}),
+                 sum(plan.skipped_rows for plan in plans), total_rows, source)
     return target

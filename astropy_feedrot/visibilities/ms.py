@@ -29,7 +29,7 @@ from astropy.time import Time
 
 from ..antenna import Antenna
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..labels import mount_from_label
+from ..labels import is_orbiting, mount_from_label
 from ..progress import progress_steps
 from ..receptors import Receptors, basis_of
 from .history import check_direction, history_entry
@@ -39,6 +39,15 @@ from .ms_chunks import tables as _tables
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, pole_context
 from .receptors import ReceptorAngleTable, check_receptors, with_receptors
+from .catalogue import catalogue_mounts, check_mounts_option
+from .unusable import (
+    UnusableAntenna,
+    check_unusable,
+    given_feeds,
+    orbiting_reason,
+    usable_antennas,
+    warn_skipped,
+)
 
 __all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
 
@@ -136,7 +145,7 @@ def _receptors(types, angles, where):
         raise MSError(f"{where}: {error}") from None
 
 
-def ms_antennas(ms, *, vertical="geodetic"):
+def ms_antennas(ms, *, vertical="geodetic", unusable="raise"):
     """The antennas of a Measurement Set, with their receptors.
 
     Parameters
@@ -146,6 +155,12 @@ def ms_antennas(ms, *, vertical="geodetic"):
     vertical : {'geodetic', 'geocentric'}, optional
         The local vertical of each `~astropy_feedrot.Antenna`
         (``'geocentric'`` reproduces CASA).
+    unusable : {'raise', 'keep'}, optional
+        What to do with an antenna that cannot be described (an orbiting
+        antenna, a ``MOUNT`` that is empty or has no model, receptors that
+        cannot be used such as linear ones both at ``RECEPTOR_ANGLE`` 0):
+        raise (default), or keep it as an
+        `~astropy_feedrot.visibilities.UnusableAntenna` with the reason.
 
     Returns
     -------
@@ -163,7 +178,10 @@ def ms_antennas(ms, *, vertical="geodetic"):
         Without python-casacore.
     FileNotFoundError, MSError
         For a missing path or one that is not a Measurement Set, positions
-        not in ITRF, or an unknown mount.
+        not in ITRF; with ``unusable='raise'``, an empty or unknown mount
+        (casacore reads an empty ``MOUNT`` as alt-az; here it is refused,
+        naming the antenna), an orbiting antenna, receptors that cannot be
+        used.
 
     Examples
     --------
@@ -182,23 +200,50 @@ def ms_antennas(ms, *, vertical="geodetic"):
     sets = {}
     for antenna, _, _, _, _, types, angles in _feed_rows(path):
         sets.setdefault(antenna, set()).add((types, angles))
+    keep = check_unusable(unusable) == "keep"
     antennas = {}
     for number, (position, name, label) in enumerate(zip(xyz, names, mounts)):
         if empty[number]:
             continue
         where = f"{str(path)!r}, table ANTENNA, antenna {number} ({name})"
-        try:
-            mount, focus = mount_from_label(label, "casacore")
-        except ValueError as error:
-            raise MSError(f"{where}: {error}") from None
+        location = EarthLocation.from_geocentric(*position, unit=u.m)
+        problem = mount = focus = None
+        if not label:
+            problem, reason = "mount", (
+                "MOUNT is empty (casacore takes it for alt-az, but the writer did not say "
+                "how the antenna is mounted): write its mount into the ANTENNA table, or "
+                "pass mounts='catalogue' (--mounts catalogue) to take the station "
+                "catalogue's")
+        else:
+            try:
+                mount, focus = mount_from_label(label, "casacore")
+            except ValueError as error:
+                problem, reason = "mount", f"MOUNT {label!r}: {error}"
+                if keep and is_orbiting(label, "casacore"):
+                    problem, reason = "orbiting", orbiting_reason(f"MOUNT {label!r}")
         found = sets.get(number, set())
-        receptors = _receptors(*next(iter(found)), where) if len(found) == 1 else None
-        try:
-            antennas[number] = Antenna(EarthLocation.from_geocentric(*position, unit=u.m),
-                                       mount, focus, name=name,
-                                       vertical=vertical, receptors=receptors)
-        except ValueError as error:
-            raise MSError(f"{where}: {error}") from None
+        receptors = receptors_problem = None
+        if len(found) == 1:
+            try:
+                receptors = _receptors(*next(iter(found)), "table FEED")
+            except MSError as error:
+                receptors_problem = (f"{error}; give its receptors (feeds=, --feeds X,Y)")
+        if not keep and (problem is not None or receptors_problem is not None):
+            raise MSError(f"{where}: {reason if problem is not None else receptors_problem}")
+        if problem is not None:
+            antennas[number] = UnusableAntenna(
+                location, name, problem, reason, label=label, vertical=vertical,
+                receptors=receptors, receptors_problem=receptors_problem)
+        elif receptors_problem is not None:
+            antennas[number] = UnusableAntenna(
+                location, name, "receptors", receptors_problem, label=label, mount=mount,
+                focus=focus, vertical=vertical)
+        else:
+            try:
+                antennas[number] = Antenna(location, mount, focus, name=name,
+                                           vertical=vertical, receptors=receptors)
+            except ValueError as error:
+                raise MSError(f"{where}: {error}") from None
     return antennas
 
 
@@ -362,6 +407,10 @@ def _fields(path):
             ref = codes.get(int(table.getcell(variable, k)), "?") if variable \
                 else str(info.get("Ref", "J2000"))
             direction = np.asarray(table.getcell("PHASE_DIR", k), float).reshape(-1, 2)
+            if not np.all(np.isfinite(direction)):
+                raise MSError(f"{where}: PHASE_DIR is {direction.tolist()} rad, not numbers: "
+                              "every angle of its rows would be NaN; give the field's "
+                              "direction")
             ephemeris = int(table.getcell("EPHEMERIS_ID", k)) if "EPHEMERIS_ID" in columns \
                 else -1
             if ephemeris >= 0:
@@ -452,6 +501,14 @@ def _add_column(table, source, name):
     table.addcols(tables.maketabdesc(tables.makecoldesc(name, description)), dminfo)
 
 
+def _copy_rows(table, rows, source, target, step):
+    """Copy the cells of column ``source`` into ``target`` at ``rows``, ``step`` rows at
+    a time."""
+    for start in range(0, rows.size, step):
+        with contextlib.closing(table.selectrows(rows[start:start + step])) as chosen:
+            chosen.putcol(target, chosen.getcol(source))
+
+
 def _add_history(path, message):
     tables = _tables()
     with contextlib.closing(tables.table(str(path / "HISTORY"), readonly=False,
@@ -488,8 +545,9 @@ def _meta(table):
                                                   "FEED2", "FIELD_ID", "DATA_DESC_ID")}
 
 
-def _plan(path, meta, descriptions, fields, feeds, frame, pole):
-    """Per data description: rows, products, and the virtual antennas of each row.
+def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None):
+    """Per data description: rows, products, and the virtual antennas of each row
+    (not the rows ``skipped``, a mask, left as they are).
 
     Everything is checked here, before anything is written.
     """
@@ -503,7 +561,9 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
             raise MSError(f"{str(path)!r}: rows use DATA_DESC_ID {dd} that the "
                           "DATA_DESCRIPTION table lacks")
         spw, products = descriptions[dd]
-        rows = np.flatnonzero(ddid == dd)
+        rows = np.flatnonzero((ddid == dd) if skipped is None else (ddid == dd) & ~skipped)
+        if not rows.size:
+            continue
         epochs = meta["TIME"][rows]
         k1 = feeds.keys(feeds.antennas, meta["ANTENNA1"][rows], meta["FEED1"][rows], spw,
                         epochs)
@@ -530,7 +590,7 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole):
 def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
                direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
                progress=False, feeds=None, redo=False, pole="itrs", client=None,
-               overwrite_column=False):
+               overwrite_column=False, mounts="file", catalogue=None):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -593,6 +653,16 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     overwrite_column : bool, optional
         Write into an existing ``corrected_column`` that this package did
         not write (its values are replaced).
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus an antenna within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
+        ``catalogue`` takes where the two differ: the ``MOUNT`` column
+        (default) or the catalogue's
+        (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
+        ``MOUNT`` is empty or has no model takes its station's).
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        The station catalogue ``mounts`` compares with: the embedded one by
+        default, another, or False for none.
 
     Returns
     -------
@@ -618,12 +688,24 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         (``UVW``, ``FLAG``, a name that is no column name), or one this
         package did not write (unless ``overwrite_column``); nothing is
         written then.
+    MSError
+        For antennas whose ``MOUNT`` is empty or has no model (orbiting ones
+        aside) or whose receptors cannot be used (``RECEPTOR_ANGLE`` [0, 0]
+        of linear dipoles, as LWA and PAPER sets give; unless ``feeds``
+        gives them), all named in one message; nothing is written then.
 
     Warns
     -----
     DegenerateGeometryWarning
         Once, with the count, if the feed rotation is undefined in some rows
         (an alt-az antenna at the zenith): their output is NaN.
+    CatalogueMountWarning
+        Once, naming them with both, if the ``MOUNT`` of some antennas
+        differs from their catalogue station's mount or focus.
+    UncorrectedBaselinesWarning
+        Once, if some rows are on baselines to an orbiting antenna
+        (``MOUNT`` ``'SPACE-HALCA'``, ``'ORBITING'``): they are left as they
+        are (copied from ``data_column``), the others corrected.
 
     Notes
     -----
@@ -648,6 +730,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     'day2_TDEM0003_10s_norx_1src_1spw_2ints.ms'
     """
     direction = check_direction(direction)
+    check_mounts_option(mounts)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     if data_column is None:
@@ -680,10 +763,21 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         step_rows = progress_record.chunk_rows
     else:
         check_column_history(path, records, data_column, corrected_column, direction, redo)
-    antennas = ms_antennas(path, vertical=vertical)
+    antennas = ms_antennas(path, vertical=vertical, unusable="keep")
+    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=repr(str(path)))
+    every = antennas = given_feeds(antennas, feeds)
+    try:
+        antennas, skip = usable_antennas(
+            antennas, np.unique(np.concatenate([meta["ANTENNA1"], meta["ANTENNA2"]])),
+            repr(str(path)))
+    except ValueError as error:
+        raise MSError(str(error)) from None
+    # Rows on baselines to an orbiting antenna: left as they are (copied when the
+    # output column is another).
+    skipped = np.isin(meta["ANTENNA1"], skip) | np.isin(meta["ANTENNA2"], skip)
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
-    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole)
+    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped)
     chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
                  angles) for dd, rows, products, k1, k2, angles in plans
                 for k in range(0, rows.size, step_rows)]
@@ -736,10 +830,17 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
             if isinstance(error, Exception):
                 raise MSError(f"{message} ({type(error).__name__}: {error})") from error
             raise
+        if skipped.any() and corrected_column != data_column:
+            with locked(table, shared):
+                _copy_rows(table, np.flatnonzero(skipped), data_column, corrected_column,
+                           step_rows)
         with locked(table, shared):
             table.removecolkeyword(corrected_column, _PARTIAL)
     _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
-                 ("" if pole == "itrs" else f" (pole={pole})"))
+                 ("" if pole == "itrs" else f" (pole={pole})") +
+                 (f" (not the baselines to the orbiting antennas "
+                  f"{', '.join(map(str, skip))})" if skip else ""))
+    warn_skipped(every, skip, int(np.count_nonzero(skipped)), total, repr(str(path)))
     if nan_rows:
         warn_caller(f"the feed rotation is undefined in {nan_rows} of {total} rows (an "
                     "alt-az antenna pointing at the zenith): their output is NaN",

@@ -231,8 +231,10 @@ def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
     theta1, theta2 = block.theta()
     # One angle pair per row, for every channel.
-    correct_receptor_visibilities(data, theta1[:, None, :] * u.deg, theta2[:, None, :] * u.deg,
-                                  block.products, out=data, direction=direction)
+    with np.errstate(invalid="ignore"):  # NaN and inf in the data (LWA's) give NaN
+        correct_receptor_visibilities(data, theta1[:, None, :] * u.deg,
+                                      theta2[:, None, :] * u.deg, block.products, out=data,
+                                      direction=direction)
     bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
     if bad.any():
         data[bad] = np.nan

@@ -137,6 +137,12 @@ def phase_centre_sources(uv):
     sources, unprojected = {}, set()
     for key, entry in uv.phase_center_catalog.items():
         kind = entry["cat_type"]
+        for field in ("cat_lon", "cat_lat"):
+            value = entry.get(field)
+            if value is not None and not np.all(np.isfinite(np.asarray(value, float))):
+                raise ValueError(f"phase centre {entry.get('cat_name')!r} (id {key}) has "
+                                 f"{field} {value}, not a number: every angle of its rows "
+                                 "would be NaN; give its position in phase_center_catalog")
         if kind == "sidereal":
             sources[key] = _sidereal(entry)
         elif kind == "ephem":

@@ -15,7 +15,14 @@ import warnings
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import CIRS, Angle, BaseCoordinateFrame, SkyCoord, frame_transform_graph
+from astropy.coordinates import (
+    CIRS,
+    Angle,
+    BaseCoordinateFrame,
+    SkyCoord,
+    UnitSphericalRepresentation,
+    frame_transform_graph,
+)
 
 from ..antenna import Antenna
 from ..eop import iers_context
@@ -217,6 +224,18 @@ def _source_table(sources, source_index, n_rows):
     return sources, source_index
 
 
+def _check_finite(coord, key):
+    """ValueError naming the source if some of its directions are not finite numbers."""
+    direction = coord.represent_as(UnitSphericalRepresentation)
+    bad = ~(np.isfinite(direction.lon.value) & np.isfinite(direction.lat.value))
+    if np.any(bad):
+        raise ValueError(f"source {key!r} has coordinates that are not numbers "
+                         f"({int(np.count_nonzero(bad))} of {bad.size} positions, e.g. "
+                         f"lon {np.ravel(direction.lon.deg)[np.ravel(bad)][0]}, lat "
+                         f"{np.ravel(direction.lat.deg)[np.ravel(bad)][0]} deg): every angle "
+                         "of its rows would be NaN; give the source's position")
+
+
 def _track(source, epochs, key):
     """The source at the epochs: a fixed SkyCoord, or a (T, 1) one for a moving source."""
     if callable(source) and not isinstance(source, (SkyCoord, BaseCoordinateFrame)):
@@ -224,12 +243,14 @@ def _track(source, epochs, key):
         if track.shape != epochs.shape:
             raise ValueError(f"the moving source {key!r} gave positions of shape "
                              f"{track.shape} for {epochs.shape} epochs")
+        _check_finite(track, key)
         return track.reshape((epochs.size, 1)), track
     coord = as_skycoord(source)
     if not coord.isscalar:
         raise ValueError(f"source {key!r} must be one direction (a scalar SkyCoord), or a "
                          f"function of the epochs for a moving source; got shape "
                          f"{coord.shape}")
+    _check_finite(coord, key)
     return coord, coord
 
 
@@ -278,8 +299,9 @@ def feed_rotation_rows(antennas, antenna1, antenna2, obstime, sources, source_in
     ValueError
         For rows of other lengths, antenna numbers that are not whole
         numbers, antenna numbers or source keys that the mappings lack, a
-        moving source that does not give one position per epoch, or an
-        unknown ``frame``.
+        moving source that does not give one position per epoch, a source
+        whose coordinates are not numbers (NaN; the message names its key),
+        or an unknown ``frame``.
 
     Warns
     -----

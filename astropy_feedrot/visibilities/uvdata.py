@@ -21,6 +21,7 @@ import os
 import shutil
 import tempfile
 import warnings
+from types import SimpleNamespace
 
 import numpy as np
 from astropy import units as u
@@ -32,15 +33,23 @@ from ..correction import correct_receptor_visibilities
 from ..eop import iers_context
 from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..frames import VERTICALS
-from ..labels import mount_from_label
+from ..labels import is_orbiting, mount_from_label
 from ..mounts import AltAzMount
 from ..outputs import publish
 from ..progress import progress_steps
 from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
-from .catalogue import catalogue_receptors
+from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
 from .receptors import receptor_position_angles, with_receptors
+from .unusable import (
+    UnusableAntenna,
+    check_unusable,
+    given_feeds,
+    orbiting_reason,
+    usable_antennas,
+    warn_skipped,
+)
 
 __all__ = [
     "antennas_from_uvdata",
@@ -126,8 +135,9 @@ def _receptors(feeds, angles, stationary):
     return Receptors("".join(types), alpha * u.deg)
 
 
-def _antennas(uv, vertical, numbers=None):
-    """{antenna number: Antenna} of the telescope (only ``numbers`` if given)."""
+def _antennas(uv, vertical, numbers=None, keep=False):
+    """{antenna number: Antenna} of the telescope (only ``numbers`` if given); ``keep``:
+    antennas that cannot be described as UnusableAntenna instead of an error."""
     _check_vertical(vertical)
     tel = uv.telescope
     if tel.mount_type is None:
@@ -148,29 +158,41 @@ def _antennas(uv, vertical, numbers=None):
             continue
         name = str(tel.antenna_names[k])
         label = tel.mount_type[k]
+        xyz = centre + np.asarray(tel.antenna_positions[k], dtype=float)
+        location = EarthLocation.from_geocentric(*xyz, unit=u.m)
         try:
             mount, focus = mount_from_label(label, "pyuvdata")
         except ValueError as err:
-            raise ValueError(
-                f"antenna {name} (number {number}): {err}. If you know the mount, set "
-                "uv.telescope.mount_type, or pass antennas={number: Antenna}") from None
+            reason = (f"{err}. If you know the mount, set uv.telescope.mount_type, or pass "
+                      "antennas={number: Antenna}")
+            if not keep:
+                raise ValueError(f"antenna {name} (number {number}): {reason}") from None
+            problem = "mount"
+            if is_orbiting(label, "pyuvdata"):
+                problem, reason = "orbiting", orbiting_reason(f"mount_type {label!r}")
+            antennas[number] = UnusableAntenna(location, name, problem, reason, label=label,
+                                               vertical=vertical)
+            continue
         receptors = None
         if tel.feed_array is not None and tel.feed_angle is not None:
             try:
                 receptors = _receptors(tel.feed_array[k], tel.feed_angle[k], not mount.tracks)
             except ValueError as err:
-                raise ValueError(
-                    f"antenna {name} (number {number}): {err}. Files often give 0 for both "
-                    "linear receptors; if you know the angles, set uv.telescope.feed_angle "
-                    "(radians, e.g. [0, pi/2] for x and y)") from None
-        xyz = centre + np.asarray(tel.antenna_positions[k], dtype=float)
-        location = EarthLocation.from_geocentric(*xyz, unit=u.m)
+                reason = (f"{err}. Files often give 0 for both linear receptors; if you know "
+                          "the angles, set uv.telescope.feed_angle (radians, e.g. [0, pi/2] "
+                          "for x and y), or give the feeds (feeds=, --feeds X:90,Y:0)")
+                if not keep:
+                    raise ValueError(f"antenna {name} (number {number}): {reason}") from None
+                antennas[number] = UnusableAntenna(location, name, "receptors", reason,
+                                                   label=label, mount=mount, focus=focus,
+                                                   vertical=vertical)
+                continue
         antennas[number] = Antenna(location, mount, focus, name=name, vertical=vertical,
                                    receptors=receptors)
     return antennas
 
 
-def antennas_from_uvdata(uv, *, vertical="geodetic"):
+def antennas_from_uvdata(uv, *, vertical="geodetic", unusable="raise"):
     """The antennas of a `~pyuvdata.UVData` object as `~astropy_feedrot.Antenna` objects.
 
     Parameters
@@ -183,6 +205,11 @@ def antennas_from_uvdata(uv, *, vertical="geodetic"):
         The local vertical of every antenna (`~astropy_feedrot.Antenna`).
         ``'geocentric'`` reproduces CASA and casacore, whose parallactic
         angles use the geocentric vertical.
+    unusable : {'raise', 'keep'}, optional
+        What to do with an antenna that cannot be described (a
+        ``mount_type`` with no model, such as ``'orbiting'``; linear
+        receptors at one angle): raise (default), or keep it as an
+        `~astropy_feedrot.visibilities.UnusableAntenna` with the reason.
 
     Returns
     -------
@@ -238,21 +265,36 @@ def antennas_from_uvdata(uv, *, vertical="geodetic"):
     (AltAzMount(), Receptors('XY', [90.0, 0.0] * u.deg))
     """
     _check_uvdata(uv)
-    return _antennas(uv, vertical)
+    return _antennas(uv, vertical, keep=check_unusable(unusable) == "keep")
 
 
 # --- position angles of the receptors ----------------------------------------------
 
 
-def _position_angles(uv, antennas, frame, vertical, note=""):
+def _position_angles(uv, antennas, frame, vertical, note="", skip=()):
     """Sky position angles (deg) of the receptors of ant_1 and ant_2, (Nblts, 2) each.
 
     Returns (theta1, theta2, basis, undefined) with the last axis in the order
     (R, L) or (X, Y); ``undefined`` counts the rows with NaN. The degenerate
-    rows are not warned about here.
+    rows are not warned about here. Rows on baselines to the antennas ``skip``
+    get 0 (the caller leaves them as they are).
     """
     ant1 = np.asarray(uv.ant_1_array, dtype=int)
     ant2 = np.asarray(uv.ant_2_array, dtype=int)
+    if len(skip):
+        kept = ~(np.isin(ant1, skip) | np.isin(ant2, skip))
+        theta1, theta2 = np.zeros((ant1.size, 2)), np.zeros((ant1.size, 2))
+        if kept.any():
+            # The rows kept, as _position_angles reads them.
+            rows = SimpleNamespace(
+                ant_1_array=ant1[kept], ant_2_array=ant2[kept],
+                time_array=np.asarray(uv.time_array)[kept],
+                phase_center_id_array=np.asarray(uv.phase_center_id_array)[kept],
+                phase_center_catalog=uv.phase_center_catalog, telescope=uv.telescope)
+            out = _position_angles(rows, antennas, frame, vertical, note)
+            theta1[kept], theta2[kept] = out[0], out[1]
+            return theta1, theta2, out[2], out[3]
+        return theta1, theta2, None, 0
     used = np.unique(np.concatenate([ant1, ant2]))
     if antennas is None:
         antennas = _antennas(uv, vertical, used)
@@ -428,7 +470,7 @@ def _chunk_rows(uv):
 @iers_context()
 def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", antennas=None,
                    progress=False, direction="remove", feeds=None, redo=False,
-                   catalogue=None):
+                   catalogue=None, mounts="file"):
     """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
 
     Parameters
@@ -466,7 +508,15 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         Where antennas that neither the data nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, by position, or by ``telescope.name``): the embedded
-        station catalogue by default, another one, or False for none.
+        station catalogue by default, another one, or False for none. It is
+        also the catalogue ``mounts`` compares with.
+    mounts : {'file', 'catalogue'}, optional
+        Whose mount and focus an antenna within
+        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a catalogue
+        station takes where the two differ: ``telescope.mount_type``
+        (default) or the catalogue's
+        (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
+        ``mount_type`` has no model takes its station's).
 
     Returns
     -------
@@ -500,6 +550,13 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     CatalogueReceptorsWarning
         Once, naming them, if antennas took their receptors from the
         station catalogue.
+    CatalogueMountWarning
+        Once, naming them with both, if the ``mount_type`` of some antennas
+        differs from their catalogue station's mount or focus.
+    UncorrectedBaselinesWarning
+        Once, naming them and counting the baseline-times, if some are on
+        baselines to an orbiting antenna: those are left as they were (and
+        its ``feed_angle``), the others corrected.
 
     Notes
     -----
@@ -544,23 +601,32 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     check_history(uv.history, direction, "these data", redo=redo)
     if uv.data_array is None:
         raise ValueError("uv has no data_array (metadata only); read the data too")
-    note = ""
+    check_mounts_option(mounts)
+    note, skip, antennas_all = "", [], antennas
     if (feeds is not None or catalogue is not False) and \
             (antennas is None or hasattr(antennas, "items")):
         used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
         if antennas is None:
-            antennas = _antennas(uv, vertical, used)
+            antennas = _antennas(uv, vertical, used, keep=True)
+        antennas, _ = catalogue_mounts(antennas, mounts, catalogue, numbers=used,
+                                       where="the data")
+        antennas_all = antennas
+        antennas, skip = usable_antennas(given_feeds(antennas, feeds), used, "the data")
         if feeds is not None:
             antennas = with_receptors(antennas, feeds)
         antennas, note = catalogue_receptors(antennas, catalogue, numbers=used,
                                              telescope=uv.telescope.name)
     theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
-                                                              note)
-    if basis_feeds != basis:
+                                                              note, skip)
+    if basis_feeds is not None and basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
     target = uv if inplace else uv.copy()
     data = target.data_array
+    # Rows on baselines to an orbiting antenna: kept as they are.
+    skipped = np.flatnonzero(np.isin(target.ant_1_array, skip) |
+                             np.isin(target.ant_2_array, skip)) if skip else np.zeros(0, int)
+    kept_rows = data[skipped].copy()
     theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
     theta2 = theta2[:, np.newaxis, :] * u.deg
     auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
@@ -580,6 +646,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
                     for k in parallel:
                         block[row, ..., k].imag = 0
             done_step()
+    data[skipped] = kept_rows
     if undefined:
         bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
         data[bad] = np.nan
@@ -590,11 +657,16 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     tel = target.telescope
     if direction == "remove" and tel.feed_array is not None:
         sky = {"x": 0.0, "y": np.pi / 2, "r": 0.0, "l": 0.0}
-        tel.feed_angle = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(
-            tel.feed_array)
+        angles = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(tel.feed_array)
+        untouched = np.isin(tel.antenna_numbers, skip)  # orbiting: as they were
+        angles[untouched] = np.asarray(tel.feed_angle, dtype=float)[untouched]
+        tel.feed_angle = angles
     what = "data_array" + ("; feed_angle set to match" if direction == "remove" else "")
+    if skip:
+        what += f" (not the baselines to the orbiting antennas {', '.join(map(str, skip))})"
     target.history += " " + history_entry(direction, what, frame=_frame_text(frame),
                                           vertical=vertical) + "."
+    warn_skipped(antennas_all, skip, skipped.size, n_rows, "the data")
     return target
 
 

@@ -12,7 +12,7 @@ from .antenna_tables import read_antennas
 __all__ = ["uvfits_antennas"]
 
 
-def uvfits_antennas(path, *, vertical="geodetic", software=None):
+def uvfits_antennas(path, *, vertical="geodetic", software=None, unusable="raise"):
     """The antennas of a UVFITS file, from its ``AIPS AN`` table.
 
     Parameters
@@ -28,6 +28,10 @@ def uvfits_antennas(path, *, vertical="geodetic", software=None):
         ``'fits-idi:difx'`` or ``'fits-idi:pyuvdata'``. By default the
         convention of the program that wrote the file
         (`~astropy_feedrot.visibilities.writing_program`).
+    unusable : {'raise', 'keep'}, optional
+        Raise for an antenna that cannot be described (default), or keep it
+        as an `~astropy_feedrot.visibilities.UnusableAntenna` (see
+        `~astropy_feedrot.visibilities.antenna_tables.read_antennas`).
 
     Returns
     -------
@@ -83,4 +87,5 @@ def uvfits_antennas(path, *, vertical="geodetic", software=None):
     >>> antennas[1].name, antennas[1].mount, antennas[2].receptors
     ('PT', AltAzMount(), Receptors('RL', [0.0, 0.0] * u.deg))
     """
-    return read_antennas(path, "uvfits", vertical=vertical, software=software)
+    return read_antennas(path, "uvfits", vertical=vertical, software=software,
+                         unusable=unusable)
