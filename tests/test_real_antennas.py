@@ -185,6 +185,10 @@ def test_orbiting_antenna_is_listed(capsys):
     problem = dict(zip(table["name"], table["problem"]))
     assert "orbiting antenna" in problem["RZ"] and "leaves its baselines" in problem["RZ"]
     assert np.ma.is_masked(problem["BR"]) and table["station"][0] == "BR-VLBA"  # empty
+    with pytest.raises(ValueError, match=r"antenna 5 \(RZ\) cannot be used: MNTSTA 2: an "
+                       "orbiting antenna"):
+        feed_rotation_rows(antennas, [1], [5], Time(["1999-04-01T20:00"]),
+                           SkyCoord(153.767 * u.deg, 49.433 * u.deg))
     table = antenna_table(antennas, "fits-idi:difx")
     assert table["mount"][4] == "" and table["label"][4] == "2" and table["problem"][0] == ""
 
@@ -288,6 +292,9 @@ def test_empty_mount_is_refused_or_taken_from_the_catalogue(tmp_path):
     with pytest.raises(MSError, match=r"1 antenna cannot be corrected: antenna 1 \(\w+\): "
                        "MOUNT is empty.*the catalogue's VLA_"):
         correct_ms(ms)
+    # Into a copy: refused too (pyuvdata refuses the empty mount_type itself).
+    with pytest.raises(ValueError, match="MOUNT is empty|mount_type has unacceptable values"):
+        correct_file(ms, tmp_path / "vla.uvh5")
     with pytest.warns(CatalogueMountWarning, match=r"antenna 1 \(\w+\): file MOUNT is empty"):
         correct_ms(ms, mounts="catalogue")
     _set_cell(ms, "ANTENNA", "MOUNT", 1, "ALT-AX")

@@ -29,6 +29,7 @@ from ..eop import iers_context
 from ..exceptions import DegenerateGeometryWarning, warn_caller
 from ..grid import feed_rotation_grid
 from ..inputs import as_skycoord, as_time
+from .unusable import UnusableAntenna
 
 __all__ = ["feed_rotation_rows", "frame_position_angle", "distinct_epochs", "FRAMES"]
 
@@ -198,6 +199,9 @@ def _antenna_list(antennas, antenna1, antenna2):
     used = []
     for n in numbers:
         antenna = antennas[int(n)]
+        if isinstance(antenna, UnusableAntenna):
+            raise ValueError(f"antenna {int(n)} ({antenna.name}) cannot be used: "
+                             f"{antenna.reason}")
         if not isinstance(antenna, Antenna):
             raise TypeError(f"antennas[{int(n)}] must be an Antenna, got "
                             f"{type(antenna).__name__}")
