@@ -10,7 +10,6 @@ sky-fixed products.
 
 import hashlib
 import os
-import signal
 import subprocess
 import sys
 import textwrap
@@ -284,50 +283,47 @@ def test_read_only_as_root_too(circular, monkeypatch):
 
 def test_locked_by_another_process(circular):
     ms, _ = circular
+    # The other process holds the lock until it is told to stop (its standard
+    # input closed), however long the check takes, not for a fixed time.
     holder = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
-        import time
+        import sys
         from casacore.tables import table
         t = table({str(ms)!r}, readonly=False, ack=False, lockoptions="permanent")
         print("locked", flush=True)
-        time.sleep(60)
-        """)], stdout=subprocess.PIPE, text=True)
+        sys.stdin.read()
+        """)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
         assert holder.stdout.readline().strip() == "locked"
         _unchanged(ms, lambda: correct_ms(ms), MSError,
                    "is locked by another process .*close it there")
     finally:
-        holder.kill()
-        holder.wait()
+        holder.stdin.close()
+        holder.wait(timeout=60)
         holder.stdout.close()
 
 
 def test_interrupted_run_keeps_the_input_and_resumes(circular, tmp_path):
     ms, model = circular
     data = column(ms, "DATA")
+    # Ctrl-C at a known point, not at a time: after its third chunk the run
+    # sends itself SIGINT, which Python raises at the next instruction of the
+    # progress callback (never in a destructor, where it would be dropped).
     script = textwrap.dedent(f"""
-        import time, sys
+        import os, signal, sys
         from astropy_feedrot.visibilities import correct_ms
-        def slow(done, total):
+        def interrupt(done, total):
             print(done, flush=True)
-            time.sleep(0.5)
+            if done == 3:
+                os.kill(os.getpid(), signal.SIGINT)
         try:
-            correct_ms({str(ms)!r}, chunk_rows=20, progress=slow)
+            correct_ms({str(ms)!r}, chunk_rows=20, progress=interrupt)
         except KeyboardInterrupt as error:
             print("INTERRUPTED", error, flush=True)
             sys.exit(3)
         """)
-    run = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
-    lines = []
-    while len(lines) < 3:
-        lines.append(run.stdout.readline().strip())
-    while run.poll() is None:  # Ctrl-C until it stops (Python drops a KeyboardInterrupt
-        run.send_signal(signal.SIGINT)  # raised in a destructor)
-        try:
-            run.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            pass
-    out = run.stdout.read()
-    run.stdout.close()
+    run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
+                         timeout=600)
+    out = run.stdout
     assert run.returncode == 3
     assert "INTERRUPTED" in out and "DATA is intact" in out and "FEEDROT_PARTIAL" in out
     np.testing.assert_array_equal(column(ms, "DATA"), data)
