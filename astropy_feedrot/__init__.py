@@ -30,6 +30,7 @@ from .exceptions import (
     CatalogueReceptorsWarning,
     DegenerateGeometryWarning,
     OrbitWarning,
+    ReceptorAngleWarning,
     StaleEarthOrientationWarning,
     UncorrectedBaselinesWarning,
 )
@@ -142,6 +143,7 @@ __all__ = [
     "CatalogueReceptorsWarning",
     "CatalogueMountWarning",
     "UncorrectedBaselinesWarning",
+    "ReceptorAngleWarning",
     "ContinuityWarning",
     "FileFormatError",
 ]

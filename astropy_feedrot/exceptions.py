@@ -10,7 +10,7 @@ from astropy.utils.exceptions import AstropyUserWarning
 
 __all__ = ["DegenerateGeometryWarning", "OrbitWarning", "StaleEarthOrientationWarning",
            "CatalogueReceptorsWarning", "CatalogueMountWarning", "UncorrectedBaselinesWarning",
-           "warn_caller"]
+           "ReceptorAngleWarning", "warn_caller"]
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
 
@@ -150,5 +150,23 @@ class UncorrectedBaselinesWarning(AstropyUserWarning):
     --------
     >>> from astropy_feedrot import UncorrectedBaselinesWarning
     >>> issubclass(UncorrectedBaselinesWarning, UserWarning)
+    True
+    """
+
+
+class ReceptorAngleWarning(AstropyUserWarning):
+    """A file gives the two receptors of circular feeds unusual angles.
+
+    Emitted once per correction, naming the antennas, when the angle of the
+    second circular receptor differs from the first's by other than 0 or 90
+    deg (`~astropy_feedrot.receptors.CIRCULAR_OFFSETS`). Both receptors then
+    turn with the first's angle, as CASA turns them
+    (`~astropy_feedrot.Receptors.sky_angles`): the second angle is ignored.
+    Give the feeds yourself (``feeds=``, ``--feeds``) if the file is wrong.
+
+    Examples
+    --------
+    >>> from astropy_feedrot import ReceptorAngleWarning
+    >>> issubclass(ReceptorAngleWarning, UserWarning)
     True
     """

@@ -28,6 +28,17 @@ A receptor at position angle :math:`\\theta` answers to the field on the sky
 so that a feed rotated by :math:`\\Phi` multiplies its RCP voltage by
 :math:`e^{-i\\Phi}` and its LCP voltage by :math:`e^{+i\\Phi}`, the
 convention of `~astropy_feedrot.correction` (Appendix D of the paper).
+
+The two receptors of a circular feed turn together: both lie at the angle of
+the *first* receptor of the file (``POLAA``, ``RECEPTOR_ANGLE[0]``, pyuvdata's
+first ``feed_angle``), whatever angle the file gives the second
+(`Receptors.sky_angles`). This is CASA's rule (its parallactic-angle
+correction turns both hands by the first receptor's angle; checked with
+casatools' ``applycal(parang=True)`` on ``RECEPTOR_ANGLE`` [20, 110] and [20,
+50] deg: RL moves by 40 deg in both) and AIPS's, whose files give both the same
+angle. Files write the second angle equal to the first (AIPS, DiFX, SFXC,
+casacore) or 90 deg on (HOPS, pyuvdata): `CIRCULAR_OFFSETS`. Any other
+offset is unusual (`Receptors.unusual_offset`), and the correction warns.
 """
 
 import numpy as np
@@ -35,7 +46,7 @@ from astropy import units as u
 from astropy.coordinates import Angle
 from astropy.utils.masked import Masked
 
-__all__ = ["Receptors", "RECEPTOR_TYPES", "PRODUCT_CODES", "basis_of"]
+__all__ = ["Receptors", "RECEPTOR_TYPES", "PRODUCT_CODES", "basis_of", "CIRCULAR_OFFSETS"]
 
 #: The receptor types, by basis.
 RECEPTOR_TYPES = {"circular": ("R", "L"), "linear": ("X", "Y")}
@@ -45,6 +56,11 @@ RECEPTOR_TYPES = {"circular": ("R", "L"), "linear": ("X", "Y")}
 #: the first letter is the receptor of antenna 1.
 PRODUCT_CODES = {-1: "RR", -2: "LL", -3: "RL", -4: "LR",
                  -5: "XX", -6: "YY", -7: "XY", -8: "YX"}
+
+#: The angles (deg, modulo 360) by which files put the second receptor of a circular
+#: feed from the first without meaning anything by it: the same angle (AIPS, DiFX,
+#: SFXC, casacore) or 90 deg on either side (HOPS and pyuvdata write R 0, L 90).
+CIRCULAR_OFFSETS = (0.0, 90.0, 270.0)
 
 # Two linear receptors closer than this to parallel (sine of the angle between
 # them) cannot be told apart.
@@ -320,8 +336,64 @@ class Receptors:
             raise ValueError(f"this feed has receptors {tuple(self.types)}, not {receptor!r}")
         return self.angles[self.types.index(letter)]
 
+    @property
+    def sky_angles(self):
+        """The angles :math:`\\alpha` with which the receptors turn on the sky.
+
+        Those of the file for linear receptors; for circular ones the first
+        receptor's angle for both (module docstring: CASA's rule).
+
+        Returns
+        -------
+        `~astropy.coordinates.Angle`
+            One per receptor, in the order of `types`.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy_feedrot.receptors import Receptors
+        >>> Receptors("RL", [20, 110] * u.deg).sky_angles
+        <Angle [20., 20.] deg>
+        >>> Receptors("XY", [-10, 80] * u.deg).sky_angles
+        <Angle [-10.,  80.] deg>
+        """
+        if self.basis == "circular":
+            return Angle(np.full(len(self.types), self.angles[0].to_value(u.deg)), u.deg)
+        return self.angles
+
+    @property
+    def unusual_offset(self):
+        """The angle (deg) of the second circular receptor from the first, if unusual.
+
+        Returns
+        -------
+        float or None
+            The offset in (-180, 180] deg when a circular feed gives its two
+            receptors angles that differ by other than `CIRCULAR_OFFSETS`
+            (whose second angle is then ignored: `sky_angles`); else None.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy_feedrot.receptors import Receptors
+        >>> Receptors("RL", [0, 90] * u.deg).unusual_offset is None
+        True
+        >>> Receptors("RL", [20, 50] * u.deg).unusual_offset
+        30.0
+        """
+        if self.basis != "circular" or len(self.types) < 2:
+            return None
+        offset = float((self.angles[1] - self.angles[0]).to_value(u.deg)) % 360.0
+        # Within 1e-3 deg: files store the angles in single precision (radians too).
+        if np.min(np.abs(offset - np.array(CIRCULAR_OFFSETS + (360.0,)))) < 1e-3:
+            return None
+        return offset - 360.0 if offset > 180.0 else offset
+
     def position_angles(self, feed_rotation):
         """The position angles :math:`\\theta = \\Phi + \\alpha` of the receptors on the sky.
+
+        :math:`\\alpha` are the `sky_angles`: for circular receptors the
+        first receptor's angle for both.
 
         Parameters
         ----------
@@ -353,7 +425,7 @@ class Receptors:
         if feed_rotation.unit.physical_type != "angle":
             raise u.UnitsError(f"feed_rotation must be an angle, got {feed_rotation.unit}")
         phi = feed_rotation.to_value(u.deg)
-        return Angle(np.asarray(phi)[..., np.newaxis] + self.angles.value, u.deg)
+        return Angle(np.asarray(phi)[..., np.newaxis] + self.sky_angles.value, u.deg)
 
     def jones(self, feed_rotation):
         """The rows with which the receptors answer to the field on the sky.

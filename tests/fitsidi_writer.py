@@ -157,8 +157,12 @@ def write_fitsidi(path, *, products=("RR", "LL", "RL", "LR"), angles=None, evpa=
         a2 = angles.get(j, (0.0, 90.0 if basis_letters == "XY" else 0.0))
         values = []
         for p in products:
-            t1 = np.radians(phi[sid, i][k] + a1[basis_letters.index(p[0])])
-            t2 = np.radians(phi[sid, j][k] + a2[basis_letters.index(p[1])])
+            # A circular feed turns as one: both receptors at POLAA, the first
+            # receptor's angle (CASA's rule, checked with casatools in test_casa.py).
+            k1 = 0 if basis_letters == "RL" else basis_letters.index(p[0])
+            k2 = 0 if basis_letters == "RL" else basis_letters.index(p[1])
+            t1 = np.radians(phi[sid, i][k] + a1[k1])
+            t2 = np.radians(phi[sid, j][k] + a2[k2])
             v = receptor_row(p[0], t1) @ sky @ receptor_row(p[1], t2).conj()
             values.append(v)
             # Fixed receptors on the sky: X north, Y east, R and L at angle 0.

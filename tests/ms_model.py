@@ -102,8 +102,12 @@ def fill_model(ms, column="DATA"):
             types1, alpha1 = feed_of(i, time[row])
             types2, alpha2 = feed_of(j, time[row])
             for c, product in enumerate(products):
-                t1 = np.radians(phi[i][k] + alpha1[types1.index(product[0])])
-                t2 = np.radians(phi[j][k] + alpha2[types2.index(product[1])])
+                # A circular feed turns as one: both receptors at the first one's
+                # angle (CASA's rule, checked with casatools in test_casa.py).
+                k1 = 0 if product[0] in "RL" else types1.index(product[0])
+                k2 = 0 if product[1] in "RL" else types2.index(product[1])
+                t1 = np.radians(phi[i][k] + alpha1[k1])
+                t2 = np.radians(phi[j][k] + alpha2[k2])
                 data[row, :, c] = (receptor_row(product[0], t1) @ sky
                                    @ receptor_row(product[1], t2).conj())
                 # Receptors fixed on the sky: X north, Y east, R and L at angle 0.

@@ -34,7 +34,7 @@ def sha(path):
 
 def test_fitsidi_on_two_workers(tmp_path, client):
     source = tmp_path / "in.idifits"
-    write_fitsidi(source, angles={0: (5.0, -7.0)}, n_times=12, n_freqid=2)
+    write_fitsidi(source, angles={0: (5.0, 95.0)}, n_times=12, n_freqid=2)
     correct_fitsidi(source, tmp_path / "serial.idifits", chunk_bytes=4096)
     correct_fitsidi(source, tmp_path / "dask.idifits", chunk_bytes=4096, client=client)
     assert sha(tmp_path / "serial.idifits") == sha(tmp_path / "dask.idifits")

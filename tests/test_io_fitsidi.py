@@ -22,7 +22,11 @@ from astropy.coordinates import ICRS, AltAz, EarthLocation, SkyCoord
 from fitsidi_writer import START, STATIONS, station_xyz, write_fitsidi
 
 from astropy_feedrot import AltAzMount, NasmythFocus, XYMount
-from astropy_feedrot.exceptions import CatalogueReceptorsWarning, DegenerateGeometryWarning
+from astropy_feedrot.exceptions import (
+    CatalogueReceptorsWarning,
+    DegenerateGeometryWarning,
+    ReceptorAngleWarning,
+)
 from astropy_feedrot.io import FileFormatError
 from astropy_feedrot.visibilities import (
     HISTORY_MARK,
@@ -39,7 +43,8 @@ from astropy_feedrot.receptors import Receptors
 pytestmark = pytest.mark.filterwarnings(
     "ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
 
-CIRCULAR_ANGLES = {0: (5.0, -7.0), 2: (12.0, 3.0)}
+# R and L at one angle or 90 deg apart, as files give them (Receptors.sky_angles).
+CIRCULAR_ANGLES = {0: (5.0, 95.0), 2: (12.0, 12.0)}
 LINEAR_ANGLES = {0: (15.0, 105.0), 1: (-30.0, 62.0), 3: (0.0, 90.0)}
 
 
@@ -105,6 +110,26 @@ def test_circular_round_trip(tmp_path, products, frame):
     if "RL" in products:
         chi = evpa(list(products), got)
         assert np.max(np.abs(chi - info["evpa"])) < 0.01
+
+
+def test_unusual_circular_angles_warn_once_and_use_the_first(tmp_path):
+    # R 5, L -7 deg and R 12, L 3 deg: neither one angle nor 90 deg apart. Both
+    # receptors turn with the first's angle, as CASA's applycal does (test_casa.py),
+    # and as the voltage model of fitsidi_writer turns them.
+    source, info = run(tmp_path, angles={0: (5.0, -7.0), 2: (12.0, 3.0)})
+    output = tmp_path / "out.idifits"
+    with pytest.warns(ReceptorAngleWarning) as caught:
+        correct_fitsidi(source, output)
+    assert len(caught) == 1
+    assert str(caught[0].message) == (
+        f"{source}: circular receptors neither at one angle nor 90 deg apart (the usual "
+        "offsets) at 2 antennas: antenna 1 (FD-VLBA): R 5, L -7 deg; antenna 3 (YEBES40M): "
+        "R 12, L 3 deg; both receptors of each turn with the first one's angle, as in CASA "
+        "(the second angle is ignored); give the feeds (feeds=, --feeds) if the file's "
+        "angles are wrong")
+    got = corrected_products(output, info)
+    expected = info["expected"][:, None, None, :]
+    np.testing.assert_allclose(got, np.broadcast_to(expected, got.shape), atol=2e-6)
 
 
 @pytest.mark.parametrize("frame", ["apparent", "icrs"])
@@ -487,7 +512,7 @@ def test_difx_antennas(tmp_path):
     assert antennas[3].focus == NasmythFocus("right")
     assert antennas[4].focus == NasmythFocus("left")
     assert antennas[1].mount == AltAzMount() and antennas[1].name == "FD-VLBA"
-    assert antennas[1].receptors == Receptors("RL", [5.0, -7.0] * u.deg)
+    assert antennas[1].receptors == Receptors("RL", [5.0, 95.0] * u.deg)
     # The positions are the catalogue's (the writer wrote them absolute).
     xyz = antennas[1].location.get_itrs().cartesian.xyz.to_value(u.m)
     np.testing.assert_allclose(xyz, [-1324009.454, -5332181.955, 3231962.369], atol=1e-6)

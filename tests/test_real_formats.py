@@ -214,6 +214,14 @@ def test_uvfits_output_of_aips_and_hops(path, tmp_path):
     # exp(-i (Phi1 - Phi2)) and LL by exp(+i (Phi1 - Phi2)); float32 data.
     assert _wrapped(phases[-1][live] + minus[live]).max() < 1e-4
     assert _wrapped(phases[-2][live] - minus[live]).max() < 1e-4
+    # RL by exp(-i (Phi1 + Phi2)), LR by exp(+i (Phi1 + Phi2)): the HOPS file gives R
+    # 0 and L 90 deg, and both receptors turn with the first one's angle (CASA's rule,
+    # Receptors.sky_angles); with L's own 90 deg, RL and LR were 90 deg off (45 deg
+    # of EVPA).
+    cross = np.isfinite(phases[-3]) & np.isfinite(phases[-4])
+    assert cross.sum() > 100
+    assert _wrapped(phases[-3][cross] + plus[cross]).max() < 1e-4
+    assert _wrapped(phases[-4][cross] - plus[cross]).max() < 1e-4
 
 
 @pytest.mark.filterwarnings("ignore:The uvw_array does not match")

@@ -65,6 +65,7 @@ from .receptors import (
     check_receptors,
     parse_feeds,
     receptor_position_angles,
+    warn_unusual_angles,
     with_receptors,
 )
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
@@ -101,6 +102,7 @@ __all__ = [
     "ReceptorAngleTable",
     "check_receptors",
     "with_receptors",
+    "warn_unusual_angles",
     "parse_feeds",
     "catalogue_receptors",
     "catalogue_mounts",

@@ -33,7 +33,7 @@ from .catalogue import catalogue_mounts, catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, with_receptors
+from .receptors import ReceptorAngleTable, warn_unusual_angles, with_receptors
 from .tasks import in_order, task_groups, worker_count
 from .unusable import UnusableAntenna, given_feeds, usable_antennas, warn_skipped
 
@@ -734,6 +734,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     ground, note = catalogue_receptors(ground, catalogue,
                                        telescope=str(primary.get("TELESCOP", "")).strip())
     antennas.update(ground)
+    warn_unusual_angles(ground, source)
     new_header = _with_history(source, header_end, history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row", frame=frame_name, vertical=vertical))

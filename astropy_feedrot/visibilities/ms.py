@@ -38,7 +38,7 @@ from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, check_receptors, with_receptors
+from .receptors import ReceptorAngleTable, check_receptors, warn_unusual_angles, with_receptors
 from .catalogue import catalogue_mounts, check_mounts_option
 from .unusable import (
     UnusableAntenna,
@@ -778,6 +778,8 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     fields = _fields(path)
     feed_table = _Feeds(path, antennas, feeds)
     plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped)
+    warn_unusual_angles({feed_table.number[k]: antenna
+                         for k, antenna in feed_table.virtual.items()}, str(path))
     chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
                  angles) for dd, rows, products, k1, k2, angles in plans
                 for k in range(0, rows.size, step_rows)]

@@ -27,14 +27,14 @@ from astropy import units as u
 from astropy.time import Time
 
 from ..antenna import Antenna
-from ..exceptions import DegenerateGeometryWarning
+from ..exceptions import DegenerateGeometryWarning, ReceptorAngleWarning, warn_caller
 from ..frames import local_frame
 from ..mounts import FixedAxisMount
 from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
 from .rows import feed_rotation_rows
 
 __all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
-           "parse_feeds"]
+           "parse_feeds", "warn_unusual_angles"]
 
 _POLCONVERT = ("a baseline between linear and circular feeds is not supported (convert one "
                "of them first, e.g. with PolConvert)")
@@ -108,6 +108,66 @@ def check_receptors(receptors, products, label, where="the data",
         raise ValueError(f"{where}: {label} has receptors {receptors.types!r} but the "
                          f"products {list(products)} need {lacking}")
     return basis
+
+
+def warn_unusual_angles(antennas, where="the data"):
+    """Warn once, naming them, if antennas give their circular receptors unusual angles.
+
+    Parameters
+    ----------
+    antennas : mapping or iterable
+        ``{antenna number: Antenna}`` (or the antennas).
+    where : str, optional
+        The data, for the message.
+
+    Returns
+    -------
+    list of str
+        The antennas named (empty when none is unusual).
+
+    Warns
+    -----
+    ReceptorAngleWarning
+        When the second circular receptor of some antennas lies by other
+        than 0 or 90 deg from the first
+        (`~astropy_feedrot.Receptors.unusual_offset`): both receptors turn
+        with the first's angle, as in CASA (`~astropy_feedrot.Receptors.sky_angles`).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import astropy.units as u
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.visibilities import warn_unusual_angles, with_receptors
+    >>> antennas = with_receptors({1: get_antenna("EFLSBERG")}, Receptors("RL", [20, 50] * u.deg))
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_unusual_angles(antennas, "x.idifits")
+    ['antenna 1 (EFLSBERG): R 20, L 50 deg']
+    >>> print(caught[0].message)  # doctest: +ELLIPSIS
+    x.idifits: circular receptors neither at one angle nor 90 deg apart (the usual ...
+    """
+    items = antennas.items() if hasattr(antennas, "items") else enumerate(antennas)
+    unusual = []
+    for number, antenna in items:
+        receptors = getattr(antenna, "receptors", None)
+        if receptors is None or receptors.unusual_offset is None:
+            continue
+        label = f"antenna {number} ({antenna.name})" if antenna.name else f"antenna {number}"
+        angles = ", ".join(f"{t} {a:g}" for t, a in zip(receptors.types,
+                                                        receptors.angles.to_value(u.deg)))
+        unusual.append(f"{label}: {angles} deg")
+    if unusual:
+        more = f"; and {len(unusual) - 10} more" if len(unusual) > 10 else ""
+        listed = "; ".join(unusual[:10]) + more
+        warn_caller(f"{where}: circular receptors neither at one angle nor 90 deg apart "
+                    f"(the usual offsets) at {len(unusual)} antenna"
+                    f"{'s' if len(unusual) > 1 else ''}: {listed}; both receptors of each "
+                    "turn with the first one's angle, as in CASA (the second angle is "
+                    "ignored); give the feeds (feeds=, --feeds) if the file's angles are "
+                    "wrong", ReceptorAngleWarning)
+    return unusual
 
 
 def _check_antennas(antennas, used, products, where, hint):
@@ -206,8 +266,10 @@ def receptor_position_angles(antennas, antenna1, antenna2, obstime, sources,
     virtual, keys, offsets = {}, {}, {}
     for n in used.tolist():
         antenna = antennas[n]
-        alphas = [antenna.receptors.angle(letter).to_value(u.deg) if letter in
-                  antenna.receptors.types else 0.0 for letter in letters]
+        # Circular receptors turn with the first one's angle (Receptors.sky_angles).
+        types, angles = antenna.receptors.types, antenna.receptors.sky_angles.to_value(u.deg)
+        alphas = [angles[types.index(letter)] if letter in types else 0.0
+                  for letter in letters]
         if antenna.mount.tracks or basis == "circular":
             virtual[2 * n] = antenna
             keys[n] = (2 * n, 2 * n)

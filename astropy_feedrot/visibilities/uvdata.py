@@ -41,7 +41,7 @@ from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
-from .receptors import receptor_position_angles, with_receptors
+from .receptors import receptor_position_angles, warn_unusual_angles, with_receptors
 from .unusable import (
     UnusableAntenna,
     check_unusable,
@@ -271,7 +271,7 @@ def antennas_from_uvdata(uv, *, vertical="geodetic", unusable="raise"):
 # --- position angles of the receptors ----------------------------------------------
 
 
-def _position_angles(uv, antennas, frame, vertical, note="", skip=()):
+def _position_angles(uv, antennas, frame, vertical, note="", skip=(), warn=False):
     """Sky position angles (deg) of the receptors of ant_1 and ant_2, (Nblts, 2) each.
 
     Returns (theta1, theta2, basis, undefined) with the last axis in the order
@@ -291,7 +291,7 @@ def _position_angles(uv, antennas, frame, vertical, note="", skip=()):
                 time_array=np.asarray(uv.time_array)[kept],
                 phase_center_id_array=np.asarray(uv.phase_center_id_array)[kept],
                 phase_center_catalog=uv.phase_center_catalog, telescope=uv.telescope)
-            out = _position_angles(rows, antennas, frame, vertical, note)
+            out = _position_angles(rows, antennas, frame, vertical, note, warn=warn)
             theta1[kept], theta2[kept] = out[0], out[1]
             return theta1, theta2, out[2], out[3]
         return theta1, theta2, None, 0
@@ -312,6 +312,8 @@ def _position_angles(uv, antennas, frame, vertical, note="", skip=()):
         raise ValueError("the antennas mix circular and linear feeds; a baseline between a "
                          "linear and a circular feed is not supported")
     basis = bases.pop() if bases else "circular"
+    if warn:
+        warn_unusual_angles({int(n): antennas[int(n)] for n in used}, "these data")
     products = [letter * 2 for letter in RECEPTOR_TYPES[basis]]
     sources, unprojected = phase_centre_sources(uv)
     theta1, theta2 = receptor_position_angles(
@@ -617,7 +619,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         antennas, note = catalogue_receptors(antennas, catalogue, numbers=used,
                                              telescope=uv.telescope.name)
     theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
-                                                              note, skip)
+                                                              note, skip, warn=True)
     if basis_feeds is not None and basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
