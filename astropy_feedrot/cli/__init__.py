@@ -72,8 +72,8 @@ def _protect_sites(argv):
     # A southern or western site such as -33.0,148.26,415 (or a place such as
     # --near's -3.09,40.52) would look like an option to argparse; a leading
     # space keeps it a value.
-    return [f" {arg}" if arg.startswith("-") and not arg.startswith("--") and "," in arg
-            and arg[1:2] in set("0123456789.") else arg for arg in argv]
+    return [f" {arg}" if arg.startswith("-") and not arg.startswith("--")
+            and 1 <= arg.count(",") <= 2 else arg for arg in argv]
 
 
 def _warning_printer():

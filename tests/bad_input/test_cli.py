@@ -348,7 +348,7 @@ def test_stations(capsys, files, path, match):
      r"see 'feedrot --help'"),
     (["natural"], r"the following arguments are required: ANTENNA; see 'feedrot natural --help'"),
     (["baseline", "DBR205"], r"the following arguments are required"),
-    (["stations", "extra"], r"unrecognized arguments: extra"),
+    (["stations", "YEBES40M", "extra"], r"unrecognized arguments: extra"),  # one NAME at most
     (["natural", "EFLSBERG", "--step"], r"argument --step: expected one argument"),
     (["natural", "EFLSBERG", "--min-elevation", "-5deg"], r"argument --min-elevation: expected one "
      r"argument \(write --option=VALUE for a value that starts with '-'\)"),
