@@ -161,7 +161,7 @@ class ReceptorAngleWarning(AstropyUserWarning):
     second circular receptor differs from the first's by other than 0 or 90
     deg (`~astropy_feedrot.receptors.CIRCULAR_OFFSETS`). Both receptors then
     turn with the first's angle, as CASA turns them
-    (`~astropy_feedrot.Receptors.sky_angles`): the second angle is ignored.
+    (`~astropy_feedrot.receptors.Receptors.sky_angles`): the second angle is ignored.
     Give the feeds yourself (``feeds=``, ``--feeds``) if the file is wrong.
 
     Examples

@@ -130,6 +130,14 @@ def test_single_polarization_sfxc_antennas():
     assert all(a.receptors == Receptors("LR", [0, 0] * u.deg) for a in antennas.values())
 
 
+def test_single_polarization_emerlin_antennas():
+    # e-MERLIN's LL file names both receptors (R, L at 0 deg) in its ANTENNA table.
+    antennas = fitsidi_antennas(EMERLIN)
+    assert [antennas[n].name for n in sorted(antennas)] == ["Mk2", "Kn", "De", "Pi", "Da",
+                                                            "Cm"]
+    assert all(a.receptors == Receptors("RL", [0, 0] * u.deg) for a in antennas.values())
+
+
 @pytest.mark.parametrize("path", [SFXC, EMERLIN], ids=["sfxc", "emerlin"])
 def test_single_polarization_fitsidi_corrected(path, tmp_path):
     out = correct_fitsidi(path, tmp_path / "out.IDI1")

@@ -190,7 +190,7 @@ def antenna_table(antennas, software=None, *, catalogue=None):
     ('VLA_W9', '')
 
     (casacore wrote a blank ``POLTYB`` for this file: the second receptor
-    is completed from the first, `~astropy_feedrot.Receptors.paired`.)
+    is completed from the first, `~astropy_feedrot.receptors.Receptors.paired`.)
     """
     numbers = sorted(antennas)
     matches = catalogue_stations(antennas, catalogue)

@@ -130,8 +130,8 @@ def warn_unusual_angles(antennas, where="the data"):
     ReceptorAngleWarning
         When the second circular receptor of some antennas lies by other
         than 0 or 90 deg from the first
-        (`~astropy_feedrot.Receptors.unusual_offset`): both receptors turn
-        with the first's angle, as in CASA (`~astropy_feedrot.Receptors.sky_angles`).
+        (`~astropy_feedrot.receptors.Receptors.unusual_offset`): both receptors turn
+        with the first's angle, as in CASA (`~astropy_feedrot.receptors.Receptors.sky_angles`).
 
     Examples
     --------
