@@ -830,6 +830,8 @@ def write_uvdata(uv, path, overwrite=False, kind=None):
         If ``uv`` is not a `~pyuvdata.UVData` object.
     ValueError
         For an extension without a writer, or an unknown ``kind``.
+    FileExistsError
+        If ``path`` exists and ``overwrite`` is False.
 
     Notes
     -----
@@ -840,8 +842,6 @@ def write_uvdata(uv, path, overwrite=False, kind=None):
     antennas, inside the Earth) is written on the ellipsoid below that
     point, with the antennas where they were: pyuvdata reads back no centre
     off the surface. ``uv`` is left as it was.
-    FileExistsError
-        If ``path`` exists and ``overwrite`` is False.
 
     Examples
     --------
