@@ -375,3 +375,16 @@ def test_new_files_get_the_umask_mode(tmp_path, umask, capsys):
     capsys.readouterr()
     modes = {Path(p).name: stat.S_IMODE(os.stat(p).st_mode) for p in made}
     assert modes == dict.fromkeys(modes, umask), {k: oct(v) for k, v in modes.items()}
+
+
+@pytest.mark.filterwarnings("ignore:The uvw_array does not match")
+def test_new_measurement_sets_get_the_umask_mode(tmp_path, umask):
+    # The casacore copy of a Measurement Set: directories 0750, files 0640 under 027.
+    pytest.importorskip("casacore")
+    from ms_model import unpack  # needs casacore
+
+    out = correct_file(unpack(tmp_path / "in"), tmp_path / "out.ms")
+    paths = [out, *Path(out).rglob("*")]
+    modes = {stat.S_IMODE(p.stat().st_mode) for p in paths if p.is_file()}
+    dirs = {stat.S_IMODE(p.stat().st_mode) for p in paths if p.is_dir()}
+    assert modes == {umask} and dirs == {umask | 0o110}, (modes, dirs)
