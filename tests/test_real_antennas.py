@@ -316,3 +316,39 @@ def test_nan_sources_are_refused_naming_them(tmp_path):
     with pytest.raises(ValueError, match="source 'x' has coordinates that are not numbers"):
         feed_rotation_rows({1: get_antenna("FD-VLBA")}, [1], [1], Time(["2023-01-01"]),
                            {"x": SkyCoord(np.nan * u.deg, 0 * u.deg)}, ["x"])
+
+
+def test_orbiting_antenna_of_a_measurement_set(tmp_path):
+    plain = untar(VLA_MS, tmp_path / "plain")
+    ms = untar(VLA_MS, tmp_path / "orbiting")
+    correct_ms(plain)
+    _set_cell(ms, "ANTENNA", "MOUNT", 1, "SPACE-HALCA")
+    with pytest.warns(UncorrectedBaselinesWarning, match=r"orbiting antenna 1 \(\w+\) are "
+                      "left as they were"):
+        correct_ms(ms)
+    casacore = pytest.importorskip("casacore.tables")
+    with casacore.table(str(ms), ack=False) as t, casacore.table(str(plain), ack=False) as p:
+        on = (t.getcol("ANTENNA1") == 1) | (t.getcol("ANTENNA2") == 1)
+        data, out = t.getcol("DATA"), t.getcol("CORRECTED_DATA")
+        reference = p.getcol("CORRECTED_DATA")
+    assert 0 < on.sum() < on.size
+    # Baselines to the orbiting antenna: DATA as it was; the others as corrected
+    # without it.
+    assert data[on].tobytes() == out[on].tobytes()
+    assert out[~on].tobytes() == reference[~on].tobytes()
+
+
+def test_orbiting_antenna_through_pyuvdata():
+    uv = read_uvdata(EHT)
+    with pytest.warns(CatalogueMountWarning):
+        reference = correct_uvdata(uv)
+    uv.telescope.mount_type[1] = "orbiting"  # AP, antenna 2
+    with pytest.warns(UncorrectedBaselinesWarning, match=r"orbiting antenna 2 \(AP\)"):
+        with pytest.warns(CatalogueMountWarning):
+            out = correct_uvdata(uv)
+    on = (uv.ant_1_array == 2) | (uv.ant_2_array == 2)
+    assert 0 < on.sum() < on.size
+    assert out.data_array[on].tobytes() == uv.data_array[on].tobytes()
+    assert out.data_array[~on].tobytes() == reference.data_array[~on].tobytes()
+    assert out.telescope.feed_angle[1].tolist() == uv.telescope.feed_angle[1].tolist()
+    assert "not the baselines to the orbiting antennas 2" in out.history.replace("\n", "")
