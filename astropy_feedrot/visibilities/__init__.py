@@ -26,7 +26,8 @@ One module per format, on shared steps:
   in chunks), `~astropy_feedrot.visibilities.uvfits` (UVFITS antenna
   tables), `~astropy_feedrot.visibilities.ms` (Measurement Sets in place,
   python-casacore; `~astropy_feedrot.visibilities.ms_tables`: the columns
-  it may write, and casacore copies), `~astropy_feedrot.visibilities.uvdata` (everything
+  it may write, and casacore copies; module ``ms_antennas``: its antennas
+  and ``FEED`` receptors), `~astropy_feedrot.visibilities.uvdata` (everything
   pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the
   antenna tables FITS-IDI and UVFITS share;
 * `~astropy_feedrot.visibilities.files`: any file, by its kind
@@ -58,7 +59,8 @@ from .files import (
 from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
 from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused
 from .kinds import FILE_KINDS, check_header_cards, existing_path, file_kind
-from .ms import CORR_TYPES, MSError, correct_ms, ms_antennas
+from .ms import CORR_TYPES, MSError, correct_ms
+from .ms_antennas import ms_antennas
 from .poles import POLES, pole_context
 from .receptors import (
     ReceptorAngleTable,

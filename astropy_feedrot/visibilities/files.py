@@ -42,7 +42,8 @@ from .catalogue import (
 from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
-from .ms import correct_ms, ms_antennas
+from .ms import correct_ms
+from .ms_antennas import ms_antennas
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import pole_context
 from .uvdata import (

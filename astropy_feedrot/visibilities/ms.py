@@ -1,8 +1,9 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Measurement Sets, read and corrected in place with python-casacore.
+"""Measurement Sets, corrected in place with python-casacore.
 
-* `ms_antennas` reads the ``ANTENNA`` table (``POSITION``, ``MOUNT`` through
-  `astropy_feedrot.labels`) and the receptors of the ``FEED`` table.
+* `~astropy_feedrot.visibilities.ms_antennas` (module
+  `~astropy_feedrot.visibilities.ms_antennas`) reads the ``ANTENNA`` table
+  and the receptors of the ``FEED`` table.
 * `correct_ms` writes the feed rotation removed from (or applied to) one data
   column into another column of the same Measurement Set, in chunks of rows,
   creating the output column as CASA does when it is missing, and records
@@ -20,36 +21,26 @@ python-casacore is an optional dependency (``pip install
 import contextlib
 import fcntl
 import os
-from pathlib import Path
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import FK4, FK5, ICRS, EarthLocation, SkyCoord
+from astropy.coordinates import FK4, FK5, ICRS, SkyCoord
 from astropy.time import Time
 
-from ..antenna import Antenna
 from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..labels import is_orbiting, mount_from_label
 from ..progress import progress_steps
-from ..receptors import Receptors, basis_of
+from ..receptors import basis_of
 from .history import check_direction, history_entry
-from .kinds import existing_path, file_kind
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
+from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, subtable
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, pole_context
-from .receptors import ReceptorAngleTable, check_receptors, warn_unusual_angles, with_receptors
+from .receptors import ReceptorAngleTable, warn_unusual_angles
 from .catalogue import catalogue_mounts, check_mounts_option
-from .unusable import (
-    UnusableAntenna,
-    check_unusable,
-    given_feeds,
-    orbiting_reason,
-    usable_antennas,
-    warn_skipped,
-)
+from .unusable import given_feeds, usable_antennas, warn_skipped
 
-__all__ = ["ms_antennas", "correct_ms", "CORR_TYPES", "MSError"]
+__all__ = ["correct_ms", "CORR_TYPES", "MSError"]
 
 #: The casacore ``Stokes`` codes of ``CORR_TYPE`` that are correlations of
 #: receptors (casacore ``Stokes.h``).
@@ -66,14 +57,6 @@ _FRAMES = {"J2000": lambda: FK5(equinox="J2000"), "ICRS": ICRS,
            "B1950": lambda: FK4(equinox="B1950"), "B1950_VLA": lambda: FK4(equinox="B1950")}
 
 
-def _ms_path(ms):
-    path = existing_path(ms, "Measurement Set")
-    if not path.is_dir() or file_kind(path) != "ms":
-        raise MSError(f"{str(path)!r} is not a Measurement Set (a directory with table.dat "
-                      "and ANTENNA)")
-    return path
-
-
 @contextlib.contextmanager
 def _open(path, *, write=False, shared=False):
     """The main table; ``shared``: written by other processes too (casacore user locks,
@@ -85,270 +68,6 @@ def _open(path, *, write=False, shared=False):
         yield table
     finally:
         table.close()
-
-
-def _sub(path, name):
-    tables = _tables()
-    if not (Path(path) / name).is_dir():
-        raise MSError(f"{str(path)!r} has no {name} table")
-    return tables.table(str(Path(path) / name), ack=False)
-
-
-def _text(value):
-    return value.decode() if isinstance(value, bytes) else str(value)
-
-
-# --- antennas and receptors ------------------------------------------------------------
-
-
-def _positions(path):
-    with contextlib.closing(_sub(path, "ANTENNA")) as table:
-        xyz = np.asarray(table.getcol("POSITION"), dtype=float).reshape(-1, 3)
-        reference = str(table.getcolkeywords("POSITION").get("MEASINFO", {}).get("Ref", "ITRF"))
-        names = [_text(n) for n in table.getcol("NAME")]
-        mounts = [_text(m).strip() for m in table.getcol("MOUNT")]
-        flagged = np.asarray(table.getcol("FLAG_ROW"), bool) if "FLAG_ROW" in \
-            table.colnames() else np.zeros(len(names), bool)
-    if reference.upper() != "ITRF":
-        raise MSError(f"{str(path)!r}, table ANTENNA: POSITION is in {reference}, not ITRF; "
-                      "convert the positions to ITRF first")
-    # Rows that hold no antenna (flagged, or at the geocentre as importuvfits
-    # writes the numbers a UVFITS file skips) are left out.
-    empty = flagged | np.all(xyz == 0, axis=1)
-    return xyz, names, mounts, empty
-
-
-def _feed_rows(path):
-    """FEED rows: antenna, feed, spw, start, stop (MJD s), types, angles (deg)."""
-    with contextlib.closing(_sub(path, "FEED")) as table:
-        n = table.nrows()
-        rows = []
-        for k in range(n):
-            types = "".join(_text(t).strip().upper() for t in table.getcell("POLARIZATION_TYPE", k))
-            angles = np.degrees(np.asarray(table.getcell("RECEPTOR_ANGLE", k), float).ravel())
-            mid, interval = float(table.getcell("TIME", k)), float(table.getcell("INTERVAL", k))
-            half = np.inf if interval <= 0 else interval / 2
-            rows.append((int(table.getcell("ANTENNA_ID", k)), int(table.getcell("FEED_ID", k)),
-                         int(table.getcell("SPECTRAL_WINDOW_ID", k)), mid - half, mid + half,
-                         types, tuple(np.round(angles[:len(types)], 9))))
-    return rows
-
-
-def _receptors(types, angles, where):
-    try:
-        if len(types.replace("?", "")) == 1 and types[0] != "?":
-            # One receptor named ('L' and '?' of a single-polarization FITS-IDI
-            # file imported by CASA): the pair, completed from it.
-            return Receptors.paired(types[0], angles[0] * u.deg)
-        return Receptors(types, list(angles) * u.deg)
-    except ValueError as error:
-        raise MSError(f"{where}: {error}") from None
-
-
-def ms_antennas(ms, *, vertical="geodetic", unusable="raise"):
-    """The antennas of a Measurement Set, with their receptors.
-
-    Parameters
-    ----------
-    ms : str or path-like
-        The Measurement Set.
-    vertical : {'geodetic', 'geocentric'}, optional
-        The local vertical of each `~astropy_feedrot.Antenna`
-        (``'geocentric'`` reproduces CASA).
-    unusable : {'raise', 'keep'}, optional
-        What to do with an antenna that cannot be described (an orbiting
-        antenna, a ``MOUNT`` that is empty or has no model, receptors that
-        cannot be used such as linear ones both at ``RECEPTOR_ANGLE`` 0):
-        raise (default), or keep it as an
-        `~astropy_feedrot.visibilities.UnusableAntenna` with the reason.
-
-    Returns
-    -------
-    dict
-        ``{ANTENNA row: Antenna}``: ``NAME``, ``POSITION`` (ITRF) and
-        ``MOUNT`` (casacore's labels, `~astropy_feedrot.labels`) of every
-        row but those flagged or at the geocentre (placeholders); the
-        receptors of the antenna's ``FEED`` rows when they all agree (None
-        when it has none, or several sets: `correct_ms` then takes each
-        row's own).
-
-    Raises
-    ------
-    ImportError
-        Without python-casacore.
-    FileNotFoundError, MSError
-        For a missing path or one that is not a Measurement Set, positions
-        not in ITRF; with ``unusable='raise'``, an empty or unknown mount
-        (casacore reads an empty ``MOUNT`` as alt-az; here it is refused,
-        naming the antenna), an orbiting antenna, receptors that cannot be
-        used.
-
-    Examples
-    --------
-    >>> import tarfile, tempfile, pathlib
-    >>> from astropy_feedrot.visibilities import ms_antennas
-    >>> where = pathlib.Path(tempfile.mkdtemp())
-    >>> with tarfile.open("tests/data/uvdata/X5707_1spw_1scan_10chan_1time_1bl_noatm"
-    ...                   ".ms.tar.gz") as archive:
-    ...     archive.extractall(where, filter="data")
-    >>> antennas = ms_antennas(where / "X5707_1spw_1scan_10chan_1time_1bl_noatm.ms")
-    >>> antennas[0].name, antennas[0].receptors
-    ('DA41', Receptors('XY', [-10.0, 80.0] * u.deg))
-    """
-    path = _ms_path(ms)
-    xyz, names, mounts, empty = _positions(path)
-    sets = {}
-    for antenna, _, _, _, _, types, angles in _feed_rows(path):
-        sets.setdefault(antenna, set()).add((types, angles))
-    keep = check_unusable(unusable) == "keep"
-    antennas = {}
-    for number, (position, name, label) in enumerate(zip(xyz, names, mounts)):
-        if empty[number]:
-            continue
-        where = f"{str(path)!r}, table ANTENNA, antenna {number} ({name})"
-        location = EarthLocation.from_geocentric(*position, unit=u.m)
-        problem = mount = focus = None
-        if not label:
-            problem, reason = "mount", (
-                "MOUNT is empty (casacore takes it for alt-az, but the writer did not say "
-                "how the antenna is mounted): write its mount into the ANTENNA table, or "
-                "pass mounts='catalogue' (--mounts catalogue) to take the station "
-                "catalogue's")
-        else:
-            try:
-                mount, focus = mount_from_label(label, "casacore")
-            except ValueError as error:
-                problem, reason = "mount", f"MOUNT {label!r}: {error}"
-                if keep and is_orbiting(label, "casacore"):
-                    problem, reason = "orbiting", orbiting_reason(f"MOUNT {label!r}")
-        found = sets.get(number, set())
-        receptors = receptors_problem = None
-        if len(found) == 1:
-            try:
-                receptors = _receptors(*next(iter(found)), "table FEED")
-            except MSError as error:
-                receptors_problem = (f"{error}; give its receptors (feeds=, --feeds X,Y)")
-        if not keep and (problem is not None or receptors_problem is not None):
-            raise MSError(f"{where}: {reason if problem is not None else receptors_problem}")
-        if problem is not None:
-            antennas[number] = UnusableAntenna(
-                location, name, problem, reason, label=label, vertical=vertical,
-                receptors=receptors, receptors_problem=receptors_problem)
-        elif receptors_problem is not None:
-            antennas[number] = UnusableAntenna(
-                location, name, "receptors", receptors_problem, label=label, mount=mount,
-                focus=focus, vertical=vertical)
-        else:
-            try:
-                antennas[number] = Antenna(location, mount, focus, name=name,
-                                           vertical=vertical, receptors=receptors)
-            except ValueError as error:
-                raise MSError(f"{where}: {error}") from None
-    return antennas
-
-
-class _Feeds:
-    """The receptors of each row: virtual antennas, one per (antenna, receptor set)."""
-
-    def __init__(self, path, antennas, feeds):
-        self.path = path
-        self.antennas = antennas
-        self.rows = _feed_rows(path)
-        given = with_receptors(antennas, feeds, replace=True) if feeds is not None \
-            else antennas
-        self.virtual, self.key, self.number = {}, {}, {}
-        self.by_antenna = {}
-        for index, (antenna, _, _, _, _, types, angles) in enumerate(self.rows):
-            if antenna not in antennas:
-                continue
-            self.by_antenna.setdefault(antenna, []).append(index)
-        self.fallback = {}
-        for number, antenna in given.items():
-            if number not in self.by_antenna or feeds is not None:
-                self.fallback[number] = self._virtual(number, antenna, antenna.receptors)
-
-    def _virtual(self, number, antenna, receptors):
-        described = None
-        if receptors is not None:
-            described = (receptors.types, tuple(receptors.angles.value))
-        key = (number, described)
-        if key not in self.key:
-            k = len(self.key)
-            self.key[key] = k
-            self.number[k] = number
-            self.virtual[k] = Antenna(antenna.location, antenna.mount, antenna.focus,
-                                      name=antenna.name, vertical=antenna.vertical,
-                                      receptors=receptors)
-        return self.key[key]
-
-    def _candidates(self, number, spw):
-        """The FEED rows of antenna ``number`` that hold for spectral window ``spw``."""
-        return [i for i in self.by_antenna.get(number, []) if self.rows[i][2] in (-1, spw)]
-
-    def check(self, keys, products, dd):
-        """MSError unless the receptors of the virtual antennas ``keys`` give ``products``."""
-        for key in np.unique(keys).tolist():
-            antenna = self.virtual[key]
-            label = f"antenna {self.number[key]} ({antenna.name})"
-            try:
-                check_receptors(antenna.receptors, products, label, str(self.path),
-                                "it has no FEED rows; add them to FEED, or give them "
-                                "(feeds=, --feeds R,L)")
-            except ValueError as error:
-                raise MSError(f"{error} (data description {dd})") from None
-
-    def keys(self, antennas, numbers, feed, spw, mjd_s):
-        """The virtual antenna of each row (antenna ``numbers``, ``feed`` ids, times)."""
-        distinct = np.unique(numbers).tolist()
-        for number in distinct:
-            if number not in antennas:
-                raise MSError(f"{str(self.path)!r}: rows use antenna {number}, which the "
-                              "ANTENNA table lacks (or holds as a flagged placeholder)")
-        # Most antennas have one receptor set for the window, whatever the time: their
-        # rows take it at once (a lookup by antenna number); the others are resolved
-        # row by row below.
-        size = max(distinct, default=-1) + 1
-        lookup, feed_of = np.full(size, -1), np.full(size, -1)
-        for number in distinct:
-            if number in self.fallback:
-                lookup[number] = self.fallback[number]
-                continue
-            candidates = self._candidates(number, spw)
-            if len(candidates) == 1:
-                _, feed_id, _, _, _, types, angles = self.rows[candidates[0]]
-                where = f"{str(self.path)!r}, table FEED, row {candidates[0]}"
-                lookup[number] = self._virtual(number, antennas[number],
-                                               _receptors(types, angles, where))
-                feed_of[number] = feed_id
-        out = lookup[numbers]
-        wanted = feed_of[numbers]
-        out[(wanted >= 0) & (feed != wanted)] = -1
-        for number in np.unique(numbers[out < 0]).tolist():
-            rows = np.flatnonzero(numbers == number)
-            candidates = self._candidates(number, spw)
-            if not candidates:
-                raise MSError(f"{str(self.path)!r}: antenna {number} "
-                              f"({antennas[number].name}) has no FEED row for spectral "
-                              f"window {spw}; its receptors are unknown: add them to FEED, or "
-                              "give them (feeds=, --feeds R,L)")
-            # The FEED row whose time range holds the row's time (else the nearest),
-            # among those of the row's feed id.
-            distance = np.full((len(candidates), rows.size), np.inf)
-            for c, i in enumerate(candidates):
-                _, feed_id, _, start, stop, _, _ = self.rows[i]
-                t = mjd_s[rows]
-                d = np.maximum(0.0, np.maximum(start - t, t - stop))
-                distance[c] = np.where(feed[rows] == feed_id, d, np.inf)
-            best = np.argmin(distance, axis=0)
-            if np.isinf(distance[best, np.arange(rows.size)]).any():
-                raise MSError(f"{str(self.path)!r}: antenna {number} has no FEED row for the "
-                              f"FEED1/FEED2 ids {sorted(set(feed[rows].tolist()))}")
-            for c, i in enumerate(candidates):
-                _, _, _, _, _, types, angles = self.rows[i]
-                where = f"{str(self.path)!r}, table FEED, row {i}"
-                key = self._virtual(number, antennas[number], _receptors(types, angles, where))
-                out[rows[best == c]] = key
-        return out
 
 
 # --- fields ------------------------------------------------------------------------------
@@ -395,14 +114,14 @@ class _PolynomialField:
 
 def _fields(path):
     """{FIELD row: source} from PHASE_DIR and the ephemeris tables."""
-    with contextlib.closing(_sub(path, "FIELD")) as table:
+    with contextlib.closing(subtable(path, "FIELD")) as table:
         columns = table.colnames()
         info = table.getcolkeywords("PHASE_DIR").get("MEASINFO", {})
         codes = dict(zip(info.get("TabRefCodes", []), info.get("TabRefTypes", [])))
         variable = info.get("VarRefCol")
         fields = {}
         for k in range(table.nrows()):
-            name = _text(table.getcell("NAME", k))
+            name = cell_text(table.getcell("NAME", k))
             where = f"{str(path)!r}, table FIELD, field {k} ({name})"
             ref = codes.get(int(table.getcell(variable, k)), "?") if variable \
                 else str(info.get("Ref", "J2000"))
@@ -435,9 +154,9 @@ def _fields(path):
 
 def _descriptions(path):
     """{DATA_DESC_ID: (spectral window, products)}."""
-    with contextlib.closing(_sub(path, "POLARIZATION")) as table:
+    with contextlib.closing(subtable(path, "POLARIZATION")) as table:
         corr = [np.asarray(table.getcell("CORR_TYPE", k)).tolist() for k in range(table.nrows())]
-    with contextlib.closing(_sub(path, "DATA_DESCRIPTION")) as table:
+    with contextlib.closing(subtable(path, "DATA_DESCRIPTION")) as table:
         spw = table.getcol("SPECTRAL_WINDOW_ID").tolist()
         pol = table.getcol("POLARIZATION_ID").tolist()
     out = {}
@@ -735,7 +454,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     if data_column is None:
         data_column = "DATA" if direction == "remove" else corrected_column
-    path = _ms_path(ms)
+    path = ms_path(ms)
     _tables()
     # Before casacore opens anything: it would wait for another process's lock.
     _check_writable(path)
@@ -776,7 +495,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     # output column is another).
     skipped = np.isin(meta["ANTENNA1"], skip) | np.isin(meta["ANTENNA2"], skip)
     fields = _fields(path)
-    feed_table = _Feeds(path, antennas, feeds)
+    feed_table = FeedReceptors(path, antennas, feeds)
     plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped)
     warn_unusual_angles({feed_table.number[k]: antenna
                          for k, antenna in feed_table.virtual.items()}, str(path))
