@@ -518,7 +518,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         station takes where the two differ: ``telescope.mount_type``
         (default) or the catalogue's
         (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
-        ``mount_type`` has no model takes its station's).
+        ``mount_type`` has no model takes its station's). Not for
+        ``antennas`` given: those are used as given.
 
     Returns
     -------
@@ -608,10 +609,10 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     if (feeds is not None or catalogue is not False) and \
             (antennas is None or hasattr(antennas, "items")):
         used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
-        if antennas is None:
+        if antennas is None:  # the data's antennas, compared with the catalogue's
             antennas = _antennas(uv, vertical, used, keep=True)
-        antennas, _ = catalogue_mounts(antennas, mounts, catalogue, numbers=used,
-                                       where="the data")
+            antennas, _ = catalogue_mounts(antennas, mounts, catalogue, numbers=used,
+                                           where="the data")
         antennas_all = antennas
         antennas, skip = usable_antennas(given_feeds(antennas, feeds), used, "the data")
         if feeds is not None:
