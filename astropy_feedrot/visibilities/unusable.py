@@ -110,7 +110,7 @@ class UnusableAntenna:
         --------
         >>> import astropy.units as u
         >>> from astropy_feedrot import AltAzMount, get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+        >>> from astropy_feedrot.receptors import Receptors
         >>> from astropy_feedrot.visibilities import UnusableAntenna
         >>> lwa = UnusableAntenna(get_antenna("VLA_W9").location, "LWA001", "receptors",
         ...                       "parallel receptors", mount=AltAzMount())
