@@ -256,14 +256,15 @@ def test_lwa_receptors_listed_and_refused_then_given(tmp_path, capsys):
     table = Table.read(capsys.readouterr().out, format="ascii.ecsv")
     assert all("parallel" in p and "--feeds" in p for p in table["problem"])
     before = shutil.copytree(ms, tmp_path / "before.ms")
-    with pytest.raises(MSError, match=r"4 antennas cannot be corrected: antenna 0 \(LWA001\): "
-                       r".*parallel.*; antenna 1 \(LWA002\)"):
+    with pytest.raises(MSError, match=r"4 antennas cannot be corrected: antennas 0 "
+                       r"\(LWA001\), 1 \(LWA002\), 2 \(LWA003\), 3 \(LWA004\): table FEED: "
+                       "the linear receptors 'XY' are parallel"):
         correct_ms(ms)
     assert main(["correct", str(ms), "--in-place"]) == 1
     assert "cannot be corrected" in capsys.readouterr().err
     # Through pyuvdata too.
-    with pytest.raises(ValueError, match=r"cannot be corrected: antenna 0 \(LWA001\): .*"
-                       "parallel"):
+    with pytest.raises(ValueError, match=r"cannot be corrected: antennas 0 \(LWA001\), "
+                       ".*: the linear receptors 'XY' are parallel"):
         correct_file(ms, tmp_path / "lwa.uvh5")
     # The feeds given: corrected.
     feeds = Receptors("XY", [0, 90] * u.deg)

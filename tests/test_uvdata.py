@@ -355,7 +355,7 @@ def test_missing_mount_type():
 def test_phased_mount():
     uv = make_uv(["x", "y"], [90, 0], "phased", LINEAR, catalog=sidereal())
     with pytest.raises(ValueError,
-                       match=r"antenna 0 \(A0\): .*phased.*set uv.telescope.mount_type"):
+                       match=r"antennas? 0 \(A0\).*: .*phased.*set uv.telescope.mount_type"):
         correct_uvdata(uv)
 
 

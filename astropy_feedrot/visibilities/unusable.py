@@ -262,9 +262,15 @@ def usable_antennas(antennas, numbers, where):
     refused = [n for n in used if isinstance(antennas.get(n), UnusableAntenna)
                and antennas[n].problem != "orbiting"]
     if refused:
-        listed = "; ".join(f"antenna {_label(n, antennas[n])}: {antennas[n].reason}"
-                           for n in refused[:10])
-        more = f" and {len(refused) - 10} more" if len(refused) > 10 else ""
+        reasons = {}  # antennas of one reason together
+        for n in refused:
+            reasons.setdefault(antennas[n].reason, []).append(n)
+        listed = "; ".join(
+            (f"antenna {_label(ns[0], antennas[ns[0]])}" if len(ns) == 1 else
+             f"antennas {', '.join(_label(n, antennas[n]) for n in ns[:10])}"
+             + (f" and {len(ns) - 10} more" if len(ns) > 10 else "")) + f": {reason}"
+            for reason, ns in list(reasons.items())[:10])
+        more = f"; and {len(reasons) - 10} more reasons" if len(reasons) > 10 else ""
         raise ValueError(f"{where}: {len(refused)} antenna{'s' if len(refused) > 1 else ''} "
                          f"cannot be corrected: {listed}{more}")
     skipped = [n for n in used if isinstance(antennas.get(n), UnusableAntenna)]
