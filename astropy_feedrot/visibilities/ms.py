@@ -221,11 +221,13 @@ def _add_column(table, source, name):
 
 
 def _copy_rows(table, rows, source, target, step):
-    """Copy the cells of column ``source`` into ``target`` at ``rows``, ``step`` rows at
-    a time."""
-    for start in range(0, rows.size, step):
-        with contextlib.closing(table.selectrows(rows[start:start + step])) as chosen:
-            chosen.putcol(target, chosen.getcol(source))
+    """Copy the cells of column ``source`` into ``target`` at ``rows`` (sorted), a run of
+    neighbouring rows at a time, at most ``step`` rows at once (casacore's selections
+    of rows cannot be written under user locking)."""
+    for part in np.split(rows, np.flatnonzero(np.diff(rows) != 1) + 1):
+        for start in range(int(part[0]), int(part[-1]) + 1, step):
+            count = min(step, int(part[-1]) + 1 - start)
+            table.putcol(target, table.getcol(source, start, count), start, count)
 
 
 def _add_history(path, message):

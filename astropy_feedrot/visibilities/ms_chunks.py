@@ -244,13 +244,19 @@ def _corrected(data, block, direction):
 _VALUE_TYPES = {"complex": np.complex64, "dcomplex": np.complex128}
 
 
-def _read(table, column, start, n):
+def _read(table, column, start, n=None):
     """Rows of a column of one cell shape, read into the buffer this thread keeps
     (`~astropy_feedrot.kept.thread_buffer`: a new 32 MiB array for each chunk took a
-    tenth of a second to fault in here)."""
+    tenth of a second to fault in here): ``n`` rows from ``start``, or the runs
+    ``start`` [(first row, count), ...] one after the other."""
+    runs = [(start, n)] if n is not None else start
     dtype = _VALUE_TYPES.get(table.getcoldesc(column).get("valueType"), np.complex64)
-    data = thread_buffer(dtype, (n,) + tuple(np.shape(table.getcell(column, start))))
-    table.getcolnp(column, data, start, n)
+    data = thread_buffer(dtype, (sum(count for _, count in runs),) +
+                         tuple(np.shape(table.getcell(column, runs[0][0]))))
+    at = 0
+    for first, count in runs:
+        table.getcolnp(column, data[at:at + count], first, count)
+        at += count
     return data
 
 
@@ -307,14 +313,30 @@ def _remote_blocks(path, data_column, corrected_column, blocks, table, direction
     bad = []
     for block in blocks:
         block.table = table
+        # Rows that do not follow each other (a data description's rows among
+        # others', rows left out of a correction) are read and written a run of
+        # neighbours at a time: casacore's selections of rows need the table's lock
+        # under user locking, also to be read.
+        runs = _runs(block.rows)
         with _PROCESS_LOCK:
             handle = _worker_table(path, run)
-            with _selection(handle, block.rows) as (selection, start, n):
-                data = _read(selection, data_column, start, n)
+            data = _read(handle, data_column, runs)
         bad.append(_corrected(data, block, direction))
-        with locked(handle, True), _selection(handle, block.rows) as (selection, start, n):
-            selection.putcol(corrected_column, data, start, n)
+        with locked(handle, True):
+            at = 0
+            for start, n in runs:
+                handle.putcol(corrected_column, data[at:at + n], start, n)
+                at += n
     return bad
+
+
+def _runs(rows):
+    """(first row, count) of each run of neighbouring rows, in order."""
+    if isinstance(rows, range):
+        return [(rows.start, len(rows))]
+    rows = np.asarray(rows)
+    return [(int(part[0]), part.size) for part in
+            np.split(rows, np.flatnonzero(np.diff(rows) != 1) + 1)]
 
 
 def _here(table, block, columns, direction):
