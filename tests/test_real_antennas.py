@@ -353,3 +353,17 @@ def test_orbiting_antenna_through_pyuvdata():
     assert out.data_array[~on].tobytes() == reference.data_array[~on].tobytes()
     assert out.telescope.feed_angle[1].tolist() == uv.telescope.feed_angle[1].tolist()
     assert "not the baselines to the orbiting antennas 2" in out.history.replace("\n", "")
+
+
+def test_traced_mirrors_compare_as_their_closed_form():
+    # WARK30M: a beam waveguide traced mirror by mirror (the catalogue's 'BWG'), so a
+    # casacore 'ALT-AZ' differs; YEBES40M's mirrors reduce to a right-handed Nasmyth
+    # focus (NASR), which a file's MNTSTA 4 says: alike.
+    wark, yebes = get_antenna("WARK30M"), get_antenna("YEBES40M")
+    antennas = {1: Antenna(wark.location, AltAzMount(), name="WARK30M"),
+                2: Antenna(yebes.location, AltAzMount(), NasmythFocus("right"), name="YS")}
+    with pytest.warns(CatalogueMountWarning, match=r"antenna 1 \(WARK30M\): file AltAzMount"
+                      r"\(\) CassegrainFocus\(\), WARK30M \(0.0 m\) AltAzMount\(\) MirrorTrain"):
+        chosen, matches = catalogue_mounts(antennas, "catalogue")
+    assert not matches[1].agrees and matches[2].agrees
+    assert chosen[1].focus == wark.focus and chosen[2].focus == NasmythFocus("right")
