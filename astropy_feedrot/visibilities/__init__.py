@@ -71,15 +71,8 @@ from .receptors import (
     with_receptors,
 )
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
-from .uvdata import (
-    PYUVDATA_TYPES,
-    WRITERS,
-    antennas_from_uvdata,
-    correct_uvdata,
-    feed_rotation_uvdata,
-    read_uvdata,
-    write_uvdata,
-)
+from .uvdata import antennas_from_uvdata, correct_uvdata, feed_rotation_uvdata
+from .uvdata_files import PYUVDATA_TYPES, WRITERS, read_uvdata, write_uvdata
 from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 

@@ -46,13 +46,8 @@ from .ms import correct_ms
 from .ms_antennas import ms_antennas
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import pole_context
-from .uvdata import (
-    PYUVDATA_TYPES,
-    antennas_from_uvdata,
-    correct_uvdata,
-    read_uvdata,
-    write_uvdata,
-)
+from .uvdata import antennas_from_uvdata, correct_uvdata
+from .uvdata_files import PYUVDATA_TYPES, read_uvdata, write_uvdata
 from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 
