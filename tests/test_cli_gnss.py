@@ -142,3 +142,30 @@ def test_rinex_summary_counts(tmp_path, capsys):
     assert "G31: not in the SP3 files" in err
     assert err.endswith("2 carrier phases of 4 observations at 2 epochs corrected, 1 arc, "
                         "0 epochs untouched, 1 satellite untouched\n")
+
+
+def test_satellite_with_too_few_points_says_so(tmp_path, capsys):
+    # gnss_sample.sp3: 13 epochs at 15 min. Two points (a straight line between
+    # epochs) put a GNSS orbit kilometres off (45 km here): the SP3 orbit itself,
+    # interpolated through 2 and 10 points, half an interval after an epoch.
+    from astropy.time import Time
+
+    from astropy_feedrot.io import read_sp3
+    from astropy_feedrot.orbits import SP3Orbit
+    from astropy_feedrot.sp3_orbit import points_needed
+
+    data = read_sp3(SP3)
+    when = data.epochs[6] + 450 * u.s
+    coarse, fine = (SP3Orbit(data, "G01", points=n).position(Time([when]))
+                    for n in (2, 10))
+    assert np.linalg.norm(np.asarray(coarse) - np.asarray(fine)) > 100  # metres
+    needed = min(points_needed(data.interval), len(data.epochs))
+    argv = ["satellite", "GGAO12M", "--sp3", SP3, "--sat", "G01", "--step", "15min",
+            "-o", str(tmp_path / "g01.ecsv")]
+    assert main(argv + ["--points", "2"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(
+        "feedrot: warning: --points 2 at the SP3 file's 900 s interval: its positions may be "
+        f"off by more than 10 m between epochs; --points {needed} keeps them within")
+    assert main(argv + ["--points", str(needed), "--overwrite"]) == 0
+    assert capsys.readouterr().err == ""

@@ -16,6 +16,7 @@ from ..io import read_sp3, read_tle
 from ..orbits import SP3Orbit, TLEOrbit
 from ..outputs import CommandError
 from ..satellite import Satellite
+from ..sp3_orbit import POSITION_TOLERANCE, points_needed
 from ..tables import baseline_table, feed_rotation_table
 from .common import (
     ANTENNA_HELP,
@@ -116,6 +117,14 @@ def _satellite(args):
     if points < 2:
         raise CommandError(f"--points must be at least 2 (epochs of the interpolation window), "
                            f"got {points}")
+    needed = points_needed(data.interval)
+    if points < min(needed, len(data.epochs)):
+        # Fewer points than the file allows and its sampling needs: said, not refused
+        # (a table for planning; feedrot rinex refuses it).
+        warn_caller(f"--points {points} at the SP3 file's {data.interval:g} s interval: its "
+                    f"positions may be off by more than {POSITION_TOLERANCE:g} m between "
+                    f"epochs; --points {min(needed, len(data.epochs))} keeps them within",
+                    OrbitWarning)
     span = (data.epochs[0].utc, data.epochs[-1].utc)
     if args.sat is not None:
         return _sp3_satellite(args, data, args.sat.strip(), points, hand), span
