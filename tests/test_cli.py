@@ -650,3 +650,22 @@ def test_table_metadata_names_the_source_not_its_frame(capsys):
     assert status == 0
     table = Table.read(capsys.readouterr().out, format="ascii.ecsv")
     assert table.meta["target"] == "03h19m48.16s +41d30m42.1s (icrs)"
+
+
+def test_correct_says_what_it_wrote_in_one_line(tmp_path, capsys, monkeypatch):
+    pytest.importorskip("pyuvdata")
+    from astropy_feedrot.data import sample_file
+
+    # As feedrot rinex does: one line on standard error on success, with the
+    # conventions used; the output named as given (relative here).
+    monkeypatch.chdir(tmp_path)
+    source = str(sample_file("vla_day2_8chan.uvfits"))
+    assert main(["correct", source, "-o", "vla_c.uvfits", "--vertical", "geocentric"]) == 0
+    out, err = capsys.readouterr()
+    summary = [line for line in err.splitlines() if not line.startswith("feedrot: warning:")]
+    assert out == "" and summary == [
+        f"feedrot: vla_c.uvfits: feed rotation removed from {source} (vertical geocentric, "
+        "pole itrs, frame apparent)"]
+    assert main(["correct", source, "-o", "vla_q.uvfits", "--quiet"]) == 0
+    assert not [line for line in capsys.readouterr().err.splitlines()
+                if not line.startswith("feedrot: warning:")]

@@ -158,7 +158,19 @@ def _run_in_place(args, options):
         raise CommandError(one_line(error)) from None
     except CorrectionRefused as error:  # in the command line's words (--redo)
         raise CommandError(one_line(error.command_line())) from None
+    source = args.data_column or (args.column if args.apply and args.column else "DATA")
+    _summary(args, args.input, f"in place, {source} -> {args.column or 'CORRECTED_DATA'}")
     return 0
+
+
+def _summary(args, path, what):
+    """One line on standard error (as feedrot rinex gives) saying what was written,
+    with the conventions used; none with --quiet."""
+    if args.quiet:
+        return
+    done = "applied" if args.apply else "removed"
+    print(f"feedrot: {path}: feed rotation {done} {what} (vertical {args.vertical}, pole "
+          f"{args.pole}, frame {args.frame})", file=sys.stderr)
 
 
 def _columns(args):
@@ -207,6 +219,7 @@ def _run_correct(args):
     finally:
         with contextlib.suppress(OSError):
             shutil.rmtree(work)
+    _summary(args, args.output, f"from {args.input}")
     return 0
 
 
@@ -300,5 +313,6 @@ def register(commands):
                          "processes")
     correct.add_argument("--overwrite", action="store_true",
                          help="replace an existing output (never the input)")
-    correct.add_argument("--quiet", action="store_true", help="no progress bar")
+    correct.add_argument("--quiet", action="store_true",
+                         help="no progress bar, and no summary line on success")
     correct.set_defaults(run=_run_correct)
