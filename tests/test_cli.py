@@ -223,7 +223,8 @@ def test_help_teaches_by_example(capsys):
      r"--frequency: '3m' is not in a unit of frequency"),
     (["baseline", "DBR205", "dbr205", "--source", SOURCE, *SPAN, "--frequency", "1GHz"],
      r"the two antennas of a baseline must differ"),
-    (["demo", "--output-dir", "/nonexistent"], r"--output-dir: '/nonexistent' is not a directory"),
+    (["demo", "--output-dir", "/dev/null/results"],
+     r"--output-dir: cannot make '/dev/null/results': Not a directory"),
 ])
 def test_bad_input_is_one_line(capsys, argv, match):
     status, out, err = run(capsys, *argv)
@@ -669,3 +670,10 @@ def test_correct_says_what_it_wrote_in_one_line(tmp_path, capsys, monkeypatch):
     assert main(["correct", source, "-o", "vla_q.uvfits", "--quiet"]) == 0
     assert not [line for line in capsys.readouterr().err.splitlines()
                 if not line.startswith("feedrot: warning:")]
+
+
+def test_demo_makes_its_output_folder(tmp_path, capsys):
+    folder = tmp_path / "results" / "today"
+    status, out, err = run(capsys, "demo", "--output-dir", str(folder), "--step", "30min")
+    assert status == 0, err
+    assert (folder / "feedrot_demo.ecsv").is_file()

@@ -16,7 +16,7 @@ __all__ = ["register"]
 
 def _run_demo(args):
     directory = Path(args.output_dir).expanduser()
-    if not directory.is_dir():
+    if directory.exists() and not directory.is_dir():
         raise CommandError(f"--output-dir: {args.output_dir!r} is not a directory")
     step = parse_quantity(args.step, u.s, "--step")
     steps = (11 * u.hour / step).decompose().value
@@ -24,6 +24,11 @@ def _run_demo(args):
         raise CommandError(f"--step {args.step} gives {steps + 1:.3g} epochs over the 11 hours "
                            f"of the demo, more than the {MAX_EPOCHS} of one run; use a larger "
                            "--step")
+    try:  # a new folder is made, as a user naming one expects
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise CommandError(f"--output-dir: cannot make {args.output_dir!r}: "
+                           f"{error.strerror or error}") from None
     try:
         types = figure_types()
     except CommandError:
@@ -57,10 +62,12 @@ def register(commands):
         description="GPS SVN 76 over the GNSS antenna DBR205 and the telescope FD-VLBA "
         "(Sec. 4.1 of the paper): prints a summary and writes feedrot_demo.ecsv and "
         "feedrot_demo.png (like Figs 10-11).",
-        epilog=examples(["feedrot demo", "feedrot demo --step 30s --overwrite"]),
+        epilog=examples(["feedrot demo", "feedrot demo --step 30s --overwrite",
+                         "feedrot demo --output-dir results"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     demo.add_argument("--output-dir", default=".", metavar="DIR",
-                      help="where to write the table and figure (default: here)")
+                      help="where to write the table and figure (default: here); made if "
+                      "it does not exist")
     demo.add_argument("--step", default="60s", metavar="DURATION",
                       help="sampling interval (default 60s)")
     demo.add_argument("--overwrite", action="store_true",

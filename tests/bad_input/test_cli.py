@@ -318,7 +318,8 @@ def test_duplicated_antenna(capsys, files, first, second, name):
     (["--step", "abc"], r"--step: cannot read 'abc'"),
     (["--step", "10 parsec"], r"--step: '10 parsec' is not in a unit of time"),
     (["--step", "12h"], r"the target is never above the elevation limit at both antennas"),
-    (["--output-dir", "{MISSING}"], r"--output-dir: '.*missing.txt' is not a directory"),
+    (["--output-dir", "/dev/null/results"], r"--output-dir: cannot make "
+     "'/dev/null/results': Not a directory"),
     (["--output-dir", "{TLE}"], r"--output-dir: '.*gps.tle' is not a directory"),
     (["--output", "x"], r"unrecognized arguments: --output x|ambiguous option: --output"),
 ])
