@@ -28,7 +28,7 @@ from astropy_feedrot.visibilities import correct_fitsidi, correct_ms  # noqa: E4
 pytestmark = SKIP_WITHOUT_CASA
 
 BL146 = Path(__file__).parent / "data" / "real" / "BL146_1.trim.fits"
-CASA_CONVENTION = {"vertical": "geocentric", "pole": "casa"}
+CASA_CONVENTION = {"convention": "casa"}  # vertical="geocentric", pole="casa"
 
 
 def _visibilities(ms, column):

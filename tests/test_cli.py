@@ -665,8 +665,12 @@ def test_correct_says_what_it_wrote_in_one_line(tmp_path, capsys, monkeypatch):
     out, err = capsys.readouterr()
     summary = [line for line in err.splitlines() if not line.startswith("feedrot: warning:")]
     assert out == "" and summary == [
-        f"feedrot: vla_c.uvfits: feed rotation removed from {source} (vertical geocentric, "
-        "pole itrs, frame apparent)"]
+        f"feedrot: vla_c.uvfits: feed rotation removed from {source} (rigorous convention: "
+        "vertical geocentric, pole itrs; frame apparent)"]
+    assert main(["correct", source, "-o", "vla_casa.uvfits", "--convention", "casa"]) == 0
+    assert (f"feedrot: vla_casa.uvfits: feed rotation removed from {source} (casa "
+            "convention: vertical geocentric, pole casa; frame apparent)"
+            ) in capsys.readouterr().err.splitlines()
     assert main(["correct", source, "-o", "vla_q.uvfits", "--quiet"]) == 0
     assert not [line for line in capsys.readouterr().err.splitlines()
                 if not line.startswith("feedrot: warning:")]

@@ -32,6 +32,7 @@ from ..visibilities import (
     parse_feeds,
     read_antennas,
 )
+from ..visibilities.poles import CONVENTIONS, convention_options
 from .common import CELESTIAL_FRAMES, examples, one_line
 
 __all__ = ["EXAMPLES", "check_correct_output", "register"]
@@ -48,8 +49,7 @@ EXAMPLES = {
                 "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
                 "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
                 "feedrot correct vla.uvfits -o vla_catalogue.uvfits --mounts catalogue",
-                "feedrot correct vla.ms --in-place --vertical geocentric --pole casa "
-                "--workers 2"],
+                "feedrot correct vla.ms --in-place --convention casa --workers 2"],
 }
 
 
@@ -169,8 +169,8 @@ def _summary(args, path, what):
     if args.quiet:
         return
     done = "applied" if args.apply else "removed"
-    print(f"feedrot: {path}: feed rotation {done} {what} (vertical {args.vertical}, pole "
-          f"{args.pole}, frame {args.frame})", file=sys.stderr)
+    print(f"feedrot: {path}: feed rotation {done} {what} ({args.convention} convention: "
+          f"vertical {args.vertical}, pole {args.pole}; frame {args.frame})", file=sys.stderr)
 
 
 def _columns(args):
@@ -180,6 +180,7 @@ def _columns(args):
 
 
 def _run_correct(args):
+    args.vertical, args.pole = convention_options(args.convention, args.vertical, args.pole)
     options = dict(direction="apply" if args.apply else "remove", frame=args.frame,
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
                    feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts)
@@ -299,12 +300,16 @@ def register(commands):
                          help="north of the corrected polarization angles: the pole of date "
                          "(default, as in Python, CASA and AIPS) or a catalogue frame such "
                          "as icrs")
-    correct.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
-                         help="the local vertical (geocentric reproduces CASA)")
-    correct.add_argument("--pole", choices=("itrs", "casa"), default="itrs",
+    correct.add_argument("--convention", choices=tuple(CONVENTIONS), default="rigorous",
+                         help="rigorous (default: the geodetic vertical and the Earth-fixed "
+                         "pole) or casa (CASA's applycal(parang=True): the geocentric vertical "
+                         "and the pole of date); --vertical and --pole replace its choices")
+    correct.add_argument("--vertical", choices=("geodetic", "geocentric"),
+                         help="the local vertical (default: the convention's; geocentric "
+                         "reproduces CASA)")
+    correct.add_argument("--pole", choices=("itrs", "casa"),
                          help="the pole of the parallactic angle: the Earth-fixed z axis with "
-                         "polar motion (default) or CASA's, without; --vertical geocentric "
-                         "--pole casa reproduces CASA's applycal(parang=True)")
+                         "polar motion or CASA's, without (default: the convention's)")
     correct.add_argument("--dask", metavar="SCHEDULER",
                          help="correct the chunks of a Measurement Set or FITS-IDI file on "
                          "the workers of this dask.distributed scheduler (its address)")

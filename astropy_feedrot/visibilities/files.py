@@ -45,7 +45,7 @@ from .kinds import existing_path, file_kind
 from .ms import correct_ms
 from .ms_antennas import ms_antennas
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
-from .poles import pole_context
+from .poles import convention_options
 from .uvdata import antennas_from_uvdata, correct_uvdata
 from .uvdata_files import PYUVDATA_TYPES, read_uvdata, write_uvdata
 from .unusable import UnusableAntenna
@@ -329,11 +329,11 @@ def check_output_format(kind, output):
     return named
 
 
-def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwrite=False,
-                 progress=False, direction="remove", feeds=None, redo=False, pole="itrs",
+def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=False,
+                 progress=False, direction="remove", feeds=None, redo=False, pole=None,
                  client=None, catalogue=None, data_column=None,
                  corrected_column="CORRECTED_DATA", overwrite_column=False,
-                 mounts="file"):
+                 mounts="file", convention="rigorous"):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -353,6 +353,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         north of the corrected polarization angles (see
         `~astropy_feedrot.visibilities.frame_position_angle`).
     vertical : {'geodetic', 'geocentric'}, optional
+        Default: the convention's.
         The local vertical (``'geocentric'`` reproduces CASA).
     overwrite : bool, optional
         Replace an existing output (never the input).
@@ -366,7 +367,13 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     redo : bool, optional
         Correct data whose history says they were corrected in the same
         direction already.
+    convention : {'rigorous', 'casa'}, optional
+        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
+        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
+        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
+        ``pole`` given explicitly replace its choices.
     pole : {'itrs', 'casa'}, optional
+        Default: the convention's.
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
     client : `dask.distributed.Client`, optional
         For FITS-IDI and Measurement Sets, correct the chunks of rows on its
@@ -434,6 +441,7 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
     >>> correct_file(sample_file("vla_day2_8chan.uvfits"), out).name  # doctest: +IGNORE_WARNINGS
     'corrected.uvfits'
     """
+    vertical, pole = convention_options(convention, vertical, pole)
     source = existing_path(path)
     kind = file_kind(source)
     written = check_output_format(kind, output)  # before any work
@@ -478,10 +486,9 @@ def correct_file(path, output, *, frame="apparent", vertical="geodetic", overwri
         check_column_history(source, column_records(source), "DATA", "DATA", direction, redo)
     uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
     check_history(uv.history, direction, str(source), redo=redo)  # the file named
-    with pole_context(pole):
-        correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
-                       direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
-                       mounts=mounts)
+    correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
+                   direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
+                   mounts=mounts, pole=pole)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -32,7 +32,7 @@ from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .catalogue import catalogue_mounts, catalogue_receptors
 from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
-from .poles import POLES, pole_context
+from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles, with_receptors
 from .tasks import in_order, task_groups, worker_count
 from .unusable import UnusableAntenna, given_feeds, usable_antennas, warn_skipped
@@ -581,9 +581,9 @@ def _copy_range(fin, fout, begin, end, shift):
 
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
-                    software=None, vertical="geodetic", chunk_bytes=None, direction="remove",
-                    feeds=None, redo=False, pole="itrs", client=None, catalogue=None,
-                    mounts="file"):
+                    software=None, vertical=None, chunk_bytes=None, direction="remove",
+                    feeds=None, redo=False, pole=None, client=None, catalogue=None,
+                    mounts="file", convention="rigorous"):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -611,6 +611,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     software : str, optional
         The ``MNTSTA`` convention, as in `fitsidi_antennas`.
     vertical : {'geodetic', 'geocentric'}, optional
+        Default: the convention's.
         The local vertical of the antennas (CASA uses the geocentric one).
     chunk_bytes : int, optional
         Bytes of rows corrected at once (default 16 MiB): the memory used
@@ -624,7 +625,13 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     redo : bool, optional
         Correct a file whose HISTORY says it was corrected in the same
         direction already.
+    convention : {'rigorous', 'casa'}, optional
+        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
+        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
+        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
+        ``pole`` given explicitly replace its choices.
     pole : {'itrs', 'casa'}, optional
+        Default: the convention's.
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers (each maps and writes its own rows
@@ -705,6 +712,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     >>> HISTORY_MARK
     'Feed rotation removed by astropy_feedrot'
     """
+    vertical, pole = convention_options(convention, vertical, pole)
     direction = check_direction(direction)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")

@@ -35,7 +35,7 @@ from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
 from .ms_chunks import tables as _tables
 from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, subtable
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
-from .poles import POLES, pole_context
+from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles
 from .catalogue import catalogue_mounts, check_mounts_option
 from .unusable import given_feeds, usable_antennas, warn_skipped
@@ -309,9 +309,10 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None):
 
 
 def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
-               direction="remove", frame="apparent", vertical="geodetic", chunk_rows=None,
-               progress=False, feeds=None, redo=False, pole="itrs", client=None,
-               overwrite_column=False, mounts="file", catalogue=None):
+               direction="remove", frame="apparent", vertical=None, chunk_rows=None,
+               progress=False, feeds=None, redo=False, pole=None, client=None,
+               overwrite_column=False, mounts="file", catalogue=None,
+               convention="rigorous"):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -341,6 +342,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         North of the sky-fixed receptors: ``'apparent'`` (default) or a
         celestial frame such as ``'icrs'``.
     vertical : {'geodetic', 'geocentric'}, optional
+        Default: the convention's.
         The antennas' local vertical (``'geocentric'`` reproduces CASA).
     chunk_rows : int, optional
         Rows read at once (default: 32 MiB of the data column); the extra
@@ -359,7 +361,13 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         ``applycal(parang=True)`` into ``CORRECTED_DATA``, or by AIPS before
         the set was imported), or recompute a ``corrected_column`` that holds
         this correction of ``data_column`` already.
+    convention : {'rigorous', 'casa'}, optional
+        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
+        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
+        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
+        ``pole`` given explicitly replace its choices.
     pole : {'itrs', 'casa'}, optional
+        Default: the convention's.
         The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`):
         the Earth-fixed z axis with polar motion (default), or CASA's (no polar
         motion). ``vertical='geocentric', pole='casa'`` reproduces
@@ -450,6 +458,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     >>> correct_ms(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms").name
     'day2_TDEM0003_10s_norx_1src_1spw_2ints.ms'
     """
+    vertical, pole = convention_options(convention, vertical, pole)
     direction = check_direction(direction)
     check_mounts_option(mounts)
     if pole not in POLES:

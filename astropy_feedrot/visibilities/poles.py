@@ -17,11 +17,18 @@ import contextlib
 
 from astropy.utils import iers
 
-__all__ = ["POLES", "pole_context"]
+__all__ = ["POLES", "CONVENTIONS", "pole_context", "convention_options"]
 
 #: The poles offered: ``'itrs'`` (Earth-fixed z, with polar motion; default)
 #: and ``'casa'`` (no polar motion, as CASA).
 POLES = ("itrs", "casa")
+
+#: The conventions of a correction, as the vertical and the pole they choose:
+#: ``'rigorous'`` (the package's: the geodetic vertical, the Earth-fixed pole;
+#: the default) and ``'casa'`` (CASA's ``applycal(parang=True)``: the
+#: geocentric vertical, no polar motion). Circular receptors turn with the
+#: first receptor's angle in both, as in CASA.
+CONVENTIONS = {"rigorous": ("geodetic", "itrs"), "casa": ("geocentric", "casa")}
 
 # The polar-motion columns of astropy's IERS tables.
 _PM_COLUMNS = ("PM_x", "PM_y", "PM_x_A", "PM_y_A", "PM_X_B", "PM_Y_B")
@@ -64,3 +71,41 @@ def pole_context(pole="itrs"):
             table[column] = 0 * table[column]
     with iers.earth_orientation_table.set(table):
         yield
+
+
+def convention_options(convention="rigorous", vertical=None, pole=None):
+    """The vertical and the pole of a correction: a convention's, unless given.
+
+    Parameters
+    ----------
+    convention : {'rigorous', 'casa'}, optional
+        One of `CONVENTIONS` (default ``'rigorous'``).
+    vertical : {'geodetic', 'geocentric'}, optional
+        Given explicitly, it replaces the convention's.
+    pole : {'itrs', 'casa'}, optional
+        Given explicitly, it replaces the convention's.
+
+    Returns
+    -------
+    vertical, pole : str
+
+    Raises
+    ------
+    ValueError
+        For another ``convention``.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.poles import convention_options
+    >>> convention_options("casa")
+    ('geocentric', 'casa')
+    >>> convention_options("rigorous", pole="casa")
+    ('geodetic', 'casa')
+    """
+    if convention not in CONVENTIONS:
+        raise ValueError(f"convention must be one of {tuple(CONVENTIONS)} ('rigorous': the "
+                         "geodetic vertical and the Earth-fixed pole; 'casa': CASA's "
+                         f"geocentric vertical and pole of date), got {convention!r}")
+    default_vertical, default_pole = CONVENTIONS[convention]
+    return (default_vertical if vertical is None else vertical,
+            default_pole if pole is None else pole)

@@ -34,6 +34,7 @@ from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
 from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
+from .poles import convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles, with_receptors
 from .uvdata_files import check_uvdata
 from .unusable import (
@@ -418,9 +419,9 @@ def _chunk_rows(uv):
 
 
 @iers_context()
-def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", antennas=None,
+def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antennas=None,
                    progress=False, direction="remove", feeds=None, redo=False,
-                   catalogue=None, mounts="file"):
+                   catalogue=None, mounts="file", pole=None, convention="rigorous"):
     """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
 
     Parameters
@@ -438,7 +439,16 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
         The north the corrected receptors refer to: ``'apparent'`` (default,
         the true pole of date) or a celestial frame such as ``'icrs'``.
     vertical : {'geodetic', 'geocentric'}, optional
-        Local vertical (``'geocentric'`` reproduces CASA).
+        Local vertical (``'geocentric'`` reproduces CASA); default: the
+        convention's.
+    pole : {'itrs', 'casa'}, optional
+        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`);
+        default: the convention's.
+    convention : {'rigorous', 'casa'}, optional
+        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
+        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
+        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
+        ``pole`` given explicitly replace its choices.
     antennas : mapping, optional
         ``{antenna number: Antenna}`` to use instead of the telescope of ``uv``.
     progress : bool or callable, optional
@@ -546,6 +556,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
     >>> float(np.abs(uv.data_array[0, 0, 2] - 1))  # uv itself is unchanged
     0.0
     """
+    vertical, pole = convention_options(convention, vertical, pole)
     check_uvdata(uv)
     direction = check_direction(direction)
     names, basis = _product_names(uv)
@@ -567,8 +578,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical="geodetic", 
             antennas = with_receptors(antennas, feeds)
         antennas, note = catalogue_receptors(antennas, catalogue, numbers=used,
                                              telescope=uv.telescope.name)
-    theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
-                                                              note, skip, warn=True)
+    with pole_context(pole):
+        theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
+                                                                  note, skip, warn=True)
     if basis_feeds is not None and basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
