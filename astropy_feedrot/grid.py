@@ -58,6 +58,7 @@ from .grid_natural import natural_grid, topocentric
 from .orbits import Orbit
 from .polarization import polarization_sign
 from .rotators import rotation_angles
+from .extras import install_hint
 from .satellite import Satellite, check_transmitter_positions
 
 __all__ = [
@@ -597,8 +598,7 @@ def _dask_array():
         import dask.array
     except ImportError:  # pragma: no cover - exercised only without dask
         raise ImportError(
-            "feed_rotation_grid_dask needs dask: python -m pip install 'dask[array]' "
-            "(or astropy_feedrot[dask], which adds dask.distributed for clusters)"
+            "feed_rotation_grid_dask needs dask: " + install_hint("dask", "'dask[array]'")
         ) from None
     return dask.array
 

@@ -27,6 +27,7 @@ from .epochs import Epochs
 from .grid import feed_rotation_grid
 from .inputs import as_time
 from .plotting import line_styles, outside_legend
+from .extras import install_hint
 
 __all__ = ["feed_rotation_coverage", "rank_sources", "plot_coverage"]
 
@@ -275,7 +276,8 @@ def _pyplot():
     try:
         import matplotlib.pyplot as plt  # optional: imported on use
     except ImportError:
-        raise ImportError('plotting needs matplotlib: pip install "astropy_feedrot[all]"') from None
+        raise ImportError(f"plotting needs matplotlib: {install_hint('all', 'matplotlib')}"
+                          ) from None
     return plt
 
 

@@ -1,13 +1,16 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """Figures of the tables of `astropy_feedrot.tables` (needs matplotlib).
 
-matplotlib is an optional dependency: ``pip install "astropy_feedrot[all]"``.
+matplotlib is an optional dependency, of the ``all`` extra (``python -m pip
+install matplotlib``).
 The functions draw on a new pyplot figure and return it, so ``plt.show()``
 and notebooks display it; close it with ``plt.close(fig)`` when drawing many.
 """
 
 import numpy as np
 from astropy import units as u
+
+from .extras import install_hint
 
 __all__ = ["plot_feed_rotation", "plot_baseline", "line_styles", "unwrapped_degrees",
            "outside_legend"]
@@ -20,7 +23,8 @@ def _pyplot():
     try:
         import matplotlib.pyplot as plt
     except ImportError:
-        raise ImportError('plotting needs matplotlib: pip install "astropy_feedrot[all]"') from None
+        raise ImportError(f"plotting needs matplotlib: {install_hint('all', 'matplotlib')}"
+                          ) from None
     return plt
 
 

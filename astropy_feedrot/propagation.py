@@ -32,6 +32,8 @@ Error codes are therefore those of SGP4 at every epoch.
 
 import numpy as np
 
+from .extras import install_hint
+
 __all__ = ["propagate", "TOLERANCE", "POINTS", "SGP4_MISSING"]
 
 #: Interpolation error aimed at, in metres: a tenth of the 1 mm promised.
@@ -66,8 +68,8 @@ _DAY = 86400.0
 
 
 #: What to do when the optional sgp4 package is missing.
-SGP4_MISSING = ("TLE orbits need the sgp4 package, of the 'all' extra: python -m pip install "
-                "sgp4 (or, in a clone of astropy_feedrot, python -m pip install -e '.[all]')")
+SGP4_MISSING = ("TLE orbits need the sgp4 package, of the 'all' extra: "
+                + install_hint("all", "sgp4"))
 
 
 def _sgp4_array():

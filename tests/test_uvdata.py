@@ -395,7 +395,8 @@ def test_unknown_extension(tmp_path):
 
 def test_missing_pyuvdata(monkeypatch):
     monkeypatch.setitem(sys.modules, "pyuvdata", None)
-    with pytest.raises(ImportError, match=r"pip install 'astropy_feedrot\[uvdata\]'"):
+    with pytest.raises(ImportError, match=r"python -m pip install pyuvdata \(or, in a clone of "
+                       r"astropy_feedrot, python -m pip install -e '\.\[uvdata\]'\)"):
         correct_uvdata(object())
 
 

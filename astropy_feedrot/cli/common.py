@@ -29,6 +29,7 @@ from ..outputs import (
 )
 from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
 from .views import FORMATS, output_format, print_table
+from ..extras import install_hint
 
 __all__ = [
     "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",
@@ -335,7 +336,8 @@ def figure_types():
     try:
         from matplotlib.figure import Figure
     except ImportError:
-        raise CommandError('--plot needs matplotlib: pip install "astropy_feedrot[all]"') from None
+        raise CommandError(f"--plot needs matplotlib: {install_hint('all', 'matplotlib')}"
+                           ) from None
     return ["." + name for name in Figure().canvas.get_supported_filetypes()]
 
 

@@ -34,6 +34,7 @@ from ..visibilities import (
 )
 from ..visibilities.poles import CONVENTIONS, convention_options
 from .common import CELESTIAL_FRAMES, examples, one_line
+from ..extras import install_hint
 
 __all__ = ["EXAMPLES", "check_correct_output", "register"]
 
@@ -128,8 +129,8 @@ def _client(args):
     try:
         import distributed  # optional: only --dask and --workers need it
     except ImportError:
-        raise CommandError("--dask and --workers need dask.distributed: pip install "
-                           "'astropy_feedrot[dask]'") from None
+        raise CommandError("--dask and --workers need dask.distributed: "
+                           + install_hint("dask", "'dask[distributed]'")) from None
     if args.dask is not None:
         with distributed.Client(args.dask, timeout="20s") as client:
             yield client

@@ -10,6 +10,7 @@ from ..outputs import CommandError, check_outputs, table_writer, write_files
 from ..simulations import gps_short_baseline
 from ..tables import baseline_summary
 from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
+from ..extras import install_hint
 
 __all__ = ["register"]
 
@@ -51,7 +52,7 @@ def _run_demo(args):
     if types is not None:
         print(f"figure: {names[1][1]}")
     else:
-        print('figure: skipped (pip install "astropy_feedrot[all]" for matplotlib)')
+        print(f"figure: skipped (matplotlib: {install_hint('all', 'matplotlib')})")
     return 0
 
 

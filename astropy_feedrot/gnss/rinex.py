@@ -39,8 +39,8 @@ Compressed files: gzip (``.gz``, recognised by its content) is read and
 written with the standard library; Hatanaka-compressed files (Compact RINEX,
 ``.crx`` or ``.YYd``, recognised by their ``CRINEX VERS   / TYPE`` first
 line) are read through the ``crx2rnx`` program of the optional `hatanaka
-<https://pypi.org/project/hatanaka/>`_ package (``pip install
-astropy_feedrot[gnss]``), streamed through a pipe.
+<https://pypi.org/project/hatanaka/>`_ package (the ``gnss`` extra: ``python
+-m pip install hatanaka``), streamed through a pipe.
 """
 
 import contextlib

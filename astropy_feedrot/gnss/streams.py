@@ -20,6 +20,7 @@ import threading
 import zlib
 from importlib.resources import files
 
+from ..extras import install_hint
 from ..io import FileFormatError
 
 __all__ = ["source_name", "crx2rnx_program", "CompactRinexPipe", "open_rinex_lines",
@@ -62,7 +63,7 @@ def crx2rnx_program():
         import hatanaka.bin  # optional dependency, imported on use
     except ImportError:
         raise ImportError("reading Hatanaka-compressed RINEX (Compact RINEX) needs the "
-                          "hatanaka package: pip install astropy_feedrot[gnss]") from None
+                          f"hatanaka package: {install_hint('gnss', 'hatanaka')}") from None
     program = files(hatanaka.bin).joinpath("crx2rnx.exe" if os.name == "nt" else "crx2rnx")
     return str(program)
 

@@ -14,8 +14,8 @@ The receptors come from ``FEED`` row by row (``POLARIZATION_TYPE``,
 visibility row), the sources from ``FIELD`` (``PHASE_DIR`` with its
 reference frame and polynomial, ephemeris tables of moving sources) and the
 products from ``POLARIZATION`` (``CORR_TYPE``), per data description.
-python-casacore is an optional dependency (``pip install
-'astropy_feedrot[ms]'``), imported on first use.
+python-casacore is an optional dependency, of the ``ms`` extra (``python -m
+pip install python-casacore``), imported on first use.
 """
 
 import contextlib

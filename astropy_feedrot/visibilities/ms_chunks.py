@@ -23,11 +23,12 @@ import numpy as np
 from ..correction import correct_receptor_visibilities
 from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from .tasks import in_order, task_groups, worker_count
+from ..extras import install_hint
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
            "tables"]
 
-_EXTRA = "pip install 'astropy_feedrot[ms]'"
+_EXTRA = install_hint("ms", "python-casacore")
 
 # With dask workers, the progress keyword is written at most this often (seconds): each
 # write takes the table's lock, and the workers then read the table's state again.

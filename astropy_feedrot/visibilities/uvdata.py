@@ -10,8 +10,8 @@ unprojected); `correct_uvdata` removes the feed rotation from the
 visibilities, so that the receptors are fixed on the sky. Reading and
 writing the files pyuvdata knows, offline, is `~astropy_feedrot.visibilities.uvdata_files`.
 
-pyuvdata is an optional dependency (``pip install 'astropy_feedrot[uvdata]'``),
-imported when a function here is called. The conventions (pyuvdata's
+pyuvdata is an optional dependency, of the ``uvdata`` extra (``python -m pip
+install pyuvdata``), imported when a function here is called. The conventions (pyuvdata's
 conjugation, feed angles, the vertical of CASA) are in ``docs/uvdata.rst``.
 """
 

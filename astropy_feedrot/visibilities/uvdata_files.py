@@ -21,6 +21,7 @@ from astropy import units as u
 from astropy.coordinates import EarthLocation
 
 from ..eop import iers_context
+from ..extras import install_hint
 from ..outputs import publish
 
 __all__ = ["read_uvdata", "write_uvdata", "WRITERS", "PYUVDATA_TYPES", "UVDATA_EXTRA",
@@ -54,7 +55,7 @@ PYUVDATA_TYPES = {"uvfits": "uvfits", "uvh5": "uvh5", "ms": "ms", "miriad": "mir
 _FRAME_EPOCHS = {"icrs": 2000.0, "fk5": 2000.0, "fk4": 1950.0}
 
 #: How to install pyuvdata with the package.
-UVDATA_EXTRA = "pip install 'astropy_feedrot[uvdata]'"
+UVDATA_EXTRA = install_hint("uvdata", "pyuvdata")
 
 
 def pyuvdata_module():
