@@ -22,12 +22,12 @@ from astropy.table import Table
 
 from .antenna import Antenna
 from .continuity import unwrap
+from .extras import install_hint
 from .frames import as_elevation_limit
 from .epochs import Epochs
 from .grid import feed_rotation_grid
 from .inputs import as_time
 from .plotting import line_styles, outside_legend
-from .extras import install_hint
 
 __all__ = ["feed_rotation_coverage", "rank_sources", "plot_coverage"]
 

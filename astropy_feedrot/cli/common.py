@@ -17,6 +17,7 @@ from astropy.time import Time
 from .. import plotting
 from ..antenna import Antenna
 from ..data import sample_file
+from ..extras import install_hint
 from ..io import FileFormatError
 from ..labels import mount_from_label
 from ..outputs import (
@@ -29,7 +30,6 @@ from ..outputs import (
 )
 from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
 from .views import FORMATS, output_format, print_table
-from ..extras import install_hint
 
 __all__ = [
     "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",

@@ -11,6 +11,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from ..extras import install_hint
 from ..outputs import (
     TABLE_FORMATS,
     CommandError,
@@ -34,7 +35,6 @@ from ..visibilities import (
 )
 from ..visibilities.poles import CONVENTIONS, convention_options
 from .common import CELESTIAL_FRAMES, examples, one_line
-from ..extras import install_hint
 
 __all__ = ["EXAMPLES", "check_correct_output", "register"]
 

@@ -6,11 +6,11 @@ from pathlib import Path
 
 from astropy import units as u
 
+from ..extras import install_hint
 from ..outputs import CommandError, check_outputs, table_writer, write_files
 from ..simulations import gps_short_baseline
 from ..tables import baseline_summary
 from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
-from ..extras import install_hint
 
 __all__ = ["register"]
 

@@ -21,9 +21,9 @@ import astropy.units as u
 import numpy as np
 
 from ..correction import correct_receptor_visibilities
+from ..extras import install_hint
 from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from .tasks import in_order, task_groups, worker_count
-from ..extras import install_hint
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
            "tables"]
