@@ -18,7 +18,7 @@ from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 DATA = Path(__file__).parent / "data" / "uvdata"
 COMMANDS = ["", "natural", "satellite", "baseline", "demo", "stations", "coverage",
-            "antennas", "correct", "rinex"]
+            "antennas", "correct", "rinex", "samples"]
 
 
 def help_of(command):

@@ -37,7 +37,7 @@ from .. import __version__
 from ..eop import iers_context
 from ..io import FileFormatError
 from ..outputs import TABLE_FORMATS, CommandError
-from . import coverage, data, demo, rinex, stations, tables
+from . import coverage, data, demo, rinex, samples, stations, tables
 from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, examples, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
@@ -57,13 +57,14 @@ def build_parser():
                         + [lines[0] for lines in tables.EXAMPLES.values()]
                         + [coverage.EXAMPLES[1], data.EXAMPLES["antennas"][0],
                            data.EXAMPLES["correct"][0], rinex.EXAMPLES[0]])
-        + "\n\n'feedrot COMMAND --help' shows each command's options and more examples.",
+        + "\n\n'feedrot COMMAND --help' shows each command's options and more examples; "
+        "'feedrot samples' lists the sample files shipped with the package.",
     )
     parser.add_argument("--version", action="version", version=f"feedrot {__version__}",
                         help="show the version of astropy_feedrot and exit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
 
-    for family in (tables, demo, stations, coverage, data, rinex):
+    for family in (tables, demo, stations, coverage, data, rinex, samples):
         family.register(commands)
     return parser
 

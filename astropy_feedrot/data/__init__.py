@@ -39,11 +39,23 @@
 
 from pathlib import Path
 
-__all__ = ["sample_file", "SAMPLES"]
+__all__ = ["sample_file", "SAMPLES", "DESCRIPTIONS"]
+
+#: What each shipped sample file is, in one line (above, in full).
+DESCRIPTIONS = {
+    "sample.sp3": "SP3-c orbits of G01, G05, E11: 4 epochs at 15 min, 2023-01-25 (synthetic)",
+    "sample.obx": "ORBEX attitude quaternions of the same satellites, first minute (synthetic)",
+    "gnss_sample.sp3": "SP3-d orbits of 16 GNSS satellites, 3 h at 15 min, 2023-01-25 "
+                       "(synthetic)",
+    "gnss_sample.rnx": "RINEX 3.04 observations of those satellites from GGAO12M, 20 min at "
+                       "30 s (synthetic)",
+    "igs_satellite_metadata.snx": "IGS satellite metadata SINEX, release 2404 (real)",
+    "stations.ecsv": "the station catalogue of astropy_feedrot.stations",
+    "vla_day2_8chan.uvfits": "VLA, 19 antennas, RR LL RL LR, 8 channels at 36.3 GHz (real)",
+}
 
 #: Names of the shipped sample files.
-SAMPLES = ("sample.sp3", "sample.obx", "gnss_sample.sp3", "gnss_sample.rnx",
-           "igs_satellite_metadata.snx", "stations.ecsv", "vla_day2_8chan.uvfits")
+SAMPLES = tuple(DESCRIPTIONS)
 
 
 def sample_file(name):

@@ -1,0 +1,46 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""``feedrot samples``: the sample files shipped with the package, and where they lie.
+
+The package ships a few small files (orbits, attitude, observations, the
+station catalogue, a visibility file: `astropy_feedrot.data`) for the
+examples and a first try. ``feedrot samples`` lists them with what each is;
+``feedrot samples NAME`` prints the path of one, to give to another command
+(``feedrot rinex "$(feedrot samples gnss_sample.rnx)" ...``).
+"""
+
+import argparse
+import os
+
+from ..data import DESCRIPTIONS, SAMPLES, sample_file
+from ..outputs import CommandError
+from .common import examples
+
+__all__ = ["register"]
+
+
+def _run_samples(args):
+    if args.name is None:
+        width = max(len(name) for name in SAMPLES)
+        for name in SAMPLES:
+            size = os.path.getsize(sample_file(name))
+            print(f"{name:<{width}}  {size / 1024:7.1f} KiB  {DESCRIPTIONS[name]}")
+        print(f"in {sample_file(SAMPLES[0]).parent}")
+        return 0
+    if args.name not in SAMPLES:
+        raise CommandError(f"no sample file {args.name!r}; 'feedrot samples' lists them: "
+                           + ", ".join(SAMPLES))
+    print(sample_file(args.name))
+    return 0
+
+
+def register(commands):
+    """Add ``samples`` to the subparsers ``commands``."""
+    samples = commands.add_parser(
+        "samples", help="the sample files shipped with the package, and where they lie",
+        description="List the sample files shipped with the package (orbits, attitude, "
+        "observations, the station catalogue, a visibility file) with what each is, or "
+        "print the path of one to give to another command.",
+        epilog=examples(["feedrot samples", "feedrot samples gnss_sample.sp3"]),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    samples.add_argument("name", nargs="?", metavar="NAME", help="a sample file: its path")
+    samples.set_defaults(run=_run_samples)
