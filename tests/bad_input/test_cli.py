@@ -345,7 +345,7 @@ def test_stations(capsys, files, path, match):
 @pytest.mark.parametrize("argv, match", [
     (["nosuch"], r"argument COMMAND: invalid choice: 'nosuch' \(choose from 'natural', "
      r"'satellite', 'baseline', 'demo', 'stations', 'coverage', 'antennas', 'correct', "
-     r"'rinex'\); "
+     r"'rinex', 'samples'\); "
      r"see 'feedrot --help'"),
     (["natural"], r"the following arguments are required: ANTENNA; see 'feedrot natural --help'"),
     (["baseline", "DBR205"], r"the following arguments are required"),
