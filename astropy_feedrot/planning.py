@@ -22,12 +22,11 @@ from astropy.table import Table
 
 from .antenna import Antenna
 from .continuity import unwrap
-from .extras import install_hint
 from .frames import as_elevation_limit
 from .epochs import Epochs
 from .grid import feed_rotation_grid
 from .inputs import as_time
-from .plotting import line_styles, outside_legend
+from .plotting import line_styles, outside_legend, pyplot
 
 __all__ = ["feed_rotation_coverage", "rank_sources", "plot_coverage"]
 
@@ -272,15 +271,6 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     return table
 
 
-def _pyplot():
-    try:
-        import matplotlib.pyplot as plt  # optional: imported on use
-    except ImportError:
-        raise ImportError(f"plotting needs matplotlib: {install_hint('all', 'matplotlib')}"
-                          ) from None
-    return plt
-
-
 def plot_coverage(table, times, continuous, path=None):
     """Draw the tracks of `feed_rotation_coverage`: one panel per target, one line per antenna.
 
@@ -332,7 +322,7 @@ def plot_coverage(table, times, continuous, path=None):
     if values.shape != (len(times), len(antennas), len(targets)):
         raise ValueError(f"continuous has shape {values.shape}, but the table and times need "
                          f"{(len(times), len(antennas), len(targets))}")
-    plt = _pyplot()
+    plt = pyplot()
     fig, axes = plt.subplots(len(targets), 1, sharex=True, squeeze=False,
                              figsize=(8, 2.2 + 2.3 * len(targets)))
     hours = (times - times[0]).to_value(u.hour)

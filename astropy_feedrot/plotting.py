@@ -13,15 +13,23 @@ from astropy import units as u
 from .extras import install_hint
 
 __all__ = ["plot_feed_rotation", "plot_baseline", "line_styles", "unwrapped_degrees",
-           "outside_legend"]
+           "outside_legend", "pyplot"]
 
 # The line styles after the ten colours of matplotlib's "tab10" cycle.
 _LINESTYLES = ("-", "--", ":", "-.")
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib's pyplot, imported on use, or an ImportError naming the extra.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.plotting import pyplot
+    >>> pyplot().__name__
+    'matplotlib.pyplot'
+    """
     try:
-        import matplotlib.pyplot as plt
+        import matplotlib.pyplot as plt  # optional: imported on use
     except ImportError:
         raise ImportError(f"plotting needs matplotlib: {install_hint('all', 'matplotlib')}"
                           ) from None
@@ -52,7 +60,7 @@ def line_styles(count):
     >>> styles[0][0] == styles[10][0], styles[0][1], styles[10][1]
     (True, '-', '--')
     """
-    _pyplot()  # matplotlib, or the ImportError that names the extra
+    pyplot()  # matplotlib, or the ImportError that names the extra
     from matplotlib import colormaps, colors  # optional: imported on use
 
     palette = [colors.to_hex(colour) for colour in colormaps["tab10"].colors]
@@ -225,7 +233,7 @@ def plot_feed_rotation(table, path=None):
     if missing:
         raise KeyError(f"the table lacks column(s) {', '.join(missing)}; plot a "
                        "feed_rotation_table")
-    plt = _pyplot()
+    plt = pyplot()
     hours, label = _hours(table)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 6), sharex=True,
                                       gridspec_kw={"height_ratios": (1, 2)})
@@ -275,7 +283,7 @@ def plot_baseline(table, path=None):
     antennas = table.meta.get("antennas")
     if not antennas or len(antennas) != 2:
         raise KeyError("the table's meta lacks the two 'antennas'; plot a baseline_table")
-    plt = _pyplot()
+    plt = pyplot()
     hours, label = _hours(table)
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     for ax, name in zip(axes[:2], antennas):
