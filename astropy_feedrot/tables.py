@@ -71,7 +71,9 @@ def _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     if not isinstance(target, Satellite):
         # A natural source has no transmitter term (Eq 21 is zero by definition;
         # the engine's value is rounding, ~1e-16 deg).
-        columns["transmitter"] = np.zeros_like(columns["transmitter"].value) * u.deg
+        # NaN stays where the angles are undefined (below the limit, masked epochs).
+        defined = np.isfinite(columns["transmitter"].value)
+        columns["transmitter"] = np.where(defined, 0.0, np.nan) * u.deg
     columns["continuous"] = unwrap(columns["total"], mask=~visible, obstime=times,
                                    max_gap=_max_gap(times)).to(u.deg)
     columns["rate"] = antenna.feed_rotation_rate(target, times, polarization,

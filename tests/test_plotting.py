@@ -150,3 +150,15 @@ def test_table_without_meta_judged_by_its_transmitter_term():
     del table.meta["natural"]
     labels = [line.get_label() for line in plot_feed_rotation(table).axes[1].get_lines()]
     assert labels == ["feed rotation = receiver term (continuous)"]
+
+
+def test_natural_transmitter_term_zero_where_defined_nan_below_the_limit():
+    # Eq 21 is zero for a natural source; below the elevation limit every angle
+    # of feed rotation is NaN, the transmitter term too (not a 0 for a source unseen).
+    table = feed_rotation_table(get_antenna("YEBES40M"), SkyCoord("03h19m48.16s +41d30m42.1s"),
+                                DAY, min_elevation=30 * u.deg)
+    transmitter = table["transmitter"].quantity.to_value(u.deg)
+    below = table["elevation"].quantity < 30 * u.deg
+    assert below.any() and (~below).any()
+    assert np.isnan(transmitter[below]).all()
+    assert (transmitter[~below] == 0).all() and not np.signbit(transmitter[~below]).any()
