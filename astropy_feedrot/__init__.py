@@ -13,28 +13,7 @@ Measurement Sets, pyuvdata's ``UVData`` objects) is imported on its own, as
 its formats need the optional pyuvdata and python-casacore.
 """
 
-from .antenna import Antenna, AntennaAngles, FeedRotationTerms
-from .attitude import NominalAttitude, QuaternionAttitude
-from .config import conf
-from .continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
-from .correction import (
-    correct_linear_visibilities,
-    correct_phase,
-    correct_visibilities,
-    rotation_matrix,
-)
-from .eop import earth_orientation_status
-from .epochs import Epochs
-from .exceptions import (
-    CatalogueMountWarning,
-    CatalogueReceptorsWarning,
-    DegenerateGeometryWarning,
-    OrbitWarning,
-    ReceptorAngleWarning,
-    StaleEarthOrientationWarning,
-    UncorrectedBaselinesWarning,
-)
-from .focus import (
+from .antennas.focus import (
     BeamWaveguideFocus,
     CassegrainFocus,
     Focus,
@@ -43,15 +22,7 @@ from .focus import (
     NasmythFocus,
     PrimeFocus,
 )
-from .grid import (
-    feed_rotation_grid,
-    feed_rotation_grid_dask,
-    feed_rotation_rate_grid,
-    rotation_delay_grid,
-)
-from .io import FileFormatError, read_orbex, read_sp3, read_tle
-from .labels import label_from_mount, mount_from_label
-from .mounts import (
+from .antennas.mounts import (
     AltAzMount,
     EquatorialMount,
     FixedAxisMount,
@@ -59,20 +30,45 @@ from .mounts import (
     StationaryMount,
     XYMount,
 )
-from .orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
-from .planning import feed_rotation_coverage, rank_sources
-from .plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
-from .rotators import Rotator
-from .rr_ll import baseline_rr_ll, rr_minus_ll
-from .satellite import LineOfSight, Satellite
-from .stations import StationCatalogue, get_antenna, read_catalogue
-from .tables import baseline_summary, baseline_table, feed_rotation_table
-from .yaw_models import ModelAttitude
-
-try:
-    from ._version import version as __version__
-except ImportError:  # pragma: no cover - running from a source tree without a build
-    __version__ = "unknown"
+from .antennas.rotators import Rotator
+from .applied.correction import (
+    correct_linear_visibilities,
+    correct_phase,
+    correct_visibilities,
+    rotation_matrix,
+)
+from .applied.feed_rotation_tables import baseline_summary, baseline_table, feed_rotation_table
+from .applied.planning import feed_rotation_coverage, rank_sources
+from .applied.plotting import plot_baseline, plot_feed_rotation  # matplotlib is imported on use
+from .applied.rr_ll import baseline_rr_ll, rr_minus_ll
+from .core.config import conf
+from .core.exceptions import (
+    CatalogueMountWarning,
+    CatalogueReceptorsWarning,
+    DegenerateGeometryWarning,
+    OrbitWarning,
+    ReceptorAngleWarning,
+    StaleEarthOrientationWarning,
+    UncorrectedBaselinesWarning,
+)
+from .core.version import version as __version__  # noqa: F401
+from .earth.eop import earth_orientation_status
+from .earth.epochs import Epochs
+from .engine.antenna import Antenna, AntennaAngles, FeedRotationTerms
+from .engine.continuity import ContinuityWarning, RotationDelay, rotation_delay, unwrap
+from .engine.grid import (
+    feed_rotation_grid,
+    feed_rotation_grid_dask,
+    feed_rotation_rate_grid,
+    rotation_delay_grid,
+)
+from .io import FileFormatError, read_orbex, read_sp3, read_tle
+from .stations.catalogue import StationCatalogue, get_antenna, read_catalogue
+from .stations.labels import label_from_mount, mount_from_label
+from .transmitters.nominal_attitude import NominalAttitude, QuaternionAttitude
+from .transmitters.orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .transmitters.satellite import LineOfSight, Satellite
+from .transmitters.yaw_models import ModelAttitude
 
 __all__ = [
     # Antennas, their mounts and foci

@@ -47,9 +47,10 @@ the exit status is 1 if one fails. Runs offline. ``python
 benchmarks/correct.py --help`` for the options.
 """
 
+import astropy.utils.data
+
 # Offline before anything else imports astropy's IERS machinery.
 from astropy.utils import iers
-import astropy.utils.data
 
 iers.conf.auto_download = False
 astropy.utils.data.conf.allow_internet = False
@@ -175,7 +176,7 @@ def _uvdata(gib):
     """A UVData of at least ``gib`` GiB: VLBA antennas, 64 channels, RR LL RL LR."""
     from pyuvdata import Telescope, UVData
 
-    from astropy_feedrot.stations import get_antenna
+    from astropy_feedrot.stations.catalogue import get_antenna
 
     names = ["BR-VLBA", "FD-VLBA", "HN-VLBA", "KP-VLBA", "LA-VLBA", "MK-VLBA", "NL-VLBA",
              "OV-VLBA", "PIETOWN", "SC-VLBA"]

@@ -11,9 +11,9 @@ for a year). For each, the time per epoch, from `~astropy.time.Time` and
 
 * ``fast``: ``antenna.feed_rotation(source, times)``, cold: the Earth
   orientations of earlier calls forgotten before each call
-  (`~astropy_feedrot.earth.clear_orientation_cache`); what depends on nothing
+  (`~astropy_feedrot.earth.orientation.clear_orientation_cache`); what depends on nothing
   but the day, the site and the IERS tables (the nodes of the slow series,
-  `~astropy_feedrot.series.KeptSeries`, the IERS arrays, the site's position)
+  `~astropy_feedrot.earth.nodes.KeptSeries`, the IERS arrays, the site's position)
   stays, as in any process after its first call at those dates;
 * ``warm``: the same call again at the same epochs (fresh objects, caches kept);
 * ``rigorous``: the same with ``astropy_feedrot.conf.fast_path = False``
@@ -53,9 +53,10 @@ offline on the Earth orientation tables bundled with astropy. Run
 ``python benchmarks/natural.py --help`` for the options.
 """
 
+import astropy.utils.data
+
 # Offline before anything else imports astropy's IERS machinery.
 from astropy.utils import iers
-import astropy.utils.data
 
 iers.conf.auto_download = False
 astropy.utils.data.conf.allow_internet = False
@@ -81,11 +82,11 @@ from astropy.coordinates.builtin_frames.utils import get_polar_motion  # noqa: E
 from astropy.time import Time  # noqa: E402
 
 import astropy_feedrot  # noqa: E402
-from astropy_feedrot.antenna import Antenna  # noqa: E402
-from astropy_feedrot.earth import clear_orientation_cache  # noqa: E402
-from astropy_feedrot.engine import parallactic_angle  # noqa: E402
-from astropy_feedrot.eop import iers_context  # noqa: E402
-from astropy_feedrot.stations import get_antenna  # noqa: E402
+from astropy_feedrot.earth.eop import iers_context  # noqa: E402
+from astropy_feedrot.earth.orientation import clear_orientation_cache  # noqa: E402
+from astropy_feedrot.engine.antenna import Antenna  # noqa: E402
+from astropy_feedrot.engine.equations import parallactic_angle  # noqa: E402
+from astropy_feedrot.stations.catalogue import get_antenna  # noqa: E402
 
 
 def _refuse_network(*args, **kwargs):

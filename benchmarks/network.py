@@ -8,13 +8,13 @@ feed rotations, NaN below 10 deg elevation, written as float32 chunk by chunk
 (576 MB on disk) so that no process holds the whole grid. Three ways:
 
 ``distributed``
-    `~astropy_feedrot.grid.feed_rotation_grid_dask` on a ``dask.distributed``
+    `~astropy_feedrot.engine.grid.feed_rotation_grid_dask` on a ``dask.distributed``
     ``LocalCluster`` (2 worker processes, 1 thread each, glibc tuned as in
     `WORKER_MALLOC`), written with ``dask.array.to_npy_stack``.
 ``threads``
     The same dask array on dask's threaded scheduler (2 threads, one process).
 ``numpy``
-    `~astropy_feedrot.grid.feed_rotation_grid` on slices of epochs, each
+    `~astropy_feedrot.engine.grid.feed_rotation_grid` on slices of epochs, each
     written into a ``.npy`` file opened as a memory map.
 
 Each mode runs in a fresh process; the peak resident memory is the largest
@@ -28,9 +28,9 @@ are compared chunk by chunk. Run with::
 With ``--natural`` it measures instead what a network gains from being a
 network: 30 antennas of the station catalogue x 100 natural sources (a
 golden-spiral sky) x 2880 epochs (one day at 30 s), computed by
-`~astropy_feedrot.grid.feed_rotation_grid` (one `~astropy_feedrot.Epochs`
+`~astropy_feedrot.engine.grid.feed_rotation_grid` (one `~astropy_feedrot.Epochs`
 and one Earth orientation for all), by
-`~astropy_feedrot.grid.feed_rotation_grid_dask` (threads) and by a loop over
+`~astropy_feedrot.engine.grid.feed_rotation_grid_dask` (threads) and by a loop over
 `Antenna.feed_rotation <astropy_feedrot.Antenna.feed_rotation>`, each in a
 fresh process, the three taking turns for ``--rounds`` rounds (best of
 ``--repeats`` calls in each; the largest peak memory above the process's
@@ -61,7 +61,7 @@ from astropy.coordinates import EarthLocation
 from astropy.time import Time
 
 from astropy_feedrot import Antenna, Satellite, StationaryMount, TLEOrbit
-from astropy_feedrot.grid import feed_rotation_grid, feed_rotation_grid_dask
+from astropy_feedrot.engine.grid import feed_rotation_grid, feed_rotation_grid_dask
 
 DATE = Time("2023-01-25T00:00:00", scale="utc")
 MODES = ("distributed", "threads", "numpy")
@@ -228,8 +228,8 @@ def natural_run(way, n_antennas, n_sources, n_epochs, repeats):
 
     from astropy.coordinates import SkyCoord, golden_spiral_grid
 
-    from astropy_feedrot.earth import clear_orientation_cache
-    from astropy_feedrot.stations import default_catalogue
+    from astropy_feedrot.earth.orientation import clear_orientation_cache
+    from astropy_feedrot.stations.catalogue import default_catalogue
 
     catalogue = default_catalogue()
     antennas = []

@@ -9,7 +9,7 @@ Three measurements, all in the same run:
   position difference between the two;
 * the grid: the feed rotation of those satellites (nominal attitude) at the
   GNSS antenna DBR205 and the alt-az telescope FD-VLBA (Table 1 of the paper)
-  with `astropy_feedrot.grid.feed_rotation_grid`, then the rotation delay
+  with `astropy_feedrot.engine.grid.feed_rotation_grid`, then the rotation delay
   FD-VLBA minus DBR205 at L1; target: the grid under 3 s;
 * the object API: ``Antenna.feed_rotation(satellite, times)`` for 3 antennas
   (DBR205, FD-VLBA, WETTZ13S) and GPS SVN 76 at 20000 epochs (1 s), against
@@ -43,12 +43,12 @@ from astropy.time import Time
 from sgp4.api import Satrec
 
 from astropy_feedrot import Satellite, TLEOrbit
-from astropy_feedrot.earth import clear_orientation_cache
-from astropy_feedrot.eop import iers_context
-from astropy_feedrot.grid import feed_rotation_grid, rotation_delay_grid
-from astropy_feedrot.propagation import propagate
-from astropy_feedrot.simulations import gps_svn76
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.applied.simulations import gps_svn76
+from astropy_feedrot.earth.eop import iers_context
+from astropy_feedrot.earth.orientation import clear_orientation_cache
+from astropy_feedrot.engine.grid import feed_rotation_grid, rotation_delay_grid
+from astropy_feedrot.stations.catalogue import get_antenna
+from astropy_feedrot.transmitters.propagation import propagate
 
 DATE = Time("2023-01-25T00:00:00", scale="utc")
 L1 = 1575.42 * u.MHz

@@ -33,13 +33,13 @@ from checks import (
     EHT_NAMES,
     EHT_NOT_CURRENT,
     EXCEPTIONS,
+    MEERKAT_DISHES,
+    MEERKAT_EXTENT,
     MOUNT_EXCEPTIONS,
     PAPER,
     PYUVDATA,
     REFERENCE_POINTS,
     SCHED,
-    MEERKAT_DISHES,
-    MEERKAT_EXTENT,
     SIMMS,
     SINGLE_SOURCE,
     SITES,
@@ -132,7 +132,7 @@ PAPER_ALIASES = {
 #: Connected arrays of pyuvdata's known telescopes: name -> (catalogue name,
 #: the source of the position, why the mount code). A ``fixed`` or ``phased``
 #: array's elements are fixed to the ground: the geodetic code GNSS, a
-#: stationary antenna (astropy_feedrot.labels reads pyuvdata's ``fixed`` so).
+#: stationary antenna (astropy_feedrot.stations.labels reads pyuvdata's ``fixed`` so).
 PYUVDATA_ARRAYS = {
     "ATA": ("ATA", "pyuvdata", "AZEL"),
     "HERA": ("HERA", "pyuvdata", "GNSS"),
@@ -653,7 +653,7 @@ def to_table(rows):
         "z": "ITRF geocentric Z at the epoch", "vx": "velocity in X", "vy": "velocity in Y",
         "vz": "velocity in Z", "epoch": "MJD of the position (nan: no velocity model)",
         "mount": "geodetic station-catalogue mount code",
-        "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
+        "focus": "focus type (see astropy_feedrot.stations.catalogue.FOCUS_NAMES)",
         "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
                        "0 where none does; get_antenna adds it as a fixed rotator",
         "position_source": "file and line, or paper table, of the position",

@@ -12,7 +12,7 @@ import re
 from astropy import units as u
 from astropy.coordinates import Angle, EarthLocation
 
-#: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.labels.
+#: SCHED's MOUNT values and the geodetic codes of astropy_feedrot.stations.labels.
 MOUNT_CODES = {"ALTAZ": "AZEL", "EQUAT": "EQUA", "XYEW": "X-YE", "XYNS": "X-YN"}
 
 #: AXISTYPE values of SCHED's locations files (SPAC, a tracking station, has no code here).

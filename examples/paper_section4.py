@@ -10,8 +10,8 @@ matplotlib installed it also draws figures like the paper's Figs 10-12.
 import sys
 from pathlib import Path
 
-from astropy_feedrot.simulations import genesis_long_baseline, gps_short_baseline
-from astropy_feedrot.tables import baseline_summary
+from astropy_feedrot.applied.feed_rotation_tables import baseline_summary
+from astropy_feedrot.applied.simulations import genesis_long_baseline, gps_short_baseline
 
 
 def main(directory="."):
@@ -25,7 +25,7 @@ def main(directory="."):
         print(baseline_summary(table))
         table.write(directory / f"{stem}.ecsv", overwrite=True)
         try:
-            from astropy_feedrot.plotting import plot_baseline
+            from astropy_feedrot.applied.plotting import plot_baseline
 
             plot_baseline(table, directory / f"{stem}.png")
         except ImportError:

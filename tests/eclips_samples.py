@@ -18,10 +18,10 @@ from astropy import units as u
 from astropy.time import Time
 
 from astropy_feedrot import ModelAttitude
+from astropy_feedrot.engine.grid import wind_up
 from astropy_feedrot.gnss import receiver_axes
-from astropy_feedrot.grid import wind_up
-from astropy_feedrot.orbits import Orbit
-from astropy_feedrot.yaw_models import EARTH_ROTATION
+from astropy_feedrot.transmitters.orbits import Orbit
+from astropy_feedrot.transmitters.yaw_models import EARTH_ROTATION
 
 DATA = Path(__file__).parent / "data" / "gnss" / "eclips"
 

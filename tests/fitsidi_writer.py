@@ -31,7 +31,7 @@ from astropy.coordinates import AltAz, EarthLocation, HADec, SkyCoord
 from astropy.io import fits
 from astropy.time import Time
 
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.stations.catalogue import get_antenna
 
 STOKES = {"RR": -1, "LL": -2, "RL": -3, "LR": -4, "XX": -5, "YY": -6, "XY": -7, "YX": -8}
 

@@ -9,7 +9,7 @@ from astropy import units as u
 from astropy.coordinates import ITRS, EarthLocation, SkyCoord
 from astropy.time import Time
 
-from astropy_feedrot.kernel import wrap_phase
+from astropy_feedrot.core.kernel import wrap_phase
 
 #: 1 milliarcsecond in radians.
 MAS = (1 * u.mas).to_value(u.rad)

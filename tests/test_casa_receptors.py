@@ -17,10 +17,10 @@ import pytest
 
 pytest.importorskip("casacore")
 
-from casacore.tables import table  # noqa: E402
 from casa_offline import SKIP_WITHOUT_CASA, check_casa_starts, run_casa  # noqa: E402
+from casacore.tables import table  # noqa: E402
 
-from astropy_feedrot.exceptions import ReceptorAngleWarning  # noqa: E402
+from astropy_feedrot.core.exceptions import ReceptorAngleWarning  # noqa: E402
 from astropy_feedrot.visibilities import correct_ms  # noqa: E402
 
 pytestmark = SKIP_WITHOUT_CASA

@@ -20,14 +20,14 @@ from astropy.time import Time
 from astropy_feedrot import AltAzMount, CassegrainFocus, NasmythFocus
 from astropy_feedrot.cli import main as cli_main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.labels import label_from_mount, mount_from_label
-from astropy_feedrot.stations import (
+from astropy_feedrot.stations.catalogue import (
     default_catalogue,
     get_antenna,
     get_network,
     networks,
     read_catalogue,
 )
+from astropy_feedrot.stations.labels import label_from_mount, mount_from_label
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "catalogue" / "build_stations.py"

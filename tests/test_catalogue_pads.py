@@ -20,14 +20,14 @@ import warnings
 
 import numpy as np
 import pytest
+import uvdata_model as model
 from astropy import units as u
 from astropy.coordinates import EarthLocation, SkyCoord
 
-import uvdata_model as model
-from astropy_feedrot import Antenna, AltAzMount, CatalogueReceptorsWarning, get_antenna
+from astropy_feedrot import AltAzMount, Antenna, CatalogueReceptorsWarning, get_antenna
+from astropy_feedrot.antennas.receptors import Receptors
 from astropy_feedrot.cli import main
-from astropy_feedrot.receptors import Receptors
-from astropy_feedrot.stations import default_catalogue, read_catalogue
+from astropy_feedrot.stations.catalogue import default_catalogue, read_catalogue
 from astropy_feedrot.visibilities import (
     CATALOGUE_TOLERANCE,
     PAD_TOLERANCE,

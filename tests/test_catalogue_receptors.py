@@ -17,9 +17,9 @@ import pytest
 from astropy import units as u
 from astropy.coordinates import EarthLocation
 
-from astropy_feedrot import Antenna, AltAzMount, CatalogueReceptorsWarning, get_antenna
-from astropy_feedrot.receptors import Receptors
-from astropy_feedrot.stations import default_catalogue, read_catalogue
+from astropy_feedrot import AltAzMount, Antenna, CatalogueReceptorsWarning, get_antenna
+from astropy_feedrot.antennas.receptors import Receptors
+from astropy_feedrot.stations.catalogue import default_catalogue, read_catalogue
 from astropy_feedrot.visibilities import (
     CATALOGUE_TOLERANCE,
     catalogue_receptors,

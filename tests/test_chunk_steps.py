@@ -9,14 +9,12 @@ import pytest
 from astropy import units as u
 from astropy.coordinates import SkyCoord
 from astropy.time import Time
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 from astropy_feedrot import get_antenna
-from astropy_feedrot.correction import _multiply
-from astropy_feedrot.receptors import Receptors
-from astropy_feedrot.visibilities import receptors as receptors_module
-from astropy_feedrot.visibilities import with_receptors
+from astropy_feedrot.antennas.receptors import Receptors
+from astropy_feedrot.applied.correction import _multiply
+from astropy_feedrot.visibilities import receptors as receptors_module, with_receptors
 from astropy_feedrot.visibilities.ms_chunks import Progress
 from astropy_feedrot.visibilities.receptors import ReceptorAngleTable, _distinct
 from astropy_feedrot.visibilities.tasks import TASK_CHUNKS, task_groups

@@ -16,12 +16,11 @@ from astropy import units as u
 from astropy.coordinates import HADec, SkyCoord
 from astropy.table import Table
 from astropy.time import Time
-
-from astropy_feedrot.cli import main
-from astropy_feedrot.simulations import GPS_SVN76_TLE
-from astropy_feedrot.stations import get_antenna
-
 from helpers import MAS
+
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
+from astropy_feedrot.cli import main
+from astropy_feedrot.stations.catalogue import get_antenna
 
 SOURCE = "03h19m48.16s +41d30m42.1s"  # 3C 84
 SPAN = ["--start", "2023-01-25T18:00", "--stop", "2023-01-25T22:00", "--step", "1h"]

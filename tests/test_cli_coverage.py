@@ -13,7 +13,7 @@ from astropy.time import Time
 
 from astropy_feedrot import feed_rotation_coverage
 from astropy_feedrot.cli import main
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.stations.catalogue import get_antenna
 
 SOURCES = ["--source", "3C84=03h19m48.16s +41d30m42.1s",
            "--source", "3C286=13h31m08.29s +30d30m33.0s"]

@@ -8,9 +8,9 @@ import warnings
 import pytest
 
 import astropy_feedrot.cli.stations as stations_cli
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 # sys.modules[name] = None makes "import name" raise ImportError, as when the package
 # is not installed; the run is a separate interpreter, so this one keeps sgp4.

@@ -131,8 +131,9 @@ def test_rinex_model_attitude(tmp_path, capsys):
 
 def test_rinex_summary_counts(tmp_path, capsys):
     """The summary line counts arcs, untouched epochs and satellites, singular or plural."""
-    from astropy_feedrot.gnss.synthetic import write_rinex
     from astropy.time import Time
+
+    from astropy_feedrot.gnss.synthetic import write_rinex
 
     obs = tmp_path / "obs.rnx"
     write_rinex(obs, "3.04", {"G": ("C1C", "L1C")}, ["G01", "G31"],
@@ -151,8 +152,8 @@ def test_satellite_with_too_few_points_says_so(tmp_path, capsys):
     from astropy.time import Time
 
     from astropy_feedrot.io import read_sp3
-    from astropy_feedrot.orbits import SP3Orbit
-    from astropy_feedrot.sp3_orbit import points_needed
+    from astropy_feedrot.transmitters.orbits import SP3Orbit
+    from astropy_feedrot.transmitters.sp3_orbit import points_needed
 
     data = read_sp3(SP3)
     when = data.epochs[6] + 450 * u.s

@@ -12,9 +12,9 @@ import pytest
 from fitsidi_writer import write_fitsidi
 
 from astropy_feedrot import __version__
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
 from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 DATA = Path(__file__).parent / "data" / "uvdata"
 COMMANDS = ["", "natural", "satellite", "baseline", "demo", "stations", "coverage",

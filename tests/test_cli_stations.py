@@ -11,7 +11,7 @@ from astropy.coordinates import EarthLocation
 from astropy.table import Table
 
 from astropy_feedrot.cli import main
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.stations.catalogue import get_antenna
 
 
 def run(capsys, *argv):

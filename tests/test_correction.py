@@ -29,8 +29,7 @@ from astropy.coordinates import TETE, AltAz, EarthLocation, SkyCoord
 from astropy.tests.helper import assert_quantity_allclose
 from astropy.time import Time
 from helpers import SITES
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 from astropy_feedrot import (
     AltAzMount,
@@ -42,17 +41,16 @@ from astropy_feedrot import (
     TLEOrbit,
     unwrap,
 )
-from astropy_feedrot.correction import (
+from astropy_feedrot.applied.correction import (
     CIRCULAR_PRODUCTS,
     LINEAR_PRODUCTS,
-    baseline_rr_ll,
     correct_linear_visibilities,
     correct_phase,
     correct_visibilities,
     rotation_matrix,
-    rr_minus_ll,
 )
-from astropy_feedrot.kernel import wrap_phase
+from astropy_feedrot.applied.rr_ll import baseline_rr_ll, rr_minus_ll
+from astropy_feedrot.core.kernel import wrap_phase
 
 #: X/Y to R/L: rows R = (X + iY)/sqrt(2), L = (X - iY)/sqrt(2).
 T = np.array([[1, 1j], [1, -1j]]) / np.sqrt(2)

@@ -24,7 +24,7 @@ from astropy_feedrot.visibilities import correct_fitsidi, correct_ms  # noqa: E4
 
 # fitsidi_writer gives WETTZ13S a Nasmyth focus the catalogue does not (on purpose).
 pytestmark = pytest.mark.filterwarnings(
-    "ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+    "ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 
 
 @pytest.fixture(scope="module")

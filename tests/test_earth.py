@@ -2,30 +2,26 @@
 """EarthOrientation, the epochs object, against ERFA and astropy at every epoch.
 
 References: ERFA's ``era00`` and ``gmst82`` at astropy's UT1, astropy's CIRS to
-ITRS transformation, `astropy_feedrot.attitude.sun_position` (astropy's
+ITRS transformation, `astropy_feedrot.transmitters.nominal_attitude.sun_position` (astropy's
 ephemeris and frames), and the structure of the package's own source files.
 """
 
-import ast
 import pathlib
-import subprocess
-import sys
 
 import erfa
 import numpy as np
 import pytest
-from hypothesis import given
-from hypothesis import strategies as st
 from astropy import units as u
 from astropy.coordinates import CIRS, ITRS, CartesianRepresentation, EarthLocation, SkyCoord
 from astropy.time import Time
 from helpers import SITES
+from hypothesis import given, strategies as st
 
 import astropy_feedrot
 from astropy_feedrot import conf
-from astropy_feedrot.attitude import interpolated_sun_position, sun_position
-from astropy_feedrot.earth import EarthOrientation
-from astropy_feedrot.frames import source_direction
+from astropy_feedrot.earth.frames import source_direction
+from astropy_feedrot.earth.orientation import EarthOrientation
+from astropy_feedrot.transmitters.nominal_attitude import interpolated_sun_position, sun_position
 
 PACKAGE = pathlib.Path(astropy_feedrot.__file__).parent
 
@@ -162,46 +158,10 @@ def test_shapes_of_targets_and_epochs():
     assert orientation.era.shape == (12,)
 
 
-# --- the layers: inputs at the bottom, no cycle, no hidden imports ---------------
-
-@pytest.mark.parametrize("module", ["inputs", "kept", "series", "instants", "earth", "epochs",
-                                    "frames"])
-def test_modules_import_first(module):
-    # In a fresh interpreter, each module imports without a cycle.
-    subprocess.run([sys.executable, "-c", f"import astropy_feedrot.{module}"],
-                   cwd=PACKAGE.parent, check=True)
-
-
-def imports(path):
-    """Package modules imported by a source file: (module, at top level?)."""
-    tree = ast.parse(path.read_text())
-    top = {id(node) for node in tree.body}
-    found = []
-    for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level:
-            found.append((node.module or "", id(node) in top))
-    return found
-
-
-def test_inputs_is_the_bottom_layer():
-    assert imports(PACKAGE / "inputs.py") == []
-    assert imports(PACKAGE / "kept.py") == []  # beside it: what is kept between calls
-
-
-@pytest.mark.parametrize("module", ["inputs.py", "series.py", "instants.py", "earth.py",
-                                    "epochs.py", "frames.py"])
-def test_no_function_level_imports(module):
-    assert all(top for _, top in imports(PACKAGE / module))
-
-
-def test_earth_does_not_import_frames():
-    assert "frames" not in {name for name, _ in imports(PACKAGE / "earth.py")}
-
-
 def test_orientation_of_is_shared_and_follows_the_tables():
     from astropy.utils import iers
 
-    from astropy_feedrot.earth import orientation_of
+    from astropy_feedrot.earth.orientation import orientation_of
 
     times = Time("2023-01-25") + np.arange(50) * 10 * u.min
     first = orientation_of(times)
@@ -228,7 +188,7 @@ def test_day_tables_are_kept_and_follow_the_tables():
     # by 0.5 s: the ERA at midnight leads by 0.5 s of rotation, ERFA era00).
     from astropy.utils import iers
 
-    from astropy_feedrot import instants
+    from astropy_feedrot.earth import utc_days as instants
 
     times = Time("2023-01-25T03:00") + np.arange(5) * u.h
     instants._DAY_TABLES.clear()
@@ -251,7 +211,7 @@ def test_series_in_one_interval_as_in_several():
     # Instants within one day take the path without sorting; each value is the
     # same Lagrange polynomial through the same nodes as when instants of
     # another day come with them, bit for bit.
-    from astropy_feedrot.earth import EarthOrientation
+    from astropy_feedrot.earth.orientation import EarthOrientation
 
     times = Time("2023-01-25T03:00") + np.arange(4) * u.h
     orientation = EarthOrientation(times)
@@ -267,7 +227,7 @@ def test_sparse_stencils_read_directly_as_through_distinct_nodes(span):
     # Sparse instants in time order take their stencils straight from the kept
     # table; out of order they go through the distinct intervals and nodes.
     # The same nodes and weights: the same bits, and the same as each alone.
-    from astropy_feedrot.earth import EarthOrientation
+    from astropy_feedrot.earth.orientation import EarthOrientation
 
     rng = np.random.default_rng(2)
     times = Time("2013-01-01T00:00") + np.sort(rng.uniform(0, span, 100)) * u.day
@@ -289,8 +249,8 @@ def test_sparse_stencils_read_directly_as_through_distinct_nodes(span):
 def test_kept_nodes_in_one_chunk_as_across_chunks():
     # Nodes of one year are read from its chunk alone; across a year's end the
     # same values come from both chunks.
-    from astropy_feedrot.earth import EarthOrientation
-    from astropy_feedrot.series import KEPT_CHUNK
+    from astropy_feedrot.earth.nodes import KEPT_CHUNK
+    from astropy_feedrot.earth.orientation import EarthOrientation
 
     series = EarthOrientation(Time(["2023-01-25T03:00"]))._cip
     needed = np.arange(5 * KEPT_CHUNK - 8, 5 * KEPT_CHUNK + 8)
@@ -309,7 +269,7 @@ def test_kept_nodes_in_one_chunk_as_across_chunks():
 def test_unique_integers_is_numpys_unique(values, spread):
     # The table of the range (short spans) and the sort (long ones) give
     # numpy's unique values and inverse, whatever the spread of the values.
-    from astropy_feedrot.series import unique_integers
+    from astropy_feedrot.earth.nodes import unique_integers
 
     values = np.asarray(values, dtype=float) // 10**spread
     distinct, inverse = unique_integers(values, values.min())
@@ -330,7 +290,7 @@ def test_horner_in_blocks_is_horner_at_once(sources, runs):
     # Many epochs are evaluated a block at a time (in the cache), or a run of one
     # cell at a time: the same arithmetic per epoch, so the same bits as all
     # epochs at once.
-    from astropy_feedrot.series import HORNER_BLOCK, horner
+    from astropy_feedrot.earth.nodes import HORNER_BLOCK, horner
 
     rng = np.random.default_rng(5)
     cells, n = 50, 3 * HORNER_BLOCK + 17

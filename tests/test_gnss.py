@@ -4,6 +4,7 @@
 import gzip
 import os
 
+import gnss_reference as ref
 import numpy as np
 import pytest
 from astropy import units as u
@@ -19,9 +20,7 @@ from astropy_feedrot.gnss import (
 )
 from astropy_feedrot.gnss.synthetic import constellation, write_rinex, write_sp3
 from astropy_feedrot.io import FileFormatError
-from astropy_feedrot.orbits import Orbit
-
-import gnss_reference as ref
+from astropy_feedrot.transmitters.orbits import Orbit
 
 START = Time("2023-01-25T00:00:19", scale="tai")  # 00:00 GPS time
 GGAO = np.array([1130730.179, -4831245.954, 3994228.241])  # the paper's Table 3
@@ -506,8 +505,8 @@ def test_model_attitude(tmp_path, sp3, orbits):
     # PRNs of 2023-01-25 in the IGS metadata: G05 GPS-IIR-M, G01 GPS-IIF... the synthetic
     # orbits carry them; C59 (BeiDou-3 GEO) has no model and is left untouched.
     from astropy_feedrot.gnss.synthetic import constellation as make
-    from astropy_feedrot.yaw_models import orbit_angles
-    from astropy_feedrot.attitude import sun_position
+    from astropy_feedrot.transmitters.nominal_attitude import sun_position
+    from astropy_feedrot.transmitters.yaw_models import orbit_angles
 
     named = make(START, {"G": 5, "E": 4, "R": 4, "C": 1})
     named["C59"] = named.pop("C01")

@@ -9,7 +9,7 @@ from astropy.time import Time
 from astropy_feedrot.gnss import correct_rinex
 from astropy_feedrot.gnss.arcs import Arcs, orbit_file_name
 from astropy_feedrot.gnss.synthetic import constellation, write_rinex, write_sp3
-from astropy_feedrot.sp3_orbit import points_needed
+from astropy_feedrot.transmitters.sp3_orbit import points_needed
 
 START = Time("2023-01-25T00:00:19", scale="tai")  # 00:00 GPS time
 COUNTS = {"G": 5, "E": 4, "R": 4}

@@ -37,12 +37,12 @@ from astropy_feedrot import (
     conf,
     rotation_delay,
 )
-from astropy_feedrot import kernel as k
-from astropy_feedrot.attitude import interpolated_sun_position, sun_position
+from astropy_feedrot.applied.simulations import genesis, gps_svn76
+from astropy_feedrot.core import kernel as k
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.earth import EarthOrientation
-from astropy_feedrot.frames import LocalFrame, local_frame, location_xyz
-from astropy_feedrot.grid import (
+from astropy_feedrot.earth.frames import LocalFrame, local_frame, location_xyz
+from astropy_feedrot.earth.orientation import EarthOrientation
+from astropy_feedrot.engine.grid import (
     feed_rotation_grid,
     feed_rotation_grid_dask,
     nominal_attitude,
@@ -50,8 +50,8 @@ from astropy_feedrot.grid import (
     rotation_delay_grid,
     wind_up,
 )
-from astropy_feedrot.simulations import genesis, gps_svn76
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.stations.catalogue import get_antenna
+from astropy_feedrot.transmitters.nominal_attitude import interpolated_sun_position, sun_position
 
 #: The agreement promised with Antenna.feed_rotation, pair by pair.
 TOLERANCE = 1e-6 * u.deg

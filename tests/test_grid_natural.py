@@ -12,19 +12,19 @@ from astropy.time import Time
 
 from astropy_feedrot import (
     AltAzMount,
-    MirrorTrain,
     Antenna,
     BeamWaveguideFocus,
     EquatorialMount,
+    MirrorTrain,
     NasmythFocus,
     Rotator,
     XYMount,
     feed_rotation_grid,
     get_antenna,
 )
-from astropy_feedrot.engine import Receivers, feed_rotation
-from astropy_feedrot.frames import location_xyz
-from astropy_feedrot.grid_natural import (
+from astropy_feedrot.earth.frames import location_xyz
+from astropy_feedrot.engine.equations import Receivers, feed_rotation
+from astropy_feedrot.engine.grid_natural import (
     diurnal_beta,
     fast_receiver,
     feed_rotation_block,
@@ -184,8 +184,8 @@ def test_grid_in_two_halves_is_the_grid_in_turn(monkeypatch):
     # thread): every antenna's arithmetic is the same, so the same bits, and
     # the same warnings. On the helper thread itself the
     # grid runs in turn (it must not wait for its own thread).
-    import astropy_feedrot.grid_natural as grid_natural
-    from astropy_feedrot.kept import helper_thread
+    import astropy_feedrot.engine.grid_natural as grid_natural
+    from astropy_feedrot.core.cache import helper_thread
 
     antennas = [get_antenna(name) for name in ("WETTZ13S", "YEBES40M", "WARK30M",
                                                "ASKAP32", "DBR205")]

@@ -19,7 +19,7 @@ import pytest
 from astropy.io import fits
 
 from astropy_feedrot.cli import main
-from astropy_feedrot.visibilities import CorrectionRefused, correct_fitsidi, correct_file
+from astropy_feedrot.visibilities import CorrectionRefused, correct_file, correct_fitsidi
 from astropy_feedrot.visibilities.history import (
     aips_records,
     check_history,
@@ -131,7 +131,7 @@ def test_mojave_refused_on_the_command_line(tmp_path, capsys):
 
 
 # fitsidi_writer gives WETTZ13S a Nasmyth focus the catalogue does not (on purpose).
-@pytest.mark.filterwarnings("ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+@pytest.mark.filterwarnings("ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 def test_fitsidi_with_aips_history(tmp_path):
     from fitsidi_writer import write_fitsidi
 

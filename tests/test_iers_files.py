@@ -10,8 +10,8 @@ import pytest
 from astropy import units as u
 from astropy.utils import iers
 
-from astropy_feedrot import eop
-from astropy_feedrot.iers_files import (
+from astropy_feedrot.earth import eop
+from astropy_feedrot.earth.iers_files import (
     COMBINES_OFFLINE,
     bundled_arrays,
     c04_arrays,

@@ -26,7 +26,7 @@ from astropy_feedrot import (
     Satellite,
     feed_rotation_grid,
 )
-from astropy_feedrot.inputs import as_skycoord
+from astropy_feedrot.core.inputs import as_skycoord
 
 SITE = EarthLocation.from_geodetic(6.88 * u.deg, 50.52 * u.deg, 416 * u.m)  # Effelsberg
 ANTENNA = Antenna(SITE, AltAzMount())

@@ -17,12 +17,13 @@ import warnings
 import numpy as np
 import pytest
 from astropy import units as u
-from astropy.io import fits
 from astropy.coordinates import ICRS, AltAz, EarthLocation, SkyCoord
+from astropy.io import fits
 from fitsidi_writer import START, STATIONS, station_xyz, write_fitsidi
 
 from astropy_feedrot import AltAzMount, NasmythFocus, XYMount
-from astropy_feedrot.exceptions import (
+from astropy_feedrot.antennas.receptors import Receptors
+from astropy_feedrot.core.exceptions import (
     CatalogueReceptorsWarning,
     DegenerateGeometryWarning,
     ReceptorAngleWarning,
@@ -35,13 +36,12 @@ from astropy_feedrot.visibilities import (
     fitsidi_antennas,
     writing_program,
 )
-from astropy_feedrot.receptors import Receptors
 
 # The writer gives WETTZ13S a left-handed Nasmyth focus to exercise that closed form
 # (fitsidi_writer.STATIONS); that it differs from the catalogue's is tested in
 # tests/test_real_antennas.py.
 pytestmark = pytest.mark.filterwarnings(
-    "ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+    "ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 
 # R and L at one angle or 90 deg apart, as files give them (Receptors.sky_angles).
 CIRCULAR_ANGLES = {0: (5.0, 95.0), 2: (12.0, 12.0)}
@@ -680,7 +680,7 @@ def test_the_calling_thread_keeps_no_chunk_after_a_run(tmp_path):
     # The chunks are read into a buffer the thread keeps between chunks
     # (kept.thread_buffer); after the run the calling thread lets it go, as
     # correct_ms does, so that no chunk-sized buffer stays alive.
-    from astropy_feedrot import kept
+    from astropy_feedrot.core import cache as kept
 
     source, _ = run(tmp_path)
     kept.thread_buffer(np.uint8, (16,))  # a buffer from before the run

@@ -7,8 +7,8 @@ import io
 import pytest
 
 from astropy_feedrot import TLEOrbit
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
 from astropy_feedrot.io import FileFormatError, read_tle
-from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 # Table 2 of the paper (GPS SVN 76) and the ISS element set of the CelesTrak
 # documentation of the format (catalogue number 25544).

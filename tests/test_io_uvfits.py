@@ -18,8 +18,8 @@ from astropy import units as u
 from fitsidi_writer import station_xyz, write_uvfits_an
 
 from astropy_feedrot import AltAzMount, BeamWaveguideFocus, StationaryMount
+from astropy_feedrot.antennas.receptors import Receptors
 from astropy_feedrot.visibilities import FITSFormatError, uvfits_antennas, writing_program
-from astropy_feedrot.receptors import Receptors
 
 VLA_CENTRE = [-1601185.4, -5041977.5, 3554875.9]
 

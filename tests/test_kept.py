@@ -1,12 +1,12 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""What the package keeps between calls (astropy_feedrot.kept): the last few values,
+"""What the package keeps between calls (astropy_feedrot.core.cache): the last few values,
 tied to what they were computed from, and each thread's buffer."""
 
 import threading
 
 import numpy as np
 
-from astropy_feedrot.kept import KeptLast, release_thread_buffer, thread_buffer
+from astropy_feedrot.core.cache import KeptLast, release_thread_buffer, thread_buffer
 
 
 def test_the_least_recently_used_goes_first():
@@ -53,8 +53,8 @@ def test_in_parallel_on_the_helper_thread_runs_in_turn():
     # its own thread (a deadlock): it runs both halves itself, same values.
     import erfa
 
-    from astropy_feedrot.kept import helper_thread, on_helper_thread
-    from astropy_feedrot.series import PARALLEL_NODES, in_parallel
+    from astropy_feedrot.core.cache import helper_thread, on_helper_thread
+    from astropy_feedrot.earth.nodes import PARALLEL_NODES, in_parallel
 
     tt2 = np.arange(4.0 * PARALLEL_NODES)
     expected = erfa.era00(2460000.5, tt2)  # ERFA at every node, directly
@@ -68,7 +68,7 @@ def test_in_parallel_on_the_helper_thread_runs_in_turn():
 _MALLINFO = """
 import ctypes, sys
 import numpy as np
-from astropy_feedrot.kept import heap_keeps_chunks
+from astropy_feedrot.core.cache import heap_keeps_chunks
 
 class Info(ctypes.Structure):
     _fields_ = [(name, ctypes.c_size_t) for name in (
@@ -111,7 +111,7 @@ def test_the_heap_keeps_chunks_for_a_run_and_gives_them_back_after():
 
 
 def test_without_the_environment_glibc_is_left_to_adapt(monkeypatch):
-    from astropy_feedrot.kept import heap_keeps_chunks
+    from astropy_feedrot.core.cache import heap_keeps_chunks
 
     monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
     monkeypatch.delenv("MALLOC_MMAP_THRESHOLD_", raising=False)
@@ -120,7 +120,7 @@ def test_without_the_environment_glibc_is_left_to_adapt(monkeypatch):
 
 
 def test_an_unreadable_threshold_in_the_environment_gives_glibcs_default(monkeypatch):
-    from astropy_feedrot import kept
+    from astropy_feedrot.core import cache as kept
 
     monkeypatch.setenv("MALLOC_MMAP_THRESHOLD_", "lots")
     assert kept._environment_value("MALLOC_MMAP_THRESHOLD_") == 128 * 1024

@@ -8,12 +8,11 @@ given) or elementary vector algebra computed a second, independent way
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
+from hypothesis import given, settings, strategies as st
 from hypothesis.extra.numpy import arrays
 from numpy.testing import assert_allclose
 
-from astropy_feedrot import kernel as k
+from astropy_feedrot.core import kernel as k
 
 # Tolerance of identities between two double-precision evaluations of the same
 # angle, in radians (2e-10 rad = 40 microarcsec).

@@ -3,7 +3,7 @@
 
 References: the expected mount and focus of every label are written out here
 from the source code of each program (the files named in the docstring of
-``astropy_feedrot.labels``): casacore ``FitsIDItoMS.cc``,
+``astropy_feedrot.stations.labels``): casacore ``FitsIDItoMS.cc``,
 ``MSFitsInput.cc``/``MSFitsOutput.cc`` and ``MSDerivedValues.cc``; DiFX
 ``difx_input.h``, ``difx_antenna.c`` and ``fitsAG.c``; the VEX readers of
 vex2difx and HOPS; pyuvdata ``utils/antenna.py`` and ``telescopes.py``; VTD
@@ -36,7 +36,7 @@ from astropy_feedrot import (
     StationaryMount,
     XYMount,
 )
-from astropy_feedrot.labels import (
+from astropy_feedrot.stations.labels import (
     KNOWN_LABELS,
     SOFTWARE,
     known_labels,

@@ -23,9 +23,9 @@ pytest.importorskip("casacore")
 from casacore.tables import table  # noqa: E402
 from ms_model import fill_model, make_linear, set_feed, unpack  # noqa: E402
 
+from astropy_feedrot.antennas.receptors import Receptors  # noqa: E402
 from astropy_feedrot.cli import main  # noqa: E402
-from astropy_feedrot.exceptions import DegenerateGeometryWarning  # noqa: E402
-from astropy_feedrot.receptors import Receptors  # noqa: E402
+from astropy_feedrot.core.exceptions import DegenerateGeometryWarning  # noqa: E402
 from astropy_feedrot.visibilities import (  # noqa: E402
     APPLY_MARK,
     HISTORY_MARK,

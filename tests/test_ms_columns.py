@@ -22,11 +22,7 @@ from casacore.tables import makecoldesc, maketabdesc, table  # noqa: E402
 from ms_model import fill_model, unpack  # noqa: E402
 
 from astropy_feedrot.cli import main  # noqa: E402
-from astropy_feedrot.visibilities import (  # noqa: E402
-    CorrectionRefused,
-    correct_file,
-    correct_ms,
-)
+from astropy_feedrot.visibilities import CorrectionRefused, correct_file, correct_ms  # noqa: E402
 from astropy_feedrot.visibilities.ms_tables import copy_ms  # noqa: E402
 
 

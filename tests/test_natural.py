@@ -32,8 +32,8 @@ from astropy_feedrot import (
     StationaryMount,
     XYMount,
 )
-from astropy_feedrot import kernel as k
-from astropy_feedrot.frames import local_frame, source_direction
+from astropy_feedrot.core import kernel as k
+from astropy_feedrot.earth.frames import local_frame, source_direction
 
 GRID = sky_grid(60)[:, np.newaxis]  # 60 directions x 96 epochs
 

@@ -10,11 +10,11 @@ from fitsidi_writer import write_fitsidi
 
 import astropy_feedrot.cli.common
 import astropy_feedrot.cli.data
-import astropy_feedrot.visibilities.fitsidi as fitsidi
 import astropy_feedrot.visibilities.files
+import astropy_feedrot.visibilities.fitsidi as fitsidi
 from astropy_feedrot.cli import main
+from astropy_feedrot.core.outputs import CommandError, publish, write_files
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.outputs import CommandError, publish, write_files
 from astropy_feedrot.visibilities import correct_file
 
 VLA = sample_file("vla_day2_8chan.uvfits")
@@ -175,7 +175,7 @@ def test_two_corrections_into_one_output_do_not_both_succeed(idi, tmp_path, caps
 
 
 # fitsidi_writer gives WETTZ13S a Nasmyth focus the catalogue does not (on purpose).
-@pytest.mark.filterwarnings("ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+@pytest.mark.filterwarnings("ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 def test_correct_fitsidi_never_replaces_a_file_made_meanwhile(idi, tmp_path, monkeypatch):
     # The output is checked first (it does not exist), then appears while the copy is
     # corrected: the corrected copy is not published over it.

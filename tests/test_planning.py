@@ -19,7 +19,7 @@ from astropy_feedrot import (
     feed_rotation_coverage,
     rank_sources,
 )
-from astropy_feedrot.stations import get_antenna
+from astropy_feedrot.stations.catalogue import get_antenna
 
 VLA = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0789 * u.deg, 2124 * u.m)
 SOURCES = {"3C84": SkyCoord("03h19m48.16s +41d30m42.1s"),

@@ -18,16 +18,16 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-from astropy_feedrot.planning import feed_rotation_coverage, plot_coverage  # noqa: E402
-from astropy_feedrot.plotting import (  # noqa: E402
+from astropy_feedrot.applied.feed_rotation_tables import feed_rotation_table  # noqa: E402
+from astropy_feedrot.applied.planning import feed_rotation_coverage, plot_coverage  # noqa: E402
+from astropy_feedrot.applied.plotting import (  # noqa: E402
     line_styles,
     plot_baseline,
     plot_feed_rotation,
     unwrapped_degrees,
 )
-from astropy_feedrot.simulations import gps_short_baseline  # noqa: E402
-from astropy_feedrot.stations import get_antenna, get_network  # noqa: E402
-from astropy_feedrot.tables import feed_rotation_table  # noqa: E402
+from astropy_feedrot.applied.simulations import gps_short_baseline  # noqa: E402
+from astropy_feedrot.stations.catalogue import get_antenna, get_network  # noqa: E402
 
 DAY = Time("2024-03-01T00:00") + np.arange(0, 24, 0.25) * u.hour
 

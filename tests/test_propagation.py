@@ -14,9 +14,9 @@ from astropy.time import Time
 from sgp4.api import Satrec
 
 from astropy_feedrot import OrbitWarning, TLEOrbit, conf
-from astropy_feedrot.orbits import propagate_tles
-from astropy_feedrot.propagation import TOLERANCE, node_spacing, propagate
-from astropy_feedrot.simulations import GPS_SVN76_TLE
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
+from astropy_feedrot.transmitters.orbits import propagate_tles
+from astropy_feedrot.transmitters.propagation import TOLERANCE, node_spacing, propagate
 
 #: The promise of the interpolation, in metres.
 PROMISE = 1e-3

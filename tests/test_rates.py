@@ -45,12 +45,17 @@ from astropy_feedrot import (
     XYMount,
     conf,
 )
-from astropy_feedrot import rates
-from astropy_feedrot.attitude import sun_position
-from astropy_feedrot.frames import LocalFrame, horizontal, local_frame, location_xyz
-from astropy_feedrot.frames import source_direction
-from astropy_feedrot.kernel import NORTH_POLE, project, receiver_term, wrap_phase
-from astropy_feedrot.simulations import GPS_SVN76_TLE
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
+from astropy_feedrot.core.kernel import NORTH_POLE, project, receiver_term, wrap_phase
+from astropy_feedrot.earth.frames import (
+    LocalFrame,
+    horizontal,
+    local_frame,
+    location_xyz,
+    source_direction,
+)
+from astropy_feedrot.engine import rates
+from astropy_feedrot.transmitters.nominal_attitude import sun_position
 
 OMEGA = rates.EARTH_ROTATION_ANGLE_RATE
 T0 = Time("2023-01-25T20:00:00", scale="utc")

@@ -28,8 +28,8 @@ from astropy_feedrot import (
     UncorrectedBaselinesWarning,
     get_antenna,
 )
+from astropy_feedrot.antennas.receptors import Receptors
 from astropy_feedrot.cli import main
-from astropy_feedrot.receptors import Receptors
 from astropy_feedrot.visibilities import (
     MSError,
     UnusableAntenna,

@@ -22,8 +22,8 @@ from astropy.io import fits
 from astropy.time import Time
 
 from astropy_feedrot import AltAzMount, Antenna
+from astropy_feedrot.antennas.receptors import Receptors
 from astropy_feedrot.cli import main
-from astropy_feedrot.receptors import Receptors
 from astropy_feedrot.visibilities import (
     FITSFormatError,
     check_output_format,
@@ -204,7 +204,7 @@ def _wrapped(angle):
 @pytest.mark.filterwarnings("ignore:The uvw_array does not match")
 @pytest.mark.filterwarnings("ignore:The telescope frame is set to")
 # HOPS writes MNTSTA 0 for the EHT's Nasmyth stations (tests/test_real_antennas.py).
-@pytest.mark.filterwarnings("ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+@pytest.mark.filterwarnings("ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 @pytest.mark.parametrize("path", [AIPS, HOPS], ids=["aips", "hops"])
 def test_uvfits_output_of_aips_and_hops(path, tmp_path):
     # pyuvdata 3.2 gives J2000 entries of AIPS files (EQUINOX 2000, read as ICRS) no
@@ -362,7 +362,7 @@ def umask():
 
 @pytest.mark.filterwarnings("ignore:The uvw_array does not match")
 @pytest.mark.filterwarnings("ignore:The telescope frame is set to")
-@pytest.mark.filterwarnings("ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+@pytest.mark.filterwarnings("ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 def test_new_files_get_the_umask_mode(tmp_path, umask, capsys):
     # mkstemp made corrected FITS-IDI copies 0600 whatever the umask.
     made = [correct_fitsidi(SFXC, tmp_path / "a.IDI1"),

@@ -15,12 +15,12 @@ from astropy.coordinates import EarthLocation
 from astropy.utils.masked import Masked
 
 from astropy_feedrot import AltAzMount, Antenna
-from astropy_feedrot.correction import (
+from astropy_feedrot.antennas.receptors import Receptors, basis_of
+from astropy_feedrot.applied.correction import (
     correct_linear_visibilities,
     correct_receptor_visibilities,
     correct_visibilities,
 )
-from astropy_feedrot.receptors import Receptors, basis_of
 
 LINEAR = ["XX", "XY", "YX", "YY"]
 CIRCULAR = ["RR", "RL", "LR", "LL"]

@@ -25,10 +25,10 @@ from astropy_feedrot import (
     StationaryMount,
     feed_rotation_grid,
 )
-from astropy_feedrot.engine import Receivers, feed_rotation
-from astropy_feedrot.grid import receiver_arrays
-from astropy_feedrot.rotators import rotation_angles, rotation_rates
-from astropy_feedrot.simulations import gps_svn76
+from astropy_feedrot.antennas.rotators import rotation_angles, rotation_rates
+from astropy_feedrot.applied.simulations import gps_svn76
+from astropy_feedrot.engine.equations import Receivers, feed_rotation
+from astropy_feedrot.engine.grid import receiver_arrays
 
 SITE = EarthLocation.from_geodetic(12.8775 * u.deg, 49.1450 * u.deg, 670 * u.m)  # Wettzell
 SOURCE = SkyCoord("03h19m48.16s +41d30m42.1s")  # 3C 84

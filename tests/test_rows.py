@@ -17,12 +17,12 @@ from astropy.tests.helper import assert_quantity_allclose
 from astropy.time import Time
 
 from astropy_feedrot import DegenerateGeometryWarning
+from astropy_feedrot.stations.catalogue import get_antenna
 from astropy_feedrot.visibilities.rows import (
     distinct_epochs,
     feed_rotation_rows,
     frame_position_angle,
 )
-from astropy_feedrot.stations import get_antenna
 
 ANTENNAS = {3: get_antenna("FD-VLBA"), 7: get_antenna("WETTZ13S"), 9: get_antenna("GGAO12M")}
 SOURCE = SkyCoord("03h19m48.16s +41d30m42.1s")

@@ -11,7 +11,6 @@ import re
 import warnings
 
 import erfa
-
 import numpy as np
 import pytest
 from astropy import units as u
@@ -50,13 +49,7 @@ from astropy_feedrot import (
     rotation_delay,
     unwrap,
 )
-from astropy_feedrot import kernel as k
-from astropy_feedrot.attitude import Attitude, nominal_dipoles, slerp, sun_position
-from astropy_feedrot.earth import EarthOrientation
-from astropy_feedrot.frames import location_xyz
-from astropy_feedrot.grid import feed_rotation_grid
-from astropy_feedrot.orbits import Orbit, lagrange_interpolate
-from astropy_feedrot.simulations import (
+from astropy_feedrot.applied.simulations import (
     GPS_SVN76_TLE,
     genesis,
     genesis_long_baseline,
@@ -64,6 +57,17 @@ from astropy_feedrot.simulations import (
     gps_svn76,
     paper_antenna,
 )
+from astropy_feedrot.core import kernel as k
+from astropy_feedrot.earth.frames import location_xyz
+from astropy_feedrot.earth.orientation import EarthOrientation
+from astropy_feedrot.engine.grid import feed_rotation_grid
+from astropy_feedrot.transmitters.nominal_attitude import (
+    Attitude,
+    nominal_dipoles,
+    slerp,
+    sun_position,
+)
+from astropy_feedrot.transmitters.orbits import Orbit, lagrange_interpolate
 
 PASS = Time("2023-01-25T08:00") + np.arange(0, 7.5 * 3600, 120) * u.s
 

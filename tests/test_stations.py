@@ -19,7 +19,7 @@ from astropy_feedrot import (
     PrimeFocus,
     StationaryMount,
 )
-from astropy_feedrot.stations import (
+from astropy_feedrot.stations.catalogue import (
     StationCatalogue,
     default_catalogue,
     focus_from_name,

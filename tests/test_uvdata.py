@@ -22,18 +22,18 @@ from astropy.time import Time
 
 pyuvdata = pytest.importorskip("pyuvdata")
 
+import uvdata_model as model  # noqa: E402
 from pyuvdata import Telescope, UVData  # noqa: E402
 from pyuvdata.utils import ECEF_from_ENU  # noqa: E402
 
-import uvdata_model as model  # noqa: E402
 from astropy_feedrot import Antenna, DegenerateGeometryWarning, StationaryMount  # noqa: E402
-from astropy_feedrot.receptors import Receptors  # noqa: E402
+from astropy_feedrot.antennas.receptors import Receptors  # noqa: E402
 
 # uvdata_model places its antennas near the VLA's pads with other mounts and foci
 # on purpose; that a file's mounts differing from the catalogue's are named is
 # tested in tests/test_real_antennas.py.
 pytestmark = pytest.mark.filterwarnings(
-    "ignore::astropy_feedrot.exceptions.CatalogueMountWarning")
+    "ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 from astropy_feedrot.visibilities import (  # noqa: E402
     HISTORY_MARK,
     antennas_from_uvdata,

@@ -45,7 +45,7 @@ def untar(name, where):
 
 # fitsidi_writer gives WETTZ13S a left-handed Nasmyth focus to exercise that closed
 # form; that it differs from the catalogue's is tested in tests/test_real_antennas.py.
-MOUNT_WARNING = "ignore::astropy_feedrot.exceptions.CatalogueMountWarning"
+MOUNT_WARNING = "ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning"
 pytestmark = pytest.mark.filterwarnings(MOUNT_WARNING)
 
 

@@ -21,12 +21,16 @@ import functools
 import numpy as np
 import pytest
 from astropy import units as u
+from yaw_orbits import EPOCH, beta_of, noon, orbit_at_beta
 
 from astropy_feedrot import ModelAttitude
-from astropy_feedrot.yaw_models import (LAWS, model_yaw, nominal_yaw, orbit_angles,
-                                        secm_switch_age)
-
-from yaw_orbits import EPOCH, beta_of, noon, orbit_at_beta
+from astropy_feedrot.transmitters.yaw_models import (
+    LAWS,
+    model_yaw,
+    nominal_yaw,
+    orbit_angles,
+    secm_switch_age,
+)
 
 MEO = (55.0, 1.8622)  # BeiDou-3 MEO: 13 revolutions in 7 days
 IGSO = (55.0, 1.0027)  # one revolution a sidereal day

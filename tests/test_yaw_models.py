@@ -15,13 +15,12 @@ import functools
 import numpy as np
 import pytest
 from astropy import units as u
+from yaw_orbits import EPOCH, noon, orbit_at_beta
 
 from astropy_feedrot import ModelAttitude, TLEOrbit
 from astropy_feedrot.io import FileFormatError
-from astropy_feedrot.attitude import nominal_dipoles, sun_position
-from astropy_feedrot.yaw_models import LAWS, model_yaw, nominal_yaw, orbit_angles
-
-from yaw_orbits import EPOCH, noon, orbit_at_beta
+from astropy_feedrot.transmitters.nominal_attitude import nominal_dipoles, sun_position
+from astropy_feedrot.transmitters.yaw_models import LAWS, model_yaw, nominal_yaw, orbit_angles
 
 GPS = (55.0, 2.0056)
 GALILEO = (56.0, 1.7047)

@@ -23,6 +23,10 @@ is lost: every output is checked before any work is done (format, directory,
 an existing file needs ``--overwrite``, never one of the inputs, never the
 table and the figure in one file), written to a temporary file beside its
 target and renamed into place once everything has been written.
+
+May import: every subpackage (``core``, ``io``, ``earth``, ``antennas``,
+``transmitters``, ``engine``, ``stations``, ``applied``, ``visibilities``,
+``gnss``); it is the top layer.
 """
 
 import argparse
@@ -33,10 +37,10 @@ import warnings
 
 from astropy import units as u
 
-from .. import __version__
-from ..eop import iers_context
+from ..core.outputs import TABLE_FORMATS, CommandError
+from ..core.version import version as __version__
+from ..earth.eop import iers_context
 from ..io import FileFormatError
-from ..outputs import TABLE_FORMATS, CommandError
 from . import coverage, data, demo, rinex, samples, stations, tables
 from .common import CELESTIAL_FRAMES, MAX_EPOCHS, Parser, UsageError, examples, one_line
 

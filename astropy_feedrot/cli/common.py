@@ -14,13 +14,9 @@ from astropy import units as u
 from astropy.coordinates import EarthLocation, SkyCoord, frame_transform_graph
 from astropy.time import Time
 
-from .. import plotting
-from ..antenna import Antenna
-from ..data import sample_file
-from ..extras import install_hint
-from ..io import FileFormatError
-from ..labels import mount_from_label
-from ..outputs import (
+from ..applied import plotting
+from ..core.extras import install_hint
+from ..core.outputs import (
     TABLE_FORMATS,
     CommandError,
     check_outputs,
@@ -28,7 +24,11 @@ from ..outputs import (
     table_writer,
     write_files,
 )
-from ..stations import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
+from ..data import sample_file
+from ..engine.antenna import Antenna
+from ..io import FileFormatError
+from ..stations.catalogue import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
+from ..stations.labels import mount_from_label
 from .views import FORMATS, output_format, print_table
 
 __all__ = [

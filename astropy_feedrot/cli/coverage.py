@@ -8,8 +8,8 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import SkyCoord
 
-from .. import planning, stations
-from ..outputs import (
+from ..applied import planning
+from ..core.outputs import (
     TABLE_FORMATS,
     CommandError,
     check_outputs,
@@ -17,6 +17,7 @@ from ..outputs import (
     table_writer,
     write_files,
 )
+from ..stations import catalogue
 from .common import (
     add_time_options,
     catalogue_antenna,
@@ -53,13 +54,13 @@ def _run_coverage(args):
     for text in args.stations:
         name = text.strip()
         found = None
-        if hasattr(stations, "get_network"):  # a network name expands to its stations
+        if hasattr(catalogue, "get_network"):  # a network name expands to its stations
             try:
-                found = list(stations.get_network(name))
+                found = list(catalogue.get_network(name))
             except (KeyError, ValueError):
                 found = None
         if found is None:  # NAME@NETWORK chooses among stations sharing a name (KP@EHT)
-            found = [catalogue_antenna(stations.default_catalogue(), name)]
+            found = [catalogue_antenna(catalogue.default_catalogue(), name)]
         for antenna in found:
             antennas.setdefault(antenna.name, antenna)
     sources = {}

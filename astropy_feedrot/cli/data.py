@@ -11,8 +11,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from ..extras import install_hint
-from ..outputs import (
+from ..core.extras import install_hint
+from ..core.outputs import (
     TABLE_FORMATS,
     CommandError,
     check_outputs,

@@ -6,10 +6,10 @@ from pathlib import Path
 
 from astropy import units as u
 
-from ..extras import install_hint
-from ..outputs import CommandError, check_outputs, table_writer, write_files
-from ..simulations import gps_short_baseline
-from ..tables import baseline_summary
+from ..applied.feed_rotation_tables import baseline_summary
+from ..applied.simulations import gps_short_baseline
+from ..core.extras import install_hint
+from ..core.outputs import CommandError, check_outputs, table_writer, write_files
 from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
 
 __all__ = ["register"]

@@ -9,9 +9,15 @@ import sys
 import numpy as np
 from astropy import units as u
 
+from ..core.outputs import (
+    TABLE_FORMATS,
+    CommandError,
+    check_outputs,
+    table_format,
+    table_writer,
+    write_files,
+)
 from ..gnss import correct_rinex
-from ..outputs import TABLE_FORMATS, CommandError, check_outputs, table_format, table_writer
-from ..outputs import write_files
 from .common import add_units_option, examples, in_units, one_line, parse_quantity, read_path
 
 __all__ = ["EXAMPLES", "register", "summary"]

@@ -11,8 +11,8 @@ examples and a first try. ``feedrot samples`` lists them with what each is;
 import argparse
 import os
 
+from ..core.outputs import CommandError
 from ..data import DESCRIPTIONS, SAMPLES, sample_file
-from ..outputs import CommandError
 from .common import examples
 
 __all__ = ["register"]

@@ -19,7 +19,7 @@ from astropy import units as u
 from astropy.coordinates import EarthLocation
 from astropy.table import Table
 
-from ..outputs import TABLE_FORMATS, CommandError, check_outputs
+from ..core.outputs import TABLE_FORMATS, CommandError, check_outputs
 from .common import examples, input_files, one_line, station_catalogue, write_table
 from .views import FORMATS, output_format
 

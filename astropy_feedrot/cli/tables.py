@@ -10,20 +10,20 @@ import numpy as np
 from astropy import units as u
 from astropy.table import vstack
 
-from ..attitude import NominalAttitude, QuaternionAttitude
-from ..exceptions import OrbitWarning, warn_caller
+from ..applied.feed_rotation_tables import baseline_table, feed_rotation_table
+from ..core.exceptions import OrbitWarning, warn_caller
+from ..core.outputs import CommandError
 from ..io import read_sp3, read_tle
-from ..orbits import SP3Orbit, TLEOrbit
-from ..outputs import CommandError
-from ..satellite import Satellite
-from ..sp3_orbit import POSITION_TOLERANCE, points_needed
-from ..tables import baseline_table, feed_rotation_table
+from ..transmitters.nominal_attitude import NominalAttitude, QuaternionAttitude
+from ..transmitters.orbits import SP3Orbit, TLEOrbit
+from ..transmitters.satellite import Satellite
+from ..transmitters.sp3_orbit import POSITION_TOLERANCE, points_needed
 from .common import (
     ANTENNA_HELP,
     add_common_options,
-    add_units_option,
     add_natural_options,
     add_time_options,
+    add_units_option,
     elevation_limit,
     examples,
     in_units,

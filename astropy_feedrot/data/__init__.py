@@ -27,7 +27,7 @@
     ``packages/canvod-readers/src/canvod/readers/gnss_specs/data/``). Read by
     `~astropy_feedrot.io.read_satellite_metadata`.
 ``stations.ecsv``
-    The station catalogue of `astropy_feedrot.stations` (positions cited in
+    The station catalogue of `astropy_feedrot.stations.catalogue` (positions cited in
     its header).
 ``vla_day2_8chan.uvfits``
     Real data: two 10-s integrations of the VLA (19 antennas, 153 baselines,
@@ -50,7 +50,7 @@ DESCRIPTIONS = {
     "gnss_sample.rnx": "RINEX 3.04 observations of those satellites from GGAO12M, 20 min at "
                        "30 s (synthetic)",
     "igs_satellite_metadata.snx": "IGS satellite metadata SINEX, release 2404 (real)",
-    "stations.ecsv": "the station catalogue of astropy_feedrot.stations",
+    "stations.ecsv": "the station catalogue of astropy_feedrot.stations.catalogue",
     "vla_day2_8chan.uvfits": "VLA, 19 antennas, RR LL RL LR, 8 channels at 36.3 GHz (real)",
 }
 

@@ -10,6 +10,9 @@
   attitude (`~astropy_feedrot.gnss.correct`).
 
 See :doc:`/gnss`.
+
+May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
+``engine``, ``stations``, ``applied``.
 """
 
 from .correct import ATTITUDES, RinexCorrection, correct_rinex, join_orbex, receiver_axes

@@ -3,7 +3,7 @@
 
 `correct_rinex` streams a RINEX file (`~astropy_feedrot.gnss.rinex`) in
 blocks of epochs, computes the wind-up of every satellite of the block at
-every epoch of it in one call of the engine (`astropy_feedrot.grid.wind_up`:
+every epoch of it in one call of the engine (`astropy_feedrot.engine.grid.wind_up`:
 orbits from SP3 files, transmitter attitude nominal or from ORBEX
 quaternions, the receiver a crossed dipole turned by the header's antenna
 zero direction), keeps it continuous along each satellite's arc and
@@ -39,23 +39,23 @@ from astropy.coordinates import EarthLocation
 from astropy.table import QTable
 from astropy.time import Time
 
-from ..attitude import (
+from ..core.exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
+from ..core.outputs import same_file, write_files
+from ..earth.frames import check_station_xyz, local_frame
+from ..earth.orientation import EarthOrientation
+from ..engine.equations import check_form
+from ..engine.grid import wind_up
+from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
+from ..io.sp3 import join_sp3
+from ..transmitters.nominal_attitude import (
     Attitude,
     NominalAttitude,
     QuaternionAttitude,
     interpolated_sun_position,
 )
-from ..earth import EarthOrientation
-from ..exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
-from ..frames import check_station_xyz, local_frame
-from ..engine import check_form
-from ..grid import wind_up
-from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
-from ..io.sp3 import join_sp3
-from ..orbits import Orbit, SP3Orbit
-from ..outputs import same_file, write_files
-from ..sp3_orbit import MAX_EXTRAPOLATION, points_needed
-from ..yaw_models import LAWS, ModelAttitude, default_metadata
+from ..transmitters.orbits import Orbit, SP3Orbit
+from ..transmitters.sp3_orbit import MAX_EXTRAPOLATION, points_needed
+from ..transmitters.yaw_models import LAWS, ModelAttitude, default_metadata
 from .arcs import Arcs, orbit_file_name
 from .rinex import RinexReader, record_times
 from .rinex_header import SYSTEMS
@@ -135,7 +135,7 @@ def receiver_axes(xyz, zero_direction=0.0):
     ndarray, shape (3, 3)
         Rows: the antenna's aligned dipole (its "east"), transverse dipole
         (its "north", along the zero direction) and up (the geodetic
-        vertical), as ``station_axes`` of `~astropy_feedrot.grid.wind_up`.
+        vertical), as ``station_axes`` of `~astropy_feedrot.engine.grid.wind_up`.
 
     Examples
     --------
@@ -348,7 +348,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     points : int, optional
         Points of the Lagrange interpolation of the orbits (default 10).
         Fewer than the orbits' sampling needs for 1e-4 cycle
-        (`~astropy_feedrot.sp3_orbit.points_needed`: 7 at 15 minutes for
+        (`~astropy_feedrot.transmitters.sp3_orbit.points_needed`: 7 at 15 minutes for
         GPS) are refused.
     position : array-like, shape (3,), optional
         The antenna's ITRS position in metres, if the header has no ``APPROX

@@ -20,7 +20,7 @@ import threading
 import zlib
 from importlib.resources import files
 
-from ..extras import install_hint
+from ..core.extras import install_hint
 from ..io import FileFormatError
 
 __all__ = ["source_name", "crx2rnx_program", "CompactRinexPipe", "open_rinex_lines",

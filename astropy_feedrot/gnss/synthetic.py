@@ -14,7 +14,7 @@ import numpy as np
 from astropy import units as u
 from astropy.time import Time
 
-from ..orbits import Orbit, TLEOrbit
+from ..transmitters.orbits import Orbit, TLEOrbit
 
 __all__ = ["CONSTELLATIONS", "constellation", "write_sp3", "write_rinex"]
 
@@ -81,7 +81,7 @@ def write_sp3(path, orbits, start, epochs, interval=900.0):
     Parameters
     ----------
     path : str or path-like
-    orbits : dict of str to `~astropy_feedrot.orbits.Orbit`
+    orbits : dict of str to `~astropy_feedrot.transmitters.orbits.Orbit`
     start : `~astropy.time.Time`
         First epoch (a GPS-time instant on the interval's grid).
     epochs : int

@@ -11,15 +11,13 @@
   `check_tle_line` and `check_tle_pair` check element lines field by field.
 
 Visibility files (FITS-IDI, UVFITS, Measurement Sets...) are read and
-corrected by `astropy_feedrot.visibilities`; the names this package gave
-them until 0.2 (``fitsidi_antennas``, ``uvfits_antennas``,
-``correct_fitsidi``, ``writing_program``, ``WritingProgram``, ``open_fits``,
-``FITSFormatError``) still work for one release, with a
-`DeprecationWarning`.
+corrected by `astropy_feedrot.visibilities`.
 
 Epochs come back as astropy `~astropy.time.Time`, converted from the file's
 GNSS time system; files that break their format raise `FileFormatError`,
 whose message names the file and the line.
+
+May import: ``core``.
 
 Examples
 --------
@@ -48,17 +46,6 @@ from .sinex import SatelliteMetadata, read_satellite_metadata
 from .sp3 import SP3Data, read_sp3
 from .tle import TLE, check_tle_line, check_tle_pair, read_tle
 
-# Visibility files moved to astropy_feedrot.visibilities; their old names
-# here resolve there, with a DeprecationWarning, until the next release.
-_MOVED = {
-    "fitsidi_antennas": "fitsidi",
-    "correct_fitsidi": "fitsidi",
-    "uvfits_antennas": "uvfits",
-    "writing_program": "antenna_tables",
-    "WritingProgram": "antenna_tables",
-    "open_fits": "antenna_tables",
-    "FITSFormatError": "antenna_tables",
-}
 
 __all__ = [
     "read_sp3",
@@ -76,17 +63,3 @@ __all__ = [
     "check_epoch",
     "epochs_to_time",
 ]
-
-
-def __getattr__(name):
-    if name in _MOVED:
-        import importlib
-        import warnings
-
-        # A module above this one: loaded on use only, for the deprecated names.
-        module = f"astropy_feedrot.visibilities.{_MOVED[name]}"
-        warnings.warn(f"astropy_feedrot.io.{name} moved to {module}.{name} (also "
-                      f"astropy_feedrot.visibilities.{name}); the old name goes in the next "
-                      "release", DeprecationWarning, stacklevel=2)
-        return getattr(importlib.import_module(module), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

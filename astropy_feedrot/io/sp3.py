@@ -64,7 +64,7 @@ import numpy as np
 from astropy import units as u
 from astropy.time import Time
 
-from ..exceptions import OrbitWarning, warn_caller
+from ..core.exceptions import OrbitWarning, warn_caller
 from ._common import (
     TIME_SYSTEMS,
     FileFormatError,

@@ -67,7 +67,7 @@ class TLE(NamedTuple):
     Examples
     --------
     >>> from astropy_feedrot.io import TLE
-    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
     >>> TLE("GPS SVN 76", *GPS_SVN76_TLE).catalog_number
     '41328'
     """
@@ -97,7 +97,7 @@ def tle_checksum(line):
     Examples
     --------
     >>> from astropy_feedrot.io.tle import tle_checksum
-    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
     >>> tle_checksum(GPS_SVN76_TLE[0]), GPS_SVN76_TLE[0][68]
     (5, '5')
     """
@@ -178,7 +178,7 @@ def check_tle_line(line, number):
     Examples
     --------
     >>> from astropy_feedrot.io.tle import check_tle_line
-    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
     >>> line2 = GPS_SVN76_TLE[1]
     >>> check_tle_line(line2, 2) == line2
     True
@@ -224,7 +224,7 @@ def check_tle_pair(line1, line2):
     Examples
     --------
     >>> from astropy_feedrot.io.tle import check_tle_pair
-    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
     >>> check_tle_pair(*GPS_SVN76_TLE) == GPS_SVN76_TLE
     True
     """
@@ -272,7 +272,7 @@ def read_tle(source):
     --------
     >>> import io
     >>> from astropy_feedrot.io import read_tle
-    >>> from astropy_feedrot.simulations import GPS_SVN76_TLE
+    >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
     >>> text = "GPS SVN 76\\n" + "\\n".join(GPS_SVN76_TLE) + "\\n"
     >>> [(tle.name, tle.catalog_number) for tle in read_tle(io.StringIO(text))]
     [('GPS SVN 76', '41328')]

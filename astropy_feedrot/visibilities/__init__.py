@@ -35,6 +35,9 @@ One module per format, on shared steps:
   antennas`` and ``feedrot correct`` use them.
 
 pyuvdata and python-casacore are optional and imported on first use.
+
+May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
+``engine``, ``stations``, ``applied``.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
@@ -71,9 +74,9 @@ from .receptors import (
     with_receptors,
 )
 from .rows import FRAMES, distinct_epochs, feed_rotation_rows, frame_position_angle
+from .unusable import UnusableAntenna
 from .uvdata import antennas_from_uvdata, correct_uvdata, feed_rotation_uvdata
 from .uvdata_files import PYUVDATA_TYPES, WRITERS, read_uvdata, write_uvdata
-from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 
 __all__ = [

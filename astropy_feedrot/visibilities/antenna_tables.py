@@ -6,7 +6,7 @@ Both formats describe the antennas in a binary table: ``ARRAY_GEOMETRY``
 AN`` (both) in UVFITS. `read_antennas` turns them into
 `~astropy_feedrot.Antenna` objects; `writing_program` finds the program that
 wrote the file, which decides what the ``MNTSTA`` codes 6 and 7 mean
-(`astropy_feedrot.labels`). :doc:`/fitsidi` gives the conventions and their
+(`astropy_feedrot.stations.labels`). :doc:`/fitsidi` gives the conventions and their
 sources.
 """
 
@@ -18,10 +18,10 @@ from astropy import units as u
 from astropy.coordinates import EarthLocation
 from astropy.io import fits
 
-from ..antenna import Antenna
-from ..labels import SOFTWARE, is_orbiting, mount_from_label
-from ..receptors import Receptors
+from ..antennas.receptors import Receptors
+from ..engine.antenna import Antenna
 from ..io import FileFormatError
+from ..stations.labels import SOFTWARE, is_orbiting, mount_from_label
 from .unusable import UnusableAntenna, check_unusable, orbiting_reason
 
 __all__ = ["FITSFormatError", "WritingProgram", "writing_program", "read_antennas",
@@ -100,7 +100,7 @@ class WritingProgram(NamedTuple):
         ``'casacore'`` (CASA ``exportuvfits``), ``'difx'``, ``'pyuvdata'``,
         ``'aips'`` or ``'unknown'``.
     software : str or None
-        The `~astropy_feedrot.labels.SOFTWARE` convention of its ``MNTSTA``
+        The `~astropy_feedrot.stations.labels.SOFTWARE` convention of its ``MNTSTA``
         codes, or None when the headers do not tell it.
     codes : tuple of int or None
         Without ``software``, the codes that can still be read (those that
@@ -477,7 +477,7 @@ def read_antennas(path, kind, *, vertical="geodetic", software=None, unusable="r
         Passed to each `~astropy_feedrot.Antenna`.
     software : str, optional
         The ``MNTSTA`` convention (a ``fits-idi:*`` name of
-        `~astropy_feedrot.labels.SOFTWARE`); by default that of the program
+        `~astropy_feedrot.stations.labels.SOFTWARE`); by default that of the program
         that wrote the file (`writing_program`).
     unusable : {'raise', 'keep'}, optional
         What to do with an antenna that cannot be described: its ``MNTSTA``

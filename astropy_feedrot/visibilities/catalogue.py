@@ -36,11 +36,11 @@ from typing import NamedTuple
 import numpy as np
 from astropy import units as u
 
-from ..antenna import Antenna
-from ..focus import CassegrainFocus
-from ..labels import mount_from_label
-from ..exceptions import CatalogueMountWarning, CatalogueReceptorsWarning, warn_caller
-from ..stations import StationCatalogue, default_catalogue, read_catalogue
+from ..antennas.focus import CassegrainFocus
+from ..core.exceptions import CatalogueMountWarning, CatalogueReceptorsWarning, warn_caller
+from ..engine.antenna import Antenna
+from ..stations.catalogue import StationCatalogue, default_catalogue, read_catalogue
+from ..stations.labels import mount_from_label
 from .receptors import with_receptors
 from .unusable import UnusableAntenna
 
@@ -180,7 +180,7 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     """The antennas, given the station catalogue's receptors where they have none.
 
     An antenna without receptors takes those the catalogue states for the
-    station of its name (`~astropy_feedrot.stations.StationCatalogue.stations_named`;
+    station of its name (`~astropy_feedrot.stations.catalogue.StationCatalogue.stations_named`;
     of the stations a shared name stands for, the one near the antenna) if
     the antenna lies within ``tolerance`` of it: a name alone could be
     another telescope's. Where its name gives no station (no name, a name
@@ -228,7 +228,7 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     ------
     TypeError, ValueError, FileNotFoundError
         For a catalogue that cannot be read, as
-        `~astropy_feedrot.stations.read_catalogue`.
+        `~astropy_feedrot.stations.catalogue.read_catalogue`.
 
     Warns
     -----

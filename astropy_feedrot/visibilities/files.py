@@ -29,9 +29,9 @@ from pathlib import Path
 import numpy as np
 from astropy.table import Table
 
-from ..focus import CassegrainFocus
-from ..labels import label_from_mount
-from ..outputs import publish, same_file
+from ..antennas.focus import CassegrainFocus
+from ..core.outputs import publish, same_file
+from ..stations.labels import label_from_mount
 from .antenna_tables import writing_program
 from .catalogue import (
     CATALOGUE_TOLERANCE,
@@ -46,9 +46,9 @@ from .ms import correct_ms
 from .ms_antennas import ms_antennas
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import convention_options
+from .unusable import UnusableAntenna
 from .uvdata import antennas_from_uvdata, correct_uvdata
 from .uvdata_files import PYUVDATA_TYPES, read_uvdata, write_uvdata
-from .unusable import UnusableAntenna
 from .uvfits import uvfits_antennas
 
 __all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
@@ -87,7 +87,7 @@ def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
         `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
         the catalogue takes where the two differ: the file's (default) or
         the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`).
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         The station catalogue the mounts are compared with (default: the
         embedded one); False for none.
 
@@ -100,7 +100,7 @@ def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
         `~astropy_feedrot.visibilities.UnusableAntenna` saying why.
     software : str
         The label convention of the file (one of
-        `~astropy_feedrot.labels.SOFTWARE`), in which `antenna_table`
+        `~astropy_feedrot.stations.labels.SOFTWARE`), in which `antenna_table`
         writes the labels back.
 
     Raises
@@ -150,11 +150,11 @@ def antenna_table(antennas, software=None, *, catalogue=None):
     antennas : dict
         ``{antenna number: Antenna or UnusableAntenna}``.
     software : str, optional
-        A convention of `~astropy_feedrot.labels.SOFTWARE`: adds the column
+        A convention of `~astropy_feedrot.stations.labels.SOFTWARE`: adds the column
         ``label``, the mount label of each antenna in that convention (empty
         where the convention has none; the file's own label for an
         antenna that cannot be described).
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         Adds the catalogue's station of each antenna
         (`~astropy_feedrot.visibilities.catalogue_stations`): the embedded
         catalogue by default, another, or False for none.
@@ -186,7 +186,7 @@ def antenna_table(antennas, software=None, *, catalogue=None):
     ('VLA_W9', '')
 
     (casacore wrote a blank ``POLTYB`` for this file: the second receptor
-    is completed from the first, `~astropy_feedrot.receptors.Receptors.paired`.)
+    is completed from the first, `~astropy_feedrot.antennas.receptors.Receptors.paired`.)
     """
     numbers = sorted(antennas)
     matches = catalogue_stations(antennas, catalogue)
@@ -378,7 +378,7 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     client : `dask.distributed.Client`, optional
         For FITS-IDI and Measurement Sets, correct the chunks of rows on its
         workers.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs: the station catalogue's receptors of the station of
         the antenna's name, if the antenna lies within

@@ -22,12 +22,12 @@ from astropy.coordinates import FK4, ICRS, SkyCoord
 from astropy.io import fits
 from astropy.time import Time
 
-from ..correction import correct_receptor_visibilities
-from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
-from ..outputs import new_file_mode, publish, same_file
-from ..progress import progress_steps
-from ..receptors import PRODUCT_CODES, basis_of
+from ..antennas.receptors import PRODUCT_CODES, basis_of
+from ..applied.correction import correct_receptor_visibilities
+from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.outputs import new_file_mode, publish, same_file
+from ..core.progress import progress_steps
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .catalogue import catalogue_mounts, catalogue_receptors
 from .history import check_direction, check_history, history_entry
@@ -40,7 +40,8 @@ from .unusable import UnusableAntenna, given_feeds, usable_antennas, warn_skippe
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
 #: The polarization codes of the ``STOKES`` axis (FITS-IDI, UVFITS, casacore,
-#: pyuvdata and DiFX agree) that can be corrected: `~astropy_feedrot.receptors.PRODUCT_CODES`.
+#: pyuvdata and DiFX agree) that can be corrected:
+#: `~astropy_feedrot.antennas.receptors.PRODUCT_CODES`.
 STOKES_CODES = PRODUCT_CODES
 
 # Time systems of the TIMSYS keyword, as astropy scales (AIPS says IAT for TAI).
@@ -636,7 +637,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers (each maps and writes its own rows
         of the copy); the output is bit for bit the serial one.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, else by position, else by the primary header's

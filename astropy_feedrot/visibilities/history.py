@@ -22,8 +22,8 @@ direction undoes the first and is allowed.
 
 import re
 
-from .. import __version__
-from ..correction import DIRECTIONS
+from ..applied.correction import DIRECTIONS
+from ..core.version import version as __version__
 
 __all__ = ["HISTORY_MARK", "APPLY_MARK", "DIRECTIONS", "history_entry", "last_direction",
            "check_history", "check_direction", "CorrectionRefused", "OPTION_WORDS",

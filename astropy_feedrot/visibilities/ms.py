@@ -27,17 +27,16 @@ from astropy import units as u
 from astropy.coordinates import FK4, FK5, ICRS, SkyCoord
 from astropy.time import Time
 
-from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..progress import progress_steps
-from ..receptors import basis_of
+from ..antennas.receptors import basis_of
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.progress import progress_steps
+from .catalogue import catalogue_mounts, check_mounts_option
 from .history import check_direction, history_entry
-from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of
-from .ms_chunks import tables as _tables
 from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, subtable
+from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of, tables as _tables
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles
-from .catalogue import catalogue_mounts, check_mounts_option
 from .unusable import given_feeds, usable_antennas, warn_skipped
 
 __all__ = ["correct_ms", "CORR_TYPES", "MSError"]
@@ -389,7 +388,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         (default) or the catalogue's
         (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
         ``MOUNT`` is empty or has no model takes its station's).
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         The station catalogue ``mounts`` compares with: the embedded one by
         default, another, or False for none.
 
@@ -440,7 +439,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     -----
     The visibilities of a Measurement Set are :math:`\\langle v_1 v_2^*
     \\rangle` (casacore), corrected with
-    `~astropy_feedrot.correction.correct_receptor_visibilities`. Each chunk
+    `~astropy_feedrot.applied.correction.correct_receptor_visibilities`. Each chunk
     is written as soon as it is corrected, and the output column's keyword
     ``FEEDROT_PARTIAL`` records the rows done until the end. If the run is
     interrupted (Ctrl-C, an error), ``data_column`` is intact unless it is

@@ -2,7 +2,7 @@
 """The antennas of a Measurement Set and the receptors of its ``FEED`` table.
 
 * `ms_antennas` reads the ``ANTENNA`` table (``POSITION``, ``MOUNT`` through
-  `astropy_feedrot.labels`) and the receptors of the ``FEED`` table; an
+  `astropy_feedrot.stations.labels`) and the receptors of the ``FEED`` table; an
   antenna that cannot be described (an orbiting one, an empty or unknown
   ``MOUNT``, receptors that are not a pair) is refused or kept as an
   `~astropy_feedrot.visibilities.UnusableAntenna`.
@@ -21,9 +21,9 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import EarthLocation
 
-from ..antenna import Antenna
-from ..labels import is_orbiting, mount_from_label
-from ..receptors import Receptors
+from ..antennas.receptors import Receptors
+from ..engine.antenna import Antenna
+from ..stations.labels import is_orbiting, mount_from_label
 from .kinds import existing_path, file_kind
 from .ms_chunks import tables as _tables
 from .ms_tables import MSError
@@ -121,7 +121,7 @@ def ms_antennas(ms, *, vertical="geodetic", unusable="raise"):
     -------
     dict
         ``{ANTENNA row: Antenna}``: ``NAME``, ``POSITION`` (ITRF) and
-        ``MOUNT`` (casacore's labels, `~astropy_feedrot.labels`) of every
+        ``MOUNT`` (casacore's labels, `~astropy_feedrot.stations.labels`) of every
         row but those flagged or at the geocentre (placeholders); the
         receptors of the antenna's ``FEED`` rows when they all agree (None
         when it has none, or several sets: `correct_ms` then takes each

@@ -20,9 +20,9 @@ import uuid
 import astropy.units as u
 import numpy as np
 
-from ..correction import correct_receptor_visibilities
-from ..extras import install_hint
-from ..kept import heap_keeps_chunks, release_thread_buffer, thread_buffer
+from ..applied.correction import correct_receptor_visibilities
+from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
+from ..core.extras import install_hint
 from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
@@ -247,7 +247,7 @@ _VALUE_TYPES = {"complex": np.complex64, "dcomplex": np.complex128}
 
 def _read(table, column, start, n=None):
     """Rows of a column of one cell shape, read into the buffer this thread keeps
-    (`~astropy_feedrot.kept.thread_buffer`: a new 32 MiB array for each chunk took a
+    (`~astropy_feedrot.core.cache.thread_buffer`: a new 32 MiB array for each chunk took a
     tenth of a second to fault in here): ``n`` rows from ``start``, or the runs
     ``start`` [(first row, count), ...] one after the other."""
     runs = [(start, n)] if n is not None else start

@@ -26,11 +26,11 @@ import numpy as np
 from astropy import units as u
 from astropy.time import Time
 
-from ..antenna import Antenna
-from ..exceptions import DegenerateGeometryWarning, ReceptorAngleWarning, warn_caller
-from ..frames import local_frame
-from ..mounts import FixedAxisMount
-from ..receptors import RECEPTOR_TYPES, Receptors, basis_of
+from ..antennas.mounts import FixedAxisMount
+from ..antennas.receptors import RECEPTOR_TYPES, Receptors, basis_of
+from ..core.exceptions import DegenerateGeometryWarning, ReceptorAngleWarning, warn_caller
+from ..earth.frames import local_frame
+from ..engine.antenna import Antenna
 from .rows import feed_rotation_rows
 
 __all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
@@ -63,7 +63,7 @@ def check_receptors(receptors, products, label, where="the data",
 
     Parameters
     ----------
-    receptors : `~astropy_feedrot.receptors.Receptors` or None
+    receptors : `~astropy_feedrot.antennas.receptors.Receptors` or None
         The receptors of one antenna.
     products : sequence of str
         The products of the data (``'RR'``, ``'XY'``...).
@@ -89,7 +89,7 @@ def check_receptors(receptors, products, label, where="the data",
     Examples
     --------
     >>> import astropy.units as u
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities import check_receptors
     >>> check_receptors(Receptors("XY", [0, 90] * u.deg), ["RR", "LL"], "antenna 1", "x.ms")
     Traceback (most recent call last):
@@ -130,15 +130,16 @@ def warn_unusual_angles(antennas, where="the data"):
     ReceptorAngleWarning
         When the second circular receptor of some antennas lies by other
         than 0 or 90 deg from the first
-        (`~astropy_feedrot.receptors.Receptors.unusual_offset`): both receptors turn
-        with the first's angle, as in CASA (`~astropy_feedrot.receptors.Receptors.sky_angles`).
+        (`~astropy_feedrot.antennas.receptors.Receptors.unusual_offset`): both receptors turn
+        with the first's angle, as in CASA
+        (`~astropy_feedrot.antennas.receptors.Receptors.sky_angles`).
 
     Examples
     --------
     >>> import warnings
     >>> import astropy.units as u
     >>> from astropy_feedrot import get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities import warn_unusual_angles, with_receptors
     >>> antennas = with_receptors({1: get_antenna("EFLSBERG")}, Receptors("RL", [20, 50] * u.deg))
     >>> with warnings.catch_warnings(record=True) as caught:
@@ -241,7 +242,7 @@ def receptor_position_angles(antennas, antenna1, antenna2, obstime, sources,
     >>> from astropy.time import Time
     >>> from astropy.coordinates import SkyCoord
     >>> from astropy_feedrot import get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities import receptor_position_angles
     >>> import astropy.units as u
     >>> from astropy_feedrot.visibilities import with_receptors
@@ -333,7 +334,7 @@ class ReceptorAngleTable:
     >>> from astropy.time import Time
     >>> from astropy.coordinates import SkyCoord
     >>> from astropy_feedrot import get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities import ReceptorAngleTable, with_receptors
     >>> antennas = with_receptors({1: get_antenna("FD-VLBA"), 2: get_antenna("PIETOWN")},
     ...                           Receptors("RL", [0, 0] * u.deg))
@@ -486,7 +487,7 @@ def with_receptors(antennas, receptors, *, replace=False):
     --------
     >>> import astropy.units as u
     >>> from astropy_feedrot import get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities import with_receptors
     >>> antennas = with_receptors({1: get_antenna("EFLSBERG")}, Receptors("XY", [0, 90] * u.deg))
     >>> antennas[1].receptors.types

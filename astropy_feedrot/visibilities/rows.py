@@ -24,11 +24,11 @@ from astropy.coordinates import (
     frame_transform_graph,
 )
 
-from ..antenna import Antenna
-from ..eop import iers_context
-from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..grid import feed_rotation_grid
-from ..inputs import as_skycoord, as_time
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.inputs import as_skycoord, as_time
+from ..earth.eop import iers_context
+from ..engine.antenna import Antenna
+from ..engine.grid import feed_rotation_grid
 from .unusable import UnusableAntenna
 
 __all__ = ["feed_rotation_rows", "frame_position_angle", "distinct_epochs", "FRAMES"]
@@ -328,7 +328,7 @@ def feed_rotation_rows(antennas, antenna1, antenna2, obstime, sources, source_in
     >>> from astropy.coordinates import SkyCoord
     >>> from astropy.time import Time
     >>> from astropy_feedrot.visibilities.rows import feed_rotation_rows
-    >>> from astropy_feedrot.stations import get_antenna
+    >>> from astropy_feedrot.stations.catalogue import get_antenna
     >>> antennas = {1: get_antenna("FD-VLBA"), 2: get_antenna("EFLSBERG")}
     >>> times = Time("2023-01-25T20:00") + [0, 0, 1] * u.hour
     >>> rows = feed_rotation_rows(antennas, [1, 2, 1], [2, 1, 2], times,

@@ -21,8 +21,8 @@ at one angle, as LWA and PAPER Measurement Sets give ``RECEPTOR_ANGLE`` [0,
   reason, unless receptors are given for it (``feeds=``, ``--feeds X,Y``).
 """
 
-from ..antenna import Antenna
-from ..exceptions import UncorrectedBaselinesWarning, warn_caller
+from ..core.exceptions import UncorrectedBaselinesWarning, warn_caller
+from ..engine.antenna import Antenna
 
 __all__ = ["UnusableAntenna", "UNUSABLE", "PROBLEMS", "check_unusable", "given_feeds",
            "usable_antennas", "warn_skipped", "orbiting_reason"]
@@ -110,7 +110,7 @@ class UnusableAntenna:
         --------
         >>> import astropy.units as u
         >>> from astropy_feedrot import AltAzMount, get_antenna
-        >>> from astropy_feedrot.receptors import Receptors
+        >>> from astropy_feedrot.antennas.receptors import Receptors
         >>> from astropy_feedrot.visibilities import UnusableAntenna
         >>> lwa = UnusableAntenna(get_antenna("VLA_W9").location, "LWA001", "receptors",
         ...                       "parallel receptors", mount=AltAzMount())
@@ -196,7 +196,7 @@ def given_feeds(antennas, feeds):
     --------
     >>> import astropy.units as u
     >>> from astropy_feedrot import AltAzMount, get_antenna
-    >>> from astropy_feedrot.receptors import Receptors
+    >>> from astropy_feedrot.antennas.receptors import Receptors
     >>> from astropy_feedrot.visibilities.unusable import UnusableAntenna, given_feeds
     >>> lwa = UnusableAntenna(get_antenna("VLA_W9").location, "LWA001", "receptors",
     ...                       "parallel receptors", mount=AltAzMount())

@@ -22,21 +22,20 @@ from astropy import units as u
 from astropy.coordinates import Angle, EarthLocation
 from astropy.time import Time
 
-from ..antenna import Antenna
-from ..correction import correct_receptor_visibilities
-from ..eop import iers_context
-from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..frames import VERTICALS
-from ..labels import is_orbiting, mount_from_label
-from ..mounts import AltAzMount
-from ..progress import progress_steps
-from ..receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
+from ..antennas.mounts import AltAzMount
+from ..antennas.receptors import PRODUCT_CODES, RECEPTOR_TYPES, Receptors, basis_of
+from ..applied.correction import correct_receptor_visibilities
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.progress import progress_steps
+from ..earth.eop import iers_context
+from ..earth.frames import VERTICALS
+from ..engine.antenna import Antenna
+from ..stations.labels import is_orbiting, mount_from_label
 from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
 from .poles import convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles, with_receptors
-from .uvdata_files import check_uvdata
 from .unusable import (
     UnusableAntenna,
     check_unusable,
@@ -45,6 +44,7 @@ from .unusable import (
     usable_antennas,
     warn_skipped,
 )
+from .uvdata_files import check_uvdata
 
 __all__ = [
     "antennas_from_uvdata",
@@ -166,8 +166,8 @@ def antennas_from_uvdata(uv, *, vertical="geodetic", unusable="raise"):
         ``{antenna number: Antenna}`` for every antenna of the telescope, at
         its absolute position (``telescope.location`` plus
         ``antenna_positions``), with the mount and focus of its
-        ``mount_type`` (`~astropy_feedrot.labels.mount_from_label`, convention
-        ``'pyuvdata'``) and its receptors (`~astropy_feedrot.receptors.Receptors`).
+        ``mount_type`` (`~astropy_feedrot.stations.labels.mount_from_label`, convention
+        ``'pyuvdata'``) and its receptors (`~astropy_feedrot.antennas.receptors.Receptors`).
 
     Raises
     ------
@@ -182,7 +182,7 @@ def antennas_from_uvdata(uv, *, vertical="geodetic", unusable="raise"):
 
     Notes
     -----
-    Receptor angles :math:`\\alpha` (`~astropy_feedrot.receptors`) come from
+    Receptor angles :math:`\\alpha` (`~astropy_feedrot.antennas.receptors`) come from
     ``feed_angle``: for steerable mounts pyuvdata's 0 is the direction toward
     the zenith, as here, so :math:`\\alpha` = ``feed_angle``. For ``'fixed'``
     antennas (a `~astropy_feedrot.StationaryMount`, whose reference dipole
@@ -464,7 +464,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     redo : bool, optional
         Correct data whose history says they were corrected in the same
         direction already.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
         Where antennas that neither the data nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, by position, or by ``telescope.name``): the embedded
@@ -522,9 +522,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     Notes
     -----
     The visibilities follow pyuvdata's convention, the complex conjugate of
-    :math:`\\langle v_1 v_2^* \\rangle` (`~astropy_feedrot.correction.correct_receptor_visibilities`
-    with ``conjugate=True``). Autocorrelations are corrected as any row:
-    RR and LL do not change, RL and LR turn by twice the feed rotation, and
+    :math:`\\langle v_1 v_2^* \\rangle`
+    (`~astropy_feedrot.applied.correction.correct_receptor_visibilities` with
+    ``conjugate=True``). Autocorrelations are corrected as any row: RR and LL do not change, RL and LR turn by twice the feed rotation, and
     for linear feeds the parallel hands are set exactly real (the corrected
     coherency is Hermitian; only rounding made them complex).
 

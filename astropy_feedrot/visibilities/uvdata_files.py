@@ -20,9 +20,9 @@ import numpy as np
 from astropy import units as u
 from astropy.coordinates import EarthLocation
 
-from ..eop import iers_context
-from ..extras import install_hint
-from ..outputs import publish
+from ..core.extras import install_hint
+from ..core.outputs import publish
+from ..earth.eop import iers_context
 
 __all__ = ["read_uvdata", "write_uvdata", "WRITERS", "PYUVDATA_TYPES", "UVDATA_EXTRA",
            "pyuvdata_module", "check_uvdata", "offline_sites"]

@@ -38,7 +38,7 @@ def uvfits_antennas(path, *, vertical="geodetic", software=None, unusable="raise
     dict
         ``{antenna number (NOSTA): Antenna}``, each with its name
         (``ANNAME``), ITRF position (``STABXYZ`` and ``ARRAYX/Y/Z``), mount
-        and focus (``MNTSTA``) and `~astropy_feedrot.receptors.Receptors`
+        and focus (``MNTSTA``) and `~astropy_feedrot.antennas.receptors.Receptors`
         (``POLTYA``, ``POLAA``, ``POLTYB``, ``POLAB``).
 
     Raises

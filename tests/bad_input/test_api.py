@@ -13,7 +13,7 @@ import erfa
 import numpy as np
 import pytest
 from astropy import units as u
-from astropy.coordinates import HADec, ICRS, ITRS, EarthLocation, SkyCoord
+from astropy.coordinates import ICRS, ITRS, EarthLocation, HADec, SkyCoord
 from astropy.table import MaskedColumn, Table
 from astropy.time import Time
 from astropy.utils.masked import Masked
@@ -36,14 +36,20 @@ from astropy_feedrot import (
     rotation_delay,
     unwrap,
 )
-from astropy_feedrot.correction import (
-    baseline_rr_ll,
+from astropy_feedrot.applied.correction import (
     correct_linear_visibilities,
     correct_phase,
     correct_visibilities,
 )
+from astropy_feedrot.applied.feed_rotation_tables import (
+    baseline_summary,
+    baseline_table,
+    feed_rotation_table,
+)
+from astropy_feedrot.applied.rr_ll import baseline_rr_ll
+from astropy_feedrot.applied.simulations import gps_svn76
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.frames import (
+from astropy_feedrot.earth.frames import (
     as_elevation_limit,
     check_station_xyz,
     fill_masked,
@@ -52,16 +58,14 @@ from astropy_feedrot.frames import (
     source_direction,
     time_axis,
 )
-from astropy_feedrot.grid import (
+from astropy_feedrot.engine.grid import (
     feed_rotation_grid,
     feed_rotation_grid_dask,
     receiver_arrays,
     rotation_delay_grid,
     wind_up,
 )
-from astropy_feedrot.simulations import gps_svn76
-from astropy_feedrot.stations import StationCatalogue, get_antenna
-from astropy_feedrot.tables import baseline_summary, baseline_table, feed_rotation_table
+from astropy_feedrot.stations.catalogue import StationCatalogue, get_antenna
 
 SITE = SITES["WETTZ13S"]
 SOURCE = SkyCoord(ra=49.95 * u.deg, dec=41.51 * u.deg)
@@ -323,7 +327,6 @@ def test_itrs_position_is_differenced_with_site():
 
 def test_source_direction_agrees_with_altaz():
     from astropy.coordinates import AltAz
-
     from helpers import MAS, sky_grid
 
     grid = sky_grid(30)[:, np.newaxis]
@@ -340,7 +343,7 @@ def test_computations_stay_offline():
     from astropy.utils import iers
 
     from astropy_feedrot import conf
-    from astropy_feedrot.eop import iers_context
+    from astropy_feedrot.earth.eop import iers_context
 
     with iers.conf.set_temp("auto_download", True):
         with iers_context():

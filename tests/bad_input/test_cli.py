@@ -17,14 +17,13 @@ import sys
 
 import pytest
 from astropy.table import Table
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 import astropy_feedrot.cli.common
 import astropy_feedrot.cli.tables
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
 from astropy_feedrot.cli import CELESTIAL_FRAMES, main
 from astropy_feedrot.data import sample_file
-from astropy_feedrot.simulations import GPS_SVN76_TLE
 
 SOURCE = "03h19m48.16s +41d30m42.1s"  # 3C 84
 SPAN = ["--start", "2023-01-25T18:00", "--stop", "2023-01-25T22:00", "--step", "1h"]

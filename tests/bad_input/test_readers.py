@@ -18,12 +18,12 @@ import numpy as np
 import pytest
 from astropy import units as u
 from astropy.time import Time
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 from helpers import SP3_DESCRIPTORS
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 import astropy_feedrot.data
 from astropy_feedrot import OrbitWarning, QuaternionAttitude, SP3Orbit, TLEOrbit
+from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
 from astropy_feedrot.io import (
     FileFormatError,
     check_tle_line,
@@ -32,8 +32,7 @@ from astropy_feedrot.io import (
     read_sp3,
     read_tle,
 )
-from astropy_feedrot.orbits import propagate_tles
-from astropy_feedrot.simulations import GPS_SVN76_TLE
+from astropy_feedrot.transmitters.orbits import propagate_tles
 
 SAMPLES = pathlib.Path(astropy_feedrot.data.__file__).parent
 SP3_C = SAMPLES / "sample.sp3"
@@ -1003,7 +1002,7 @@ def test_orbit_warnings_name_the_calling_line():
     from astropy.coordinates import EarthLocation
 
     from astropy_feedrot import AltAzMount, Antenna, Satellite
-    from astropy_feedrot.grid import feed_rotation_grid
+    from astropy_feedrot.engine.grid import feed_rotation_grid
 
     t = Time("2023-01-25") + np.arange(0, 5, 0.5) * u.day
     with pytest.warns(OrbitWarning) as caught:
