@@ -524,9 +524,10 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     The visibilities follow pyuvdata's convention, the complex conjugate of
     :math:`\\langle v_1 v_2^* \\rangle`
     (`~astropy_feedrot.applied.correction.correct_receptor_visibilities` with
-    ``conjugate=True``). Autocorrelations are corrected as any row: RR and LL do not change, RL and LR turn by twice the feed rotation, and
-    for linear feeds the parallel hands are set exactly real (the corrected
-    coherency is Hermitian; only rounding made them complex).
+    ``conjugate=True``). Autocorrelations are corrected as any row: RR and LL
+    do not change, RL and LR turn by twice the feed rotation, and for linear
+    feeds the parallel hands are set exactly real (the corrected coherency is
+    Hermitian; only rounding made them complex).
 
     Examples
     --------
