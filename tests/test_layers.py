@@ -152,3 +152,69 @@ def test_earth_orientation_does_not_import_frames():
     # The orientation of the Earth is below the astropy frames layer of earth/.
     path = PACKAGE / "earth" / "orientation.py"
     assert "earth.frames" not in {t for t, _ in package_imports(path, "earth.orientation", False)}
+
+
+# --- docs/architecture.rst follows the code ----------------------------------------------
+
+ARCHITECTURE = PACKAGE.parent / "docs" / "architecture.rst"
+
+
+def architecture_table():
+    """The rows of the table of folders: {folder: (modules, may import)}."""
+    import re
+
+    text = ARCHITECTURE.read_text()
+    table = text.split(".. list-table:: The folders")[1].split("\n\n")[1]
+    rows = {}
+    for row in table.split("   * - ")[2:]:
+        cells = [" ".join(cell.split()) for cell in row.split("\n     - ")]
+        folder = cells[0].strip("`")
+        modules = set(re.findall(r"``(\w+)``", re.sub(r"\([^)]*\)", "", cells[1])))
+        rows[folder] = (modules, cells[2])
+    return rows
+
+
+def test_architecture_names_every_module_in_its_folder():
+    rows = architecture_table()
+    folders = {name for name in MAY_IMPORT if (PACKAGE / name / "__init__.py").exists()}
+    assert set(rows) == folders - {"data"}
+    for folder, (modules, _) in rows.items():
+        actual = {p.stem for p in (PACKAGE / folder).glob("*.py")} - {"__init__"}
+        assert modules == actual, f"{folder}: the page names {modules ^ actual} wrongly"
+
+
+def test_architecture_says_what_each_folder_may_import():
+    import re
+
+    rows = architecture_table()
+    assert len(rows) == 11
+    for folder, (_, said) in rows.items():
+        allowed = MAY_IMPORT[folder] - {"_version", "data"}
+        if said == "every folder above":
+            names = list(architecture_table())
+            assert allowed == set(names[:names.index(folder)]), folder
+        elif said == "nothing":
+            assert allowed == set(), folder
+        else:
+            assert set(re.findall(r"``(\w+)``", said)) == allowed, folder
+
+
+def test_the_routes_of_the_architecture_page_exist():
+    # Every function a route names is where the page says it is.
+    import importlib
+    import re
+
+    text = ARCHITECTURE.read_text().split("The route of a call")[1]
+    names = set(re.findall(r"`(astropy_feedrot(?:\.\w+)+)`", text))
+    assert len(names) > 20
+    for name in sorted(names):
+        parts = name.split(".")
+        for cut in range(len(parts), 0, -1):
+            try:
+                obj = importlib.import_module(".".join(parts[:cut]))
+            except ImportError:
+                continue
+            for attribute in parts[cut:]:
+                obj = getattr(obj, attribute, None)
+                assert obj is not None, f"{name}: no {attribute}"
+            break
