@@ -653,7 +653,7 @@ def to_table(rows):
         "z": "ITRF geocentric Z at the epoch", "vx": "velocity in X", "vy": "velocity in Y",
         "vz": "velocity in Z", "epoch": "MJD of the position (nan: no velocity model)",
         "mount": "geodetic station-catalogue mount code",
-        "focus": "focus type (see astropy_feedrot.stations.catalogue.FOCUS_NAMES)",
+        "focus": "focus type (see astropy_feedrot.stations.FOCUS_NAMES)",
         "feed_offset": "constant angle of the feed a source states (eht-imaging FR_OFFSET), "
                        "0 where none does; get_antenna adds it as a fixed rotator",
         "position_source": "file and line, or paper table, of the position",

@@ -1,8 +1,8 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """The foci of the station catalogue's ``focus`` column, by name.
 
-Public as ``astropy_feedrot.stations.catalogue.FOCUS_NAMES`` and
-`astropy_feedrot.stations.catalogue.focus_from_name`; the command line's ``--focus``
+Public as ``astropy_feedrot.stations.FOCUS_NAMES`` and
+`astropy_feedrot.stations.focus_from_name`; the command line's ``--focus``
 takes the same names.
 """
 

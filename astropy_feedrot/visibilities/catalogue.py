@@ -180,7 +180,7 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     """The antennas, given the station catalogue's receptors where they have none.
 
     An antenna without receptors takes those the catalogue states for the
-    station of its name (`~astropy_feedrot.stations.catalogue.StationCatalogue.stations_named`;
+    station of its name (`~astropy_feedrot.stations.StationCatalogue.stations_named`;
     of the stations a shared name stands for, the one near the antenna) if
     the antenna lies within ``tolerance`` of it: a name alone could be
     another telescope's. Where its name gives no station (no name, a name
@@ -228,7 +228,7 @@ def catalogue_receptors(antennas, catalogue=None, *, numbers=None,
     ------
     TypeError, ValueError, FileNotFoundError
         For a catalogue that cannot be read, as
-        `~astropy_feedrot.stations.catalogue.read_catalogue`.
+        `~astropy_feedrot.stations.read_catalogue`.
 
     Warns
     -----

@@ -87,7 +87,7 @@ def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
         `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
         the catalogue takes where the two differ: the file's (default) or
         the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`).
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         The station catalogue the mounts are compared with (default: the
         embedded one); False for none.
 
@@ -154,7 +154,7 @@ def antenna_table(antennas, software=None, *, catalogue=None):
         ``label``, the mount label of each antenna in that convention (empty
         where the convention has none; the file's own label for an
         antenna that cannot be described).
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Adds the catalogue's station of each antenna
         (`~astropy_feedrot.visibilities.catalogue_stations`): the embedded
         catalogue by default, another, or False for none.
@@ -378,7 +378,7 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     client : `dask.distributed.Client`, optional
         For FITS-IDI and Measurement Sets, correct the chunks of rows on its
         workers.
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs: the station catalogue's receptors of the station of
         the antenna's name, if the antenna lies within

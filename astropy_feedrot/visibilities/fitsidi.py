@@ -637,7 +637,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers (each maps and writes its own rows
         of the copy); the output is bit for bit the serial one.
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the file nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, else by position, else by the primary header's

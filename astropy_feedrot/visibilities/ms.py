@@ -388,7 +388,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         (default) or the catalogue's
         (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
         ``MOUNT`` is empty or has no model takes its station's).
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         The station catalogue ``mounts`` compares with: the embedded one by
         default, another, or False for none.
 

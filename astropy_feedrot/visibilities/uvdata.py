@@ -464,7 +464,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     redo : bool, optional
         Correct data whose history says they were corrected in the same
         direction already.
-    catalogue : `~astropy_feedrot.stations.catalogue.StationCatalogue`, path or False, optional
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         Where antennas that neither the data nor ``feeds`` give receptors
         take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
         by name, by position, or by ``telescope.name``): the embedded
