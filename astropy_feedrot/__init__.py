@@ -65,8 +65,9 @@ from .engine.grid import (
 from .io import FileFormatError, read_orbex, read_sp3, read_tle
 from .stations.catalogue import StationCatalogue, get_antenna, read_catalogue
 from .stations.labels import label_from_mount, mount_from_label
-from .transmitters.nominal_attitude import NominalAttitude, QuaternionAttitude
+from .transmitters.nominal_attitude import NominalAttitude
 from .transmitters.orbits import CoordinateOrbit, SP3Orbit, TLEOrbit
+from .transmitters.quaternion_attitude import QuaternionAttitude
 from .transmitters.satellite import LineOfSight, Satellite
 from .transmitters.yaw_models import ModelAttitude
 

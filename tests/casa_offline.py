@@ -7,10 +7,10 @@ points the measures and data at casadata's copy and turns every automatic
 update off; ``HOME`` is that directory too, so the user's ``~/.casa`` is
 never read or written. ``casa_sim.py`` beside this file holds what CASA runs.
 
-The tests that need CASA are the files ``tests/test_casa*.py``. CASA is not
+The tests that need CASA are the files ``tests/visibilities/test_casa*.py``. CASA is not
 among the test dependencies (it weighs 1.5 GB): its own extra installs it,
 ``python -m pip install -e ".[test-casa]"``, and ``python -m pytest
-tests/test_casa*.py`` runs them. Without it they are skipped, saying why,
+tests/visibilities/test_casa*.py`` runs them. Without it they are skipped, saying why,
 except where ``FEEDROT_REQUIRE_CASA`` is set (``.ci/run`` sets it): there a
 missing CASA fails them.
 """

@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Run by tests/test_casa.py in a subprocess, with CASA configured offline there.
+"""Run by tests/visibilities/test_casa.py in a subprocess, with CASA configured offline there.
 
 ``python casa_sim.py simulate vla|alma OUT.ms``: CASA's simulator
 (casatools.simulator) observes a polarized point source (I = 1 Jy, Q = 0.06,

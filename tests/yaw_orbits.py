@@ -7,7 +7,7 @@ from astropy.coordinates import get_sun
 from astropy.time import Time
 
 from astropy_feedrot import TLEOrbit
-from astropy_feedrot.transmitters.nominal_attitude import sun_position
+from astropy_feedrot.transmitters.attitude_interface import sun_position
 from astropy_feedrot.transmitters.yaw_models import orbit_angles
 
 EPOCH = Time("2023-01-25T00:00:00", scale="utc")

@@ -14,8 +14,9 @@ from ..applied.feed_rotation_tables import baseline_table, feed_rotation_table
 from ..core.exceptions import OrbitWarning, warn_caller
 from ..core.outputs import CommandError
 from ..io import read_sp3, read_tle
-from ..transmitters.nominal_attitude import NominalAttitude, QuaternionAttitude
+from ..transmitters.nominal_attitude import NominalAttitude
 from ..transmitters.orbits import SP3Orbit, TLEOrbit
+from ..transmitters.quaternion_attitude import QuaternionAttitude
 from ..transmitters.satellite import Satellite
 from ..transmitters.sp3_orbit import POSITION_TOLERANCE, points_needed
 from .common import (

@@ -20,7 +20,7 @@ astropy's ``IERS_Auto`` does:
   column.
 
 The arrays are bit for bit those astropy's table gives
-(``tests/test_iers_files.py`` compares them); `bundled_arrays` is what
+(``tests/earth/test_iers_files.py`` compares them); `bundled_arrays` is what
 `astropy_feedrot.earth.eop.table_arrays` reads when astropy has no table loaded yet.
 Astropy 6, offline, serves the IERS-B table alone (`COMBINES_OFFLINE`), and
 so does `bundled_arrays` there.

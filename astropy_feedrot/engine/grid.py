@@ -39,7 +39,7 @@ from ..earth.eop import iers_context
 from ..earth.epochs import Epochs
 from ..earth.frames import as_elevation_limit, as_skycoord, as_time, location_xyz, source_direction
 from ..earth.orientation import distance_less
-from ..transmitters.nominal_attitude import Attitude
+from ..transmitters.attitude_interface import Attitude
 from ..transmitters.orbits import Orbit
 from ..transmitters.satellite import Satellite, check_transmitter_positions
 from . import equations, rates

@@ -47,13 +47,10 @@ from ..engine.equations import check_form
 from ..engine.grid import wind_up
 from ..io import SatelliteMetadata, read_orbex, read_satellite_metadata
 from ..io.sp3 import join_sp3
-from ..transmitters.nominal_attitude import (
-    Attitude,
-    NominalAttitude,
-    QuaternionAttitude,
-    interpolated_sun_position,
-)
+from ..transmitters.attitude_interface import Attitude, interpolated_sun_position
+from ..transmitters.nominal_attitude import NominalAttitude
 from ..transmitters.orbits import Orbit, SP3Orbit
+from ..transmitters.quaternion_attitude import QuaternionAttitude
 from ..transmitters.sp3_orbit import MAX_EXTRAPOLATION, points_needed
 from ..transmitters.yaw_models import LAWS, ModelAttitude, default_metadata
 from .arcs import Arcs, orbit_file_name

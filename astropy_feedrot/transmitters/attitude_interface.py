@@ -34,7 +34,7 @@ class Attitude:
     Examples
     --------
     >>> from astropy_feedrot import NominalAttitude, QuaternionAttitude
-    >>> from astropy_feedrot.transmitters.nominal_attitude import Attitude
+    >>> from astropy_feedrot.transmitters.attitude_interface import Attitude
     >>> issubclass(NominalAttitude, Attitude), issubclass(QuaternionAttitude, Attitude)
     (True, True)
     >>> NominalAttitude.needs_sun, Attitude.needs_sun
@@ -162,7 +162,7 @@ class Attitude:
         >>> import astropy.units as u
         >>> from astropy.time import Time
         >>> from astropy_feedrot import NominalAttitude, TLEOrbit
-        >>> from astropy_feedrot.transmitters.nominal_attitude import Attitude
+        >>> from astropy_feedrot.transmitters.attitude_interface import Attitude
         >>> from astropy_feedrot.earth.orientation import EarthOrientation
         >>> from astropy_feedrot.transmitters.orbits import Orbit
         >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
@@ -279,7 +279,7 @@ def sun_position(obstime):
     --------
     >>> import numpy as np
     >>> from astropy.time import Time
-    >>> from astropy_feedrot.transmitters.nominal_attitude import sun_position
+    >>> from astropy_feedrot.transmitters.attitude_interface import sun_position
     >>> au = np.linalg.norm(sun_position(Time("2023-01-25"))) / 1.495978707e11
     >>> round(float(au), 3)
     0.984
@@ -312,8 +312,8 @@ def interpolated_sun_position(orientation):
     >>> import numpy as np
     >>> import astropy.units as u
     >>> from astropy.time import Time
-    >>> from astropy_feedrot.transmitters.nominal_attitude import (interpolated_sun_position,
-    ...                                                            sun_position)
+    >>> from astropy_feedrot.transmitters.attitude_interface import (interpolated_sun_position,
+    ...                                                              sun_position)
     >>> from astropy_feedrot.earth.orientation import EarthOrientation
     >>> times = Time("2023-01-25") + np.arange(0, 86400, 60) * u.s
     >>> sun = interpolated_sun_position(EarthOrientation(times))

@@ -1,9 +1,12 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Transmitter attitude: the satellite antenna's dipoles in the Earth-fixed frame.
+"""Nominal attitude: the antenna towards the Earth's centre, the panels towards the Sun.
 
-`NominalAttitude` points the antenna at the Earth's centre and keeps the solar
-panels towards the Sun (Eqs 26-27). `QuaternionAttitude` takes measured
-attitude quaternions, such as those of IGS ORBEX files (Eqs 24-25).
+`NominalAttitude` points the satellite antenna at the Earth's centre and
+keeps the solar panels towards the Sun (Eqs 26-27), giving its dipoles in the
+Earth-fixed frame. Measured attitudes are in
+`~astropy_feedrot.transmitters.quaternion_attitude`, the yaw laws beyond
+nominal in `~astropy_feedrot.transmitters.yaw_models`, the interface they share
+in `~astropy_feedrot.transmitters.attitude_interface`.
 """
 
 import numpy as np
@@ -12,24 +15,12 @@ from ..core import kernel
 from ..earth.frames import as_time
 from .attitude_interface import (
     Attitude,
-    interpolated_sun_position,
     sun_at,
-    sun_position,
     warn_undefined_count,
 )
 from .orbits import check_orientation
-from .quaternion_attitude import QUATERNION_NORM_TOLERANCE, QuaternionAttitude, slerp
 
-__all__ = [
-    "Attitude",
-    "NominalAttitude",
-    "QuaternionAttitude",
-    "nominal_dipoles",
-    "sun_position",
-    "interpolated_sun_position",
-    "slerp",
-    "QUATERNION_NORM_TOLERANCE",
-]
+__all__ = ["NominalAttitude", "nominal_dipoles"]
 
 
 def nominal_dipoles(position, sun):

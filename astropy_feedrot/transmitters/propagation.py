@@ -76,7 +76,7 @@ def _sgp4_array():
     """sgp4's ``SatrecArray`` (an optional dependency, imported when first needed)."""
     try:
         from sgp4.api import SatrecArray
-    except ImportError:  # exercised by tests/test_cli_extras.py, without sgp4
+    except ImportError:  # exercised by tests/cli/test_cli_extras.py, without sgp4
         raise ImportError(SGP4_MISSING) from None
     return SatrecArray
 

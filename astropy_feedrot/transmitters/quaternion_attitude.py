@@ -57,7 +57,7 @@ def slerp(q1, q2, fraction):
     Halfway between no rotation and a quarter turn about z is an eighth turn:
 
     >>> import numpy as np
-    >>> from astropy_feedrot.transmitters.nominal_attitude import slerp
+    >>> from astropy_feedrot.transmitters.quaternion_attitude import slerp
     >>> quarter = np.array([np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)])
     >>> slerp(np.array([1.0, 0, 0, 0]), quarter, 0.5)  # doctest: +FLOAT_CMP
     array([0.92387953, 0.        , 0.        , 0.38268343])

@@ -12,7 +12,8 @@ from ..core.polarization import polarization_sign
 from ..earth.eop import iers_context
 from ..earth.epochs import as_epochs
 from ..earth.frames import as_location, fill_masked, location_xyz
-from .nominal_attitude import Attitude, NominalAttitude
+from .attitude_interface import Attitude
+from .nominal_attitude import NominalAttitude
 from .orbits import as_orbit, check_orientation
 
 __all__ = ["Satellite", "LineOfSight", "check_transmitter_positions"]

@@ -23,7 +23,7 @@ MAX_EXTRAPOLATION = 900.0
 #: The interpolation error (m) that `points_needed` allows. A position error turns the
 #: line of sight and the nominal yaw by about its size over the distance, amplified near
 #: the noon and midnight turns; 10 m keeps the wind-up within 1e-4 cycle with a margin
-#: (tests/test_gnss_arcs.py measures it against the exact orbits).
+#: (tests/gnss/test_gnss_arcs.py measures it against the exact orbits).
 POSITION_TOLERANCE = 10.0
 
 _GM_EARTH = 3.986004418e14  # m3/s2, IERS Conventions 2010

@@ -39,7 +39,7 @@ def _sgp4():
     """The sgp4 package's ``api`` module (an optional dependency, imported when first needed)."""
     try:
         from sgp4 import api
-    except ImportError:  # exercised by tests/test_cli_extras.py, without sgp4
+    except ImportError:  # exercised by tests/cli/test_cli_extras.py, without sgp4
         raise ImportError(SGP4_MISSING) from None
     return api
 

@@ -90,7 +90,7 @@ from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..data import sample_file
 from ..earth.frames import as_time
 from ..io import read_satellite_metadata
-from .nominal_attitude import Attitude, sun_position
+from .attitude_interface import Attitude, sun_position
 from .orbits import Orbit, check_orientation
 
 __all__ = ["YawLaw", "LAWS", "BLOCK_LAWS", "ModelAttitude", "orbit_angles", "nominal_yaw",
@@ -726,7 +726,7 @@ class ModelAttitude(Attitude):
         >>> import numpy as np
         >>> from astropy.time import Time
         >>> from astropy_feedrot import ModelAttitude, TLEOrbit
-        >>> from astropy_feedrot.transmitters.nominal_attitude import sun_position
+        >>> from astropy_feedrot.transmitters.attitude_interface import sun_position
         >>> from astropy_feedrot.applied.simulations import GPS_SVN76_TLE
         >>> orbit = TLEOrbit(*GPS_SVN76_TLE)
         >>> t = Time("2023-01-25T12:00")
