@@ -227,6 +227,7 @@ def test_the_top_level_is_the_import_surface():
                "core.exceptions", "antennas.focus", "engine.grid", "io", "stations.labels",
                "antennas.mounts", "transmitters.orbits", "applied.planning", "applied.plotting",
                "antennas.rotators", "applied.rr_ll", "transmitters.satellite", "stations",
+               "transmitters.quaternion_attitude",
                "applied.feed_rotation_tables", "transmitters.yaw_models"]
     homes = {}
     for module in modules:
