@@ -1,0 +1,24 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Ionospheric Faraday rotation: rotation measure along each line of sight.
+
+What it holds: `Ionosphere`, the rotation measure (RM) along the line of
+sight from a site to a target at given epochs, from IONEX global ionosphere
+maps and the IGRF geomagnetic field through spinifex (the optional extra
+``ionosphere``), or from a user's own table of RM per antenna and epoch;
+`faraday_rotation`, the rotation RM * lambda^2 of the wave's plane of
+polarization; `sample_ionex`, the real IONEX files spinifex ships. spinifex
+is imported lazily, on the first use of IONEX maps: nothing here downloads,
+and importing this package does not import spinifex.
+
+What it may import: the package's core layer (``inputs``, ``exceptions``,
+``extras``, ``config``) and its earth layer, nothing above them. The front-ends
+(``Antenna.rotation_measure``, the corrections) call `Ionosphere` with an
+antenna's ``location`` and ``name``; this subpackage never imports them.
+"""
+
+from .faraday import faraday_rotation
+from .ionex import sample_ionex
+from .errors import IonosphereError
+from .ionosphere import Ionosphere
+
+__all__ = ["Ionosphere", "IonosphereError", "faraday_rotation", "sample_ionex"]

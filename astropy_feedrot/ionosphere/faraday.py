@@ -1,0 +1,74 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Faraday rotation: the turn of the wave's plane of polarization, RM * lambda^2."""
+
+import numpy as np
+from astropy import constants as const
+from astropy import units as u
+from astropy.coordinates import Angle
+
+from .rm_table import RM_UNIT
+
+__all__ = ["faraday_rotation"]
+
+
+def faraday_rotation(rm, frequency):
+    """The rotation RM * (c / nu)^2 of the plane of polarization, per frequency.
+
+    Parameters
+    ----------
+    rm : `~astropy.units.Quantity`
+        Rotation measure(s) in rad m^-2, any shape ``S`` (e.g. epochs x
+        antennas from `Ionosphere.rotation_measure`).
+    frequency : `~astropy.units.Quantity`
+        Frequency (or frequencies, any shape ``F``, e.g. the channels of a
+        spectral window), or wavelength: anything with a spectral unit.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        chi = RM lambda^2 in degrees, of shape ``S + F`` (frequency last),
+        not wrapped (at low frequencies it spans many turns). Positive: the
+        plane turns from north through east, so a source of intrinsic angle
+        chi0 is seen at chi0 + chi. NaN where ``rm`` is NaN.
+
+    Raises
+    ------
+    TypeError
+        If ``rm`` or ``frequency`` is not a Quantity.
+    astropy.units.UnitsError
+        If ``rm`` is not in rad m^-2, or ``frequency`` has no spectral unit.
+    ValueError
+        If a frequency is not positive and finite.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.ionosphere import faraday_rotation
+    >>> faraday_rotation(1.0 * u.rad / u.m**2, [1.4, 5.0] * u.GHz)  # doctest: +FLOAT_CMP
+    <Angle [2.63086098, 0.20625342] deg>
+    """
+    if not isinstance(rm, u.Quantity):
+        raise TypeError(f"rm must be a Quantity in rad / m2 (e.g. 1.0 * u.rad / u.m**2), "
+                        f"got {type(rm).__name__}")
+    try:
+        rm_value = rm.to_value(RM_UNIT, equivalencies=u.dimensionless_angles())
+    except u.UnitConversionError:
+        raise u.UnitsError(f"rm must be a rotation measure in rad / m2, got a quantity in "
+                           f"{rm.unit.to_string() or 'dimensionless units'}") from None
+    if not isinstance(frequency, u.Quantity):
+        raise TypeError(f"frequency must be a Quantity (e.g. 1.4 * u.GHz), got "
+                        f"{type(frequency).__name__}")
+    try:
+        hertz = frequency.to_value(u.Hz, equivalencies=u.spectral())
+    except u.UnitConversionError:
+        raise u.UnitsError(f"frequency must be a frequency or a wavelength (e.g. 1.4 * u.GHz), "
+                           f"got a quantity in {frequency.unit.to_string() or 'dimensionless units'}"
+                           ) from None
+    hertz = np.asarray(hertz, dtype=float)
+    if not np.all(np.isfinite(hertz) & (hertz > 0)):
+        bad = hertz[~(np.isfinite(hertz) & (hertz > 0))].ravel()[0]
+        raise ValueError(f"frequency must be positive and finite, got {bad:g} Hz")
+    wavelength_squared = (const.c.to_value(u.m / u.s) / hertz) ** 2
+    rm_value = np.asarray(rm_value, dtype=float)
+    chi = rm_value.reshape(rm_value.shape + (1,) * hertz.ndim) * wavelength_squared
+    return Angle(chi, u.rad).to(u.deg)
