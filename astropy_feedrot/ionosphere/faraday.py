@@ -45,7 +45,7 @@ def faraday_rotation(rm, frequency):
     >>> import astropy.units as u
     >>> from astropy_feedrot.ionosphere import faraday_rotation
     >>> faraday_rotation(1.0 * u.rad / u.m**2, [1.4, 5.0] * u.GHz)  # doctest: +FLOAT_CMP
-    <Angle [2.63086098, 0.20625342] deg>
+    <Angle [2.62728972, 0.20597951] deg>
     """
     if not isinstance(rm, u.Quantity):
         raise TypeError(f"rm must be a Quantity in rad / m2 (e.g. 1.0 * u.rad / u.m**2), "
@@ -61,9 +61,9 @@ def faraday_rotation(rm, frequency):
     try:
         hertz = frequency.to_value(u.Hz, equivalencies=u.spectral())
     except u.UnitConversionError:
+        unit = frequency.unit.to_string() or "dimensionless units"
         raise u.UnitsError(f"frequency must be a frequency or a wavelength (e.g. 1.4 * u.GHz), "
-                           f"got a quantity in {frequency.unit.to_string() or 'dimensionless units'}"
-                           ) from None
+                           f"got a quantity in {unit}") from None
     hertz = np.asarray(hertz, dtype=float)
     if not np.all(np.isfinite(hertz) & (hertz > 0)):
         bad = hertz[~(np.isfinite(hertz) & (hertz > 0))].ravel()[0]

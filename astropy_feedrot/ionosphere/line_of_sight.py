@@ -68,11 +68,14 @@ def rm_along_line_of_sight(maps, location, target, times, height):
     >>> from astropy_feedrot.ionosphere.ionex import IonexMaps
     >>> from astropy_feedrot.ionosphere.line_of_sight import rm_along_line_of_sight
     >>> maps = IonexMaps(sample_ionex("codg*"))
-    >>> site = EarthLocation.from_geodetic(6.87 * u.deg, 52.91 * u.deg)
-    >>> rm, el = rm_along_line_of_sight(maps, site, SkyCoord("05h34m31.94s +22d00m52.2s"),
-    ...                                 Time(["2020-01-08T12:00"]), 450 * u.km)
+    >>> wsrt = EarthLocation.from_geodetic(6.60 * u.deg, 52.91 * u.deg, 16 * u.m)
+    >>> crab = SkyCoord("05h34m31.94s +22d00m52.2s")
+    >>> epochs = Time(["2020-01-08T22:00", "2020-01-09T10:00"])
+    >>> rm, elevation = rm_along_line_of_sight(maps, wsrt, crab, epochs, 450 * u.km)
     >>> rm  # doctest: +FLOAT_CMP
-    array([0.83493386])
+    array([0.31617066, 0.27793539])
+    >>> np.degrees(elevation)  # below the horizon at 10:00  # doctest: +FLOAT_CMP
+    array([ 59.1128087 , -15.05805744])
     """
     sp = spinifex_modules()
     index = maps.file_index(times.mjd)
