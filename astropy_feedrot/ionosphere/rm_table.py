@@ -91,7 +91,7 @@ class RMTable:
         else:
             names = np.full(mjd.shape, None, dtype=object)
         self.series = {}
-        for name in dict.fromkeys(names):  # one series per antenna named in the table
+        for name in dict.fromkeys(names.tolist()):  # one series per antenna the table names
             rows = names == name
             order = np.argsort(mjd[rows], kind="stable")
             epochs, rms = mjd[rows][order], values[rows][order]
