@@ -54,8 +54,8 @@ def test_agreement_with_rmextract(site, tmp_path):
     reference = np.ravel(result["RM"]["st1"])
     high = np.ravel(result["elev"]["st1"]) > np.radians(10)
     assert high.sum() > 40
-    ours = Ionosphere.from_ionex([path], step=0 * u.s).rotation_measure(site, VIRGO_A,
-                                                                      times[high])
+    iono = Ionosphere.from_ionex([path], step=0 * u.s)
+    ours = iono.rotation_measure(site, VIRGO_A, times[high])
     relative = np.abs(ours.value / reference[high] - 1)
     assert relative.max() < 0.006
     assert np.median(relative) < 0.003
