@@ -241,8 +241,9 @@ class Ionosphere:
         obstime : `~astropy.time.Time`
             Epochs of observation, any shape ``T`` (any time scale).
         antenna : str or sequence of str, optional
-            The antennas' names, one per location, for a table that gives
-            rotation measures per antenna; ignored otherwise.
+            The antennas' names, one per location (the shape of
+            ``location``), for a table that gives rotation measures per
+            antenna; not used by IONEX maps or a table of one series.
 
         Returns
         -------
@@ -310,12 +311,21 @@ class Ionosphere:
             epochs = np.broadcast_to(time, shape, subok=True).utc.ravel()
             directions = np.broadcast_to(target, shape, subok=True).ravel()
         mjd = np.asarray(epochs.mjd, dtype=float)
+        if fixed:  # each distinct epoch once (a visibility file repeats them per baseline)
+            unique, first, inverse = np.unique(mjd, return_index=True, return_inverse=True)
+            base = epochs[first]
+        else:
+            unique, base, inverse = mjd, epochs, None
+        grid = self._grid(unique) if fixed and self.step > 0 else None
         values = np.empty((mjd.size, sites.size))
         below = np.zeros(values.shape, dtype=bool)
         with _earth_orientation_offline():
             for k in range(sites.size):  # one line of sight per site; epochs vectorised
-                values[:, k], below[:, k] = self._one_site(sites[k], names[k], directions,
-                                                           epochs, mjd, fixed)
+                rm, elevation = self._one_site(sites[k], names[k], directions, base, unique,
+                                               grid)
+                if inverse is not None:
+                    rm, elevation = rm[inverse], elevation[inverse]
+                values[:, k], below[:, k] = rm, elevation < 0
         count = int(np.count_nonzero(below))
         if count:
             warn_caller(
@@ -338,33 +348,19 @@ class Ionosphere:
                 "give one name per location, in the same shape")
         return names
 
-    def _one_site(self, site, name, target, epochs, mjd, fixed):
-        """RM and below-horizon flags at every epoch for one site."""
-        if fixed:  # each distinct epoch once (a visibility file repeats them per baseline)
-            unique, first, inverse = np.unique(mjd, return_index=True, return_inverse=True)
-            base = epochs[first]
-        else:
-            unique, base = mjd, epochs
-        grid = self._grid(unique) if fixed and self.step > 0 else None
+    def _one_site(self, site, name, target, base, unique, grid):
+        """RM and elevation (radians) at the epochs ``base`` (UTC MJD ``unique``) for one site."""
         if self._maps is not None:
             if grid is None:
-                rm, elevation = rm_along_line_of_sight(self._maps, site, target, base,
-                                                       self.height)
-            else:
-                rm, elevation = rm_along_line_of_sight(self._maps, site, target, grid[2],
-                                                       self.height)
-                rm = interpolate(grid[0], grid[1], rm)
-                elevation = interpolate(grid[0], grid[1], elevation)
-        else:
-            rm = self._table.rm(name, unique)
-            times = base if grid is None else grid[2]
-            altaz = target.transform_to(AltAz(obstime=times, location=site))
-            elevation = np.asarray(altaz.alt.to_value(u.rad), dtype=float).reshape(-1)
-            if grid is not None:
-                elevation = interpolate(grid[0], grid[1], elevation)
-        if fixed:
-            rm, elevation = rm[inverse], elevation[inverse]
-        return rm, elevation < 0
+                return rm_along_line_of_sight(self._maps, site, target, base, self.height)
+            rm, elevation = rm_along_line_of_sight(self._maps, site, target, grid[2],
+                                                   self.height)
+            return interpolate(grid[0], grid[1], rm), interpolate(grid[0], grid[1], elevation)
+        rm = self._table.rm(name, unique)
+        times = base if grid is None else grid[2]
+        altaz = target.transform_to(AltAz(obstime=times, location=site))
+        elevation = np.asarray(altaz.alt.to_value(u.rad), dtype=float).reshape(-1)
+        return rm, elevation if grid is None else interpolate(grid[0], grid[1], elevation)
 
     def _grid(self, unique):
         """The coarse grid for sorted unique epochs (UTC MJD), or None to use the epochs.
