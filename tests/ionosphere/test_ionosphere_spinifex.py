@@ -147,6 +147,9 @@ def test_shapes_epochs_first_sites_last():
     epochs = Time("2020-01-08T20:00") + np.arange(6).reshape(2, 3) * u.h
     rm = iono.rotation_measure(sites, crab, epochs)
     assert rm.shape == (2, 3, 3)
+    # antenna names are not used by maps
+    named = iono.rotation_measure(sites, crab, epochs, antenna=["WB", "YS", "ON"])
+    np.testing.assert_array_equal(named.value, rm.value)
     # each site alone, each epoch alone: the same values (scalar in, scalar out)
     one = iono.rotation_measure(sites[1], crab, epochs[1, 2])
     assert one.shape == ()
