@@ -8,7 +8,7 @@ from astropy.coordinates import Angle
 
 from .rm_table import RM_UNIT
 
-__all__ = ["faraday_rotation"]
+__all__ = ["faraday_rotation", "polarization_rotation"]
 
 
 def faraday_rotation(rm, frequency):
@@ -72,3 +72,52 @@ def faraday_rotation(rm, frequency):
     rm_value = np.asarray(rm_value, dtype=float)
     chi = rm_value.reshape(rm_value.shape + (1,) * hertz.ndim) * wavelength_squared
     return Angle(chi, u.rad).to(u.deg)
+
+
+def polarization_rotation(feed_rotation, rm, frequency):
+    """The one angle a correction needs: the feed rotation minus the Faraday rotation.
+
+    With the package's convention a feed turned by Phi moves the apparent
+    polarization angle by -Phi, while the ionosphere moves it by
+    +chi = +RM lambda^2; psi = Phi - chi therefore enters a correction exactly
+    as the feed rotation does, and removing it leaves the source's intrinsic
+    angle.
+
+    Parameters
+    ----------
+    feed_rotation : `~astropy.units.Quantity` or `~astropy.coordinates.Angle`
+        The feed rotation Phi, shape ``S`` (e.g. epochs, or epochs x antennas).
+    rm : `~astropy.units.Quantity`
+        Rotation measure(s) in rad m^-2, a shape that broadcasts with ``S``.
+    frequency : `~astropy.units.Quantity`
+        Frequency (or frequencies, shape ``F``), or wavelength.
+
+    Returns
+    -------
+    `~astropy.coordinates.Angle`
+        psi = Phi - RM lambda^2 in degrees, of shape ``S + F`` (frequency
+        last), not wrapped.
+
+    Raises
+    ------
+    TypeError, astropy.units.UnitsError, ValueError
+        As `faraday_rotation`; `~astropy.units.UnitsError` too if
+        ``feed_rotation`` is not an angle.
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy_feedrot.ionosphere import polarization_rotation
+    >>> polarization_rotation([10.0, 20.0] * u.deg, 1.0 * u.rad / u.m**2,
+    ...                       [1.4, 5.0] * u.GHz)  # doctest: +FLOAT_CMP
+    <Angle [[ 7.37271028,  9.79402049],
+            [17.37271028, 19.79402049]] deg>
+    """
+    if not isinstance(feed_rotation, u.Quantity) or feed_rotation.unit.physical_type != "angle":
+        raise u.UnitsError(f"feed_rotation must be an angle (e.g. an Angle in deg), got "
+                           f"{feed_rotation!r}")
+    phi = np.asarray(feed_rotation.to_value(u.deg), dtype=float)
+    rm = np.broadcast_to(rm, np.broadcast_shapes(np.shape(rm), phi.shape), subok=True)
+    chi = faraday_rotation(rm, frequency)
+    extra = chi.ndim - rm.ndim
+    return Angle(phi.reshape(phi.shape + (1,) * extra) - chi.to_value(u.deg), u.deg)

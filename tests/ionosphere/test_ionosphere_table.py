@@ -10,7 +10,12 @@ from astropy.table import QTable, Table
 from astropy.time import Time
 
 from astropy_feedrot.exceptions import DegenerateGeometryWarning
-from astropy_feedrot.ionosphere import Ionosphere, IonosphereError, faraday_rotation
+from astropy_feedrot.ionosphere import (
+    Ionosphere,
+    IonosphereError,
+    faraday_rotation,
+    polarization_rotation,
+)
 
 RM = u.rad / u.m**2
 EF = EarthLocation.from_geodetic(6.8836 * u.deg, 50.5248 * u.deg, 416.7 * u.m)
@@ -159,3 +164,24 @@ def test_faraday_rotation_is_rm_lambda_squared():
 def test_faraday_rotation_refuses(rm, frequency, error, message):
     with pytest.raises(error, match=message):
         faraday_rotation(rm, frequency)
+
+
+def test_polarization_rotation_removes_feed_and_ionosphere():
+    # A source of intrinsic angle chi0 is seen through the ionosphere at chi0 + RM lambda^2,
+    # and through a feed turned by Phi at that minus Phi (the package's convention).
+    chi0 = 33.0 * u.deg
+    phi = [[-40.0, 10.0], [75.0, 120.0]] * u.deg  # epochs x antennas
+    rm = [[0.8, -0.3], [1.5, 2.2]] * RM
+    frequency = np.linspace(1.2, 1.8, 7) * u.GHz
+    chi = faraday_rotation(rm, frequency)
+    apparent = chi0 + chi - phi[..., np.newaxis]
+    psi = polarization_rotation(phi, rm, frequency)
+    assert psi.shape == (2, 2, 7)
+    # psi enters as Phi does: adding it back gives chi0 at every channel
+    np.testing.assert_allclose((apparent + psi).to_value(u.deg), chi0.value, atol=1e-12)
+    # no ionosphere: the feed rotation at every channel; one RM for every antenna
+    np.testing.assert_allclose(polarization_rotation(phi, 0 * RM, frequency).deg,
+                               np.repeat(phi.value[..., np.newaxis], 7, axis=-1))
+    assert polarization_rotation(phi, 1 * RM, 1.4 * u.GHz).shape == (2, 2)
+    with pytest.raises(u.UnitsError, match="feed_rotation must be an angle"):
+        polarization_rotation(10.0, 1 * RM, 1.4 * u.GHz)
