@@ -22,6 +22,8 @@ from .ionex import quiet_spinifex, spinifex_modules
 
 __all__ = ["RM_PER_TECU_NANOTESLA", "rm_along_line_of_sight"]
 
+__doctest_requires__ = {("rm_along_line_of_sight",): ["spinifex"]}
+
 #: Rotation measure in rad m^-2 of 1 TECU (1e16 electrons m^-2) along a field of
 #: 1 nT along the line of sight from the site to the source: spinifex's factor
 #: (``spinifex.get_rm``), e^3 / (8 pi^2 eps0 m_e^2 c^3) = 2.63e-13 rad m^-2 per

@@ -6,6 +6,7 @@ given its files in a local ``output_directory``, named as it names them, and
 the Ionosphere object reads the same files from their paths.
 """
 
+import pickle
 import shutil
 import socket
 import warnings
@@ -205,3 +206,14 @@ def test_below_the_horizon_is_nan_with_one_warning():
         altitude = crab.transform_to(AltAz(obstime=epochs, location=sites[k])).alt.deg
         clear = np.abs(altitude) > 0.01
         np.testing.assert_array_equal(np.isnan(rm[clear, k]), altitude[clear] < 0)
+
+
+def test_pickled_ionosphere_gives_the_same_numbers():
+    # What a dask worker receives: the maps themselves, not paths to read again.
+    iono = Ionosphere.from_ionex(sample_ionex("codg00[89]0.20i.Z"), height=400 * u.km)
+    crab = SkyCoord("05h34m31.94s +22d00m52.2s")
+    epochs = Time("2020-01-08T20:00") + np.arange(0, 4 * 3600, 300) * u.s
+    copy = pickle.loads(pickle.dumps(iono))
+    assert copy.height == 400 * u.km and copy.files == iono.files
+    np.testing.assert_array_equal(copy.rotation_measure(WSRT, crab, epochs).value,
+                                  iono.rotation_measure(WSRT, crab, epochs).value)

@@ -79,6 +79,17 @@ def test_below_the_horizon_is_nan():
     assert np.all(rm[clear & (altitude > 0)] == 1.0 * RM)
 
 
+def test_target_per_epoch_with_a_table():
+    # One direction per epoch (the Crab, then a source at the celestial south pole):
+    # the elevation is taken at each epoch, the RM from the table.
+    iono = Ionosphere.from_rm(QTable({"time": START + [0, 1] * u.h, "rm": [1.0, 2.0] * RM}))
+    targets = SkyCoord([83.63, 0.0] * u.deg, [22.01, -89.9] * u.deg)
+    with pytest.warns(DegenerateGeometryWarning, match="undefined at 1 of 2 epochs x sites"):
+        rm = iono.rotation_measure(EF, targets, START + [30, 45] * u.min)
+    np.testing.assert_allclose(rm[0].to_value(RM), 1.5, atol=1e-9)
+    assert np.isnan(rm[1])
+
+
 def test_outside_the_table_and_unknown_antennas():
     iono = Ionosphere.from_rm(linear_table())
     with pytest.raises(IonosphereError,
