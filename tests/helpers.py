@@ -2,9 +2,12 @@
 """Shared data and helpers for the tests: the paper's sites, sky grids, file sources."""
 
 import gzip
+import importlib
 import io
+import os
 
 import numpy as np
+import pytest
 from astropy import units as u
 from astropy.coordinates import ITRS, EarthLocation, SkyCoord
 from astropy.time import Time
@@ -89,3 +92,13 @@ SP3_DESCRIPTORS = [
     "%i    0    0    0    0      0      0      0      0         0",
     "%i    0    0    0    0      0      0      0      0         0",
 ]
+
+
+def import_or_skip(name, extra, require):
+    """A module the tests of an optional feature need: skipped without it, saying
+    which extra installs it, except where the environment variable ``require`` is
+    set (``.ci/run`` sets it): there a missing module fails the tests."""
+    if os.environ.get(require):
+        return importlib.import_module(name)
+    return pytest.importorskip(name, reason=f"{name} is not installed: python -m pip install "
+                                            f"-e '.[{extra}]'")

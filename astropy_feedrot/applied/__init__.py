@@ -9,5 +9,5 @@ astropy Tables; `planning` ranks sources for polarization calibration;
 Section 4 of the paper.
 
 May import: every layer below: ``core``, ``io``, ``earth``, ``antennas``,
-``transmitters``, ``engine``, ``stations``.
+``transmitters``, ``ionosphere``, ``engine``, ``stations``.
 """

@@ -25,8 +25,8 @@ table and the figure in one file), written to a temporary file beside its
 target and renamed into place once everything has been written.
 
 May import: every subpackage (``core``, ``io``, ``earth``, ``antennas``,
-``transmitters``, ``engine``, ``stations``, ``applied``, ``visibilities``,
-``gnss``); it is the top layer.
+``transmitters``, ``ionosphere``, ``engine``, ``stations``, ``applied``,
+``visibilities``, ``gnss``); it is the top layer.
 """
 
 import argparse

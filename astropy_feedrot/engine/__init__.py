@@ -9,5 +9,6 @@ one antenna) and the grids of many antennas and targets (`grid`, with
 `continuity` makes the results continuous (Eq 9) and gives the rotation
 delay.
 
-May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``.
+May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
+``ionosphere``.
 """

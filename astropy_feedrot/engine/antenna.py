@@ -29,6 +29,7 @@ from ..earth.frames import (
     location_xyz,
     source_direction,
 )
+from ..ionosphere.faraday import faraday_rotation, polarization_rotation
 from ..transmitters.satellite import Satellite
 from . import equations, rates
 
@@ -592,6 +593,91 @@ class Antenna:
         return AntennaAngles(azimuth, elevation, self._parallactic_angle(los.s),
                              terms.transmitter, terms.receiver,
                              self._finish(sign * phase, los.s, below))
+
+    @iers_context()  # one check of the Earth-orientation tables per call
+    def rotation_measure(self, target, obstime, ionosphere):
+        """Rotation measure of the ionosphere along the line of sight (rad m^-2).
+
+        ``ionosphere`` is an `~astropy_feedrot.ionosphere.Ionosphere` (IONEX
+        maps, or a table of rotation measures, looked up under this
+        antenna's ``name``); NaN where the target is below the horizon. A
+        source seen at intrinsic angle chi0 appears at chi0 + RM lambda^2
+        (see :doc:`/ionosphere`).
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import SkyCoord
+        >>> from astropy.table import QTable
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import get_antenna
+        >>> from astropy_feedrot.ionosphere import Ionosphere
+        >>> rm = QTable({"time": Time(["2024-06-01T20:00", "2024-06-01T22:00"]),
+        ...              "rm": [1.0, 3.0] * u.rad / u.m**2})  # one series for every antenna
+        >>> effelsberg, t = get_antenna("EFLSBERG"), Time("2024-06-01T21:00")
+        >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+        >>> effelsberg.rotation_measure(source, t, Ionosphere.from_rm(rm))  # doctest: +FLOAT_CMP
+        <Quantity 2. rad / m2>
+        """
+        return ionosphere.rotation_measure(self.location, target, as_epochs(obstime).time,
+                                           antenna=self.name)
+
+    def faraday_rotation(self, target, obstime, frequency, ionosphere):
+        """Faraday rotation RM (c/nu)^2 of the wave's plane on the sky, per frequency.
+
+        `rotation_measure` times the squared wavelength of each ``frequency``
+        (epochs first, frequency last): the angle by which the ionosphere
+        turns the polarization plane, positive from north through east.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import SkyCoord
+        >>> from astropy.table import QTable
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import get_antenna
+        >>> from astropy_feedrot.ionosphere import Ionosphere
+        >>> rm = QTable({"time": Time(["2024-06-01T20:00", "2024-06-01T22:00"]),
+        ...              "rm": [1.0, 3.0] * u.rad / u.m**2})  # one series for every antenna
+        >>> effelsberg, t = get_antenna("EFLSBERG"), Time("2024-06-01T21:00")
+        >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+        >>> effelsberg.faraday_rotation(source, t, [1.4, 5] * u.GHz,
+        ...                             Ionosphere.from_rm(rm))  # doctest: +FLOAT_CMP
+        <Angle [5.25457945, 0.41195902] deg>
+        """
+        return faraday_rotation(self.rotation_measure(target, obstime, ionosphere), frequency)
+
+    def polarization_rotation(self, target, obstime, frequency, ionosphere=None, **kwargs):
+        """The one angle a correction needs: feed rotation minus Faraday rotation.
+
+        psi = Phi - RM lambda^2 enters a correction exactly as the feed
+        rotation does (removing it leaves the source's intrinsic angle);
+        without ``ionosphere`` it is the feed rotation, repeated over the
+        frequencies (epochs first, frequency last). ``kwargs`` go to
+        `feed_rotation`.
+
+        Examples
+        --------
+        >>> import astropy.units as u
+        >>> from astropy.coordinates import SkyCoord
+        >>> from astropy.table import QTable
+        >>> from astropy.time import Time
+        >>> from astropy_feedrot import get_antenna
+        >>> from astropy_feedrot.ionosphere import Ionosphere
+        >>> rm = QTable({"time": Time(["2024-06-01T20:00", "2024-06-01T22:00"]),
+        ...              "rm": [1.0, 3.0] * u.rad / u.m**2})  # one series for every antenna
+        >>> effelsberg, t = get_antenna("EFLSBERG"), Time("2024-06-01T21:00")
+        >>> source = SkyCoord("03h19m48.16s +41d30m42.1s")
+        >>> psi = effelsberg.polarization_rotation(source, t, [1.4, 5] * u.GHz,
+        ...                                        Ionosphere.from_rm(rm))
+        >>> phi = effelsberg.feed_rotation(source, t)
+        >>> (phi - psi).to(u.deg)  # doctest: +FLOAT_CMP
+        <Angle [5.25457945, 0.41195902] deg>
+        """
+        phi = self.feed_rotation(target, obstime, **kwargs)
+        rm = 0 * u.rad / u.m**2 if ionosphere is None else \
+            self.rotation_measure(target, obstime, ionosphere)
+        return polarization_rotation(phi, rm, frequency)
 
     @iers_context()  # one check of the Earth-orientation tables per call
     def feed_rotation_rate(self, target, obstime, polarization=None, form=None,

@@ -12,7 +12,7 @@
 See :doc:`/gnss`.
 
 May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
-``engine``, ``stations``, ``applied``.
+``ionosphere``, ``engine``, ``stations``, ``applied``.
 """
 
 from .correct import ATTITUDES, RinexCorrection, correct_rinex, join_orbex, receiver_axes

@@ -11,10 +11,11 @@ angle a correction needs; `sample_ionex`, the real IONEX files spinifex ships. s
 is imported lazily, on the first use of IONEX maps: nothing here downloads,
 and importing this package does not import spinifex.
 
-What it may import: the package's core layer (``inputs``, ``exceptions``,
-``extras``, ``config``) and its earth layer, nothing above them. The front-ends
-(``Antenna.rotation_measure``, the corrections) call `Ionosphere` with an
-antenna's ``location`` and ``name``; this subpackage never imports them.
+The front-ends (``Antenna.rotation_measure``, the corrections) call
+`Ionosphere` with an antenna's ``location`` and ``name``; this subpackage
+never imports them.
+
+May import: ``core``, ``earth``.
 """
 
 from .errors import IonosphereError

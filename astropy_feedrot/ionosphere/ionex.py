@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 from astropy.time import Time
 
-from ..extras import install_hint
+from ..core.extras import install_hint
 from .errors import IonosphereError
 
 __all__ = ["IonexMaps", "sample_ionex", "spinifex_modules", "quiet_spinifex",

@@ -20,9 +20,9 @@ from astropy.coordinates import AltAz
 from astropy.time import Time
 from astropy.utils import iers
 
-from ..config import conf
-from ..exceptions import DegenerateGeometryWarning, warn_caller
-from ..inputs import as_location, as_skycoord, as_time, broadcast_shape
+from ..core.config import conf
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.inputs import as_location, as_skycoord, as_time, broadcast_shape
 from .ionex import IonexMaps
 from .line_of_sight import rm_along_line_of_sight
 from .rm_table import RM_UNIT, RMTable

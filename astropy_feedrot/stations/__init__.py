@@ -11,7 +11,7 @@ the tables and their sources in `label_tables`.
 Everything public of `catalogue` is importable from here.
 
 May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
-``engine``.
+``ionosphere``, ``engine``.
 """
 
 from .catalogue import (

@@ -37,7 +37,7 @@ One module per format, on shared steps:
 pyuvdata and python-casacore are optional and imported on first use.
 
 May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
-``engine``, ``stations``, ``applied``.
+``ionosphere``, ``engine``, ``stations``, ``applied``.
 """
 
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program

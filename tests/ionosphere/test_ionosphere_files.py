@@ -12,8 +12,9 @@ import pytest
 from astropy import units as u
 from astropy.coordinates import EarthLocation, SkyCoord
 from astropy.time import Time
+from helpers import import_or_skip
 
-pytest.importorskip("spinifex")
+import_or_skip("spinifex", "ionosphere", "FEEDROT_REQUIRE_SPINIFEX")
 
 from unlzw_cython import unlzw  # noqa: E402  (a dependency of spinifex)
 

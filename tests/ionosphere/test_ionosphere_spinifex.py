@@ -16,15 +16,16 @@ import pytest
 from astropy import units as u
 from astropy.coordinates import EarthLocation, SkyCoord
 from astropy.time import Time
+from helpers import import_or_skip
 
-pytest.importorskip("spinifex")
+import_or_skip("spinifex", "ionosphere", "FEEDROT_REQUIRE_SPINIFEX")
 
 from spinifex.get_rm import _get_rm_from_skycoord, get_rm_from_skycoord  # noqa: E402
 from spinifex.ionospheric.models import ionospheric_models  # noqa: E402
 from spinifex.ionospheric.tec_data import IonexOptions  # noqa: E402
 from spinifex.magnetic import magnetic_models  # noqa: E402
 
-from astropy_feedrot.exceptions import DegenerateGeometryWarning  # noqa: E402
+from astropy_feedrot.core.exceptions import DegenerateGeometryWarning  # noqa: E402
 from astropy_feedrot.ionosphere import Ionosphere, sample_ionex  # noqa: E402
 
 WSRT = EarthLocation.from_geodetic(6.60 * u.deg, 52.91 * u.deg, 16 * u.m)

@@ -3,13 +3,12 @@
 
 import numpy as np
 import pytest
-from astropy import constants as const
-from astropy import units as u
+from astropy import constants as const, units as u
 from astropy.coordinates import AltAz, EarthLocation, SkyCoord
 from astropy.table import QTable, Table
 from astropy.time import Time
 
-from astropy_feedrot.exceptions import DegenerateGeometryWarning
+from astropy_feedrot.core.exceptions import DegenerateGeometryWarning
 from astropy_feedrot.ionosphere import (
     Ionosphere,
     IonosphereError,
