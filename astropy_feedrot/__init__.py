@@ -6,11 +6,14 @@ and focus type and by GNSS antennas, observing natural radio sources and
 satellites (Skeens et al., "A unified model of feed rotation in radio
 telescopes and GNSS antennas").
 
-Everything a user calls is importable from here; the modules (``grid``,
-``stations``, ``tables``...) stay importable for those who want them.
-``astropy_feedrot.visibilities`` (visibility files: FITS-IDI, UVFITS,
-Measurement Sets, pyuvdata's ``UVData`` objects) is imported on its own, as
-its formats need the optional pyuvdata and python-casacore.
+Everything a user calls is importable from here; the folders where it lives
+(``earth``, ``antennas``, ``transmitters``, ``engine``, ``stations``,
+``applied``..., see the architecture page of the documentation) stay
+importable for those who want them. ``astropy_feedrot.visibilities``
+(visibility files: FITS-IDI, UVFITS, Measurement Sets, pyuvdata's ``UVData``
+objects), ``astropy_feedrot.gnss`` (RINEX observation files) and
+``astropy_feedrot.ionosphere`` (Faraday rotation) are imported on their own,
+as they need optional packages.
 """
 
 from .antennas.focus import (
