@@ -61,9 +61,10 @@ def package_imports(path, name, is_package):
     """The package's modules that a source file imports: (dotted target, at the top?)."""
     tree = ast.parse(path.read_text())
     top = set()
-    for node in tree.body:  # a top-level try (of an optional import) is the top too
-        top.add(id(node))
-        if isinstance(node, ast.Try):
+    for node in tree.body:  # a top-level try (of an optional import) is the top too,
+        top.add(id(node))      # and so are the imports for static tools (if TYPE_CHECKING)
+        if isinstance(node, ast.Try) or (isinstance(node, ast.If)
+                                         and getattr(node.test, "id", "") == "TYPE_CHECKING"):
             top.update(id(n) for n in node.body)
     here = name.split(".") if name != "__init__" else []
     base = here if is_package else here[:-1]

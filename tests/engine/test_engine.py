@@ -14,7 +14,6 @@ from astropy import units as u
 from astropy.coordinates import AltAz, HADec
 from helpers import DAY, MAS, SITES, max_angle_difference, sky_grid
 
-import astropy_feedrot
 from astropy_feedrot import (
     AltAzMount,
     Antenna,
@@ -216,29 +215,6 @@ def test_angles_are_the_methods_values():
     for name, value in expected.items():
         assert np.array_equal(getattr(angles, name), value, equal_nan=True), name
     assert np.any(np.isnan(angles.total)) and not np.any(np.isnan(angles.elevation))
-
-
-def test_the_top_level_is_the_import_surface():
-    # Every name of __all__ is there, and is the object of its module.
-    import importlib
-
-    modules = ["engine.antenna", "transmitters.nominal_attitude", "core.config",
-               "engine.continuity", "applied.correction", "earth.eop", "earth.epochs",
-               "core.exceptions", "antennas.focus", "engine.grid", "io", "stations.labels",
-               "antennas.mounts", "transmitters.orbits", "applied.planning", "applied.plotting",
-               "antennas.rotators", "applied.rr_ll", "transmitters.satellite", "stations",
-               "transmitters.quaternion_attitude",
-               "applied.feed_rotation_tables", "transmitters.yaw_models"]
-    homes = {}
-    for module in modules:
-        module = importlib.import_module(f"astropy_feedrot.{module}")
-        for name in getattr(module, "__all__", []):
-            homes.setdefault(name, getattr(module, name))
-    for name in astropy_feedrot.__all__:
-        assert getattr(astropy_feedrot, name) is homes[name], name
-    for name in ("get_antenna", "feed_rotation_grid", "correct_phase", "mount_from_label",
-                 "read_tle", "FileFormatError", "OrbitWarning", "feed_rotation_table"):
-        assert name in astropy_feedrot.__all__
 
 
 @pytest.mark.parametrize("positions", [False, True])
