@@ -18,7 +18,8 @@ from ..engine.antenna import Antenna
 from ..engine.continuity import delay_of_difference, frequency_hz, unwrap
 from ..transmitters.satellite import Satellite
 
-__all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary"]
+__all__ = ["COLUMNS", "feed_rotation_table", "baseline_table", "baseline_summary", "check_times",
+           "target_name"]
 
 #: Columns of `feed_rotation_table` (after ``time``), in order.
 COLUMNS = ("azimuth", "elevation", "parallactic_angle", "transmitter", "receiver", "total",
@@ -34,7 +35,33 @@ def _max_gap(times):
     return 2 * np.max(np.diff(jd)) * u.day
 
 
-def _check_times(obstime):
+def check_times(obstime):
+    """``obstime`` checked as a table's epochs: one-dimensional, strictly increasing.
+
+    Parameters
+    ----------
+    obstime : `~astropy.time.Time`
+        Epochs; masked ones are kept (their rows are NaN).
+
+    Returns
+    -------
+    `~astropy.time.Time`
+
+    Raises
+    ------
+    ValueError
+        If ``obstime`` is not one-dimensional or does not increase strictly.
+
+    Examples
+    --------
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.applied.feed_rotation_tables import check_times
+    >>> check_times(Time(["2024-01-01", "2023-01-01"]))
+    Traceback (most recent call last):
+    ...
+    ValueError: obstime must increase strictly (masked epochs aside); sort it, e.g. \
+obstime[np.argsort(obstime)], and drop repeated epochs
+    """
     times, masked = fill_masked(obstime)
     if times.ndim != 1:
         raise ValueError(f"obstime must be a one-dimensional series of epochs, got shape "
@@ -81,8 +108,16 @@ def _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     return {name: u.Quantity(value) for name, value in columns.items()}, visible
 
 
-def _target_name(target):
-    """A satellite's name, or a natural source's coordinates and frame."""
+def target_name(target):
+    """A satellite's name, or a natural source's coordinates and frame, for a table's meta.
+
+    Examples
+    --------
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy_feedrot.applied.feed_rotation_tables import target_name
+    >>> target_name(SkyCoord("03h19m48.16s +41d30m42.1s"))
+    '03h19m48.16s +41d30m42.1s (icrs)'
+    """
     if isinstance(target, Satellite):
         return str(target.name) if target.name else repr(target)
     # A SkyCoord's ``name`` is the name of its frame, not of the source.
@@ -142,12 +177,12 @@ def feed_rotation_table(antenna, target, obstime, polarization=None, min_elevati
     >>> table["total"].quantity  # doctest: +FLOAT_CMP
     <Quantity [-30.90395267,  24.10716885,  51.55021012] deg>
     """
-    times = _check_times(obstime)
+    times = check_times(obstime)
     target = _check_target(target)
     limit = as_elevation_limit(min_elevation)
     columns, _ = _antenna_columns(antenna, target, times, polarization, min_elevation, limit)
     table = Table({"time": times, **columns})
-    table.meta.update(antenna=antenna.name or repr(antenna), target=_target_name(target),
+    table.meta.update(antenna=antenna.name or repr(antenna), target=target_name(target),
                       natural=not isinstance(target, Satellite),
                       polarization=str(polarization or getattr(target, "polarization", "RCP")),
                       min_elevation=str(min_elevation))
@@ -205,7 +240,7 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
     >>> table.meta["ambiguity"]
     '119.04761904761905 ps'
     """
-    times = _check_times(obstime)
+    times = check_times(obstime)
     names = [antenna.name if isinstance(antenna, Antenna) else None
              for antenna in (antenna1, antenna2)]
     prefixes = [name or f"antenna{i}" for i, name in enumerate(names, start=1)]
@@ -229,7 +264,7 @@ def baseline_table(antenna1, antenna2, target, obstime, frequency, polarization=
                                  max_gap=_max_gap(times))
     table["rotation_delay"] = result.delay
     table["both_visible"] = visible
-    table.meta.update(antennas=prefixes, target=_target_name(target),
+    table.meta.update(antennas=prefixes, target=target_name(target),
                       natural=not isinstance(target, Satellite),
                       frequency=str(u.Quantity(frequency)), min_elevation=str(min_elevation),
                       ambiguity=str(result.ambiguity))

@@ -1,5 +1,6 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Figures of the tables of `astropy_feedrot.applied.feed_rotation_tables` (needs matplotlib).
+"""Figures of the tables of `astropy_feedrot.applied.feed_rotation_tables` and
+`astropy_feedrot.applied.faraday_tables` (needs matplotlib).
 
 matplotlib is an optional dependency, of the ``all`` extra (``python -m pip
 install matplotlib``).
@@ -12,8 +13,8 @@ from astropy import units as u
 
 from ..core.extras import install_hint
 
-__all__ = ["plot_feed_rotation", "plot_baseline", "line_styles", "unwrapped_degrees",
-           "outside_legend", "pyplot"]
+__all__ = ["plot_feed_rotation", "plot_baseline", "plot_faraday", "line_styles",
+           "unwrapped_degrees", "outside_legend", "pyplot"]
 
 # The line styles after the ten colours of matplotlib's "tab10" cycle.
 _LINESTYLES = ("-", "--", ":", "-.")
@@ -298,4 +299,103 @@ def plot_baseline(table, path=None):
     if visible.any():
         axes[0].set_xlim(hours[visible].min() - 0.25, hours[visible].max() + 0.25)
     fig.suptitle(f"{table.meta.get('target', '')}, {table.meta.get('frequency', '')}")
+    return _finish(fig, path)
+
+
+def _faraday_labels(table):
+    """The stations and frequency labels of a `~astropy_feedrot.applied.faraday_tables.faraday_table`."""
+    missing = [c for c in ("time", "antenna", "elevation", "rm", "feed_rotation")
+               if c not in table.colnames]
+    labels = table.meta.get("labels") or [name[4:] for name in table.colnames
+                                          if name.startswith("chi_")]
+    missing += [f"{kind}_{label}" for label in labels for kind in ("chi", "psi")
+                if f"{kind}_{label}" not in table.colnames]
+    if missing or not labels:
+        raise KeyError(f"the table lacks column(s) {', '.join(missing) or 'chi_*, psi_*'}; "
+                       "plot a faraday_table")
+    names = list(table.meta.get("antennas") or dict.fromkeys(np.asarray(table["antenna"])))
+    return names, labels
+
+
+def plot_faraday(table, path=None):
+    """Draw a `~astropy_feedrot.applied.faraday_tables.faraday_table`.
+
+    Parameters
+    ----------
+    table : `~astropy.table.Table`
+        A table with the columns of
+        `~astropy_feedrot.applied.faraday_tables.faraday_table`.
+    path : str or path-like, optional
+        Save the figure there (the format follows the extension).
+
+    Returns
+    -------
+    `matplotlib.figure.Figure`
+        Against hours since the first epoch, one colour per station (the
+        legend to the right of the top panel): the elevation; the rotation
+        measure; the feed rotation Phi (unwrapped); then one panel per
+        frequency with psi = Phi - chi (unwrapped) and, thin, the Faraday
+        rotation chi = RM lambda^2.
+
+    Raises
+    ------
+    ImportError
+        Without matplotlib.
+    KeyError
+        If a column is missing.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.table import QTable
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.applied.faraday_tables import faraday_table
+    >>> from astropy_feedrot.applied.plotting import plot_faraday
+    >>> from astropy_feedrot.ionosphere import Ionosphere
+    >>> from astropy_feedrot.stations.catalogue import get_antenna
+    >>> rm = QTable({"time": Time(["2024-06-01T06:00", "2024-06-01T12:00"]),
+    ...              "rm": [1.0, 3.0] * u.rad / u.m**2})
+    >>> times = Time("2024-06-01T06:00") + np.arange(0, 6, 0.25) * u.hour
+    >>> table = faraday_table([get_antenna("EFLSBERG"), get_antenna("YEBES40M")],
+    ...                       SkyCoord("03h19m48.16s +41d30m42.1s"), times,
+    ...                       Ionosphere.from_rm(rm), [150, 1400] * u.MHz)
+    >>> fig = plot_faraday(table)
+    >>> [ax.get_ylabel() for ax in fig.axes]  # doctest: +NORMALIZE_WHITESPACE
+    ['elevation [deg]', 'RM [rad/m$^2$]', 'feed rotation [deg]', '150MHz [deg]',
+     '1.4GHz [deg]']
+    """
+    names, labels = _faraday_labels(table)
+    plt = pyplot()
+    hours, label = _hours(table)
+    count = 3 + len(labels)
+    fig, axes = plt.subplots(count, 1, figsize=(8, 1.0 + 1.9 * count), sharex=True)
+    stations = np.asarray(table["antenna"])
+    for (colour, style), name in zip(line_styles(len(names)), names):
+        rows = stations == name
+        line = {"color": colour, "linestyle": style}
+        axes[0].plot(hours[rows], _degrees(table["elevation"][rows]), label=name, **line)
+        axes[1].plot(hours[rows], u.Quantity(table["rm"][rows]).to_value(u.rad / u.m**2),
+                     **line)
+        axes[2].plot(hours[rows], unwrapped_degrees(table["feed_rotation"][rows]), **line)
+        for ax, frequency in zip(axes[3:], labels):
+            ax.plot(hours[rows], unwrapped_degrees(table[f"psi_{frequency}"][rows]), **line)
+            ax.plot(hours[rows], u.Quantity(table[f"chi_{frequency}"][rows]).to_value(u.deg),
+                    linewidth=0.8, alpha=0.6, **line)
+    axes[0].set_ylabel("elevation [deg]")
+    axes[1].set_ylabel("RM [rad/m$^2$]")
+    axes[2].set_ylabel("feed rotation [deg]")
+    outside_legend(axes[0])
+    for ax, frequency in zip(axes[3:], labels):
+        ax.set_ylabel(f"{frequency} [deg]")
+        ax.plot([], [], color="0.3", label=f"$\\psi = \\Phi - \\chi$ at {frequency}")
+        ax.plot([], [], color="0.3", linewidth=0.8, alpha=0.6,
+                label=f"$\\chi$ = RM $\\lambda^2$ at {frequency}")
+        outside_legend(ax)
+    axes[-1].set_xlabel(label)
+    files = [str(name).replace("\\", "/").rsplit("/", 1)[-1]
+             for name in table.meta.get("ionex") or ()]
+    fig.suptitle(f"{table.meta.get('target', '')}; RM from "
+                 + (", ".join(files) if files else "a table"))
     return _finish(fig, path)
