@@ -303,7 +303,8 @@ def plot_baseline(table, path=None):
 
 
 def _faraday_labels(table):
-    """The stations and frequency labels of a `~astropy_feedrot.applied.faraday_tables.faraday_table`."""
+    """The stations and frequency labels of a
+    `~astropy_feedrot.applied.faraday_tables.faraday_table`."""
     missing = [c for c in ("time", "antenna", "elevation", "rm", "feed_rotation")
                if c not in table.colnames]
     labels = table.meta.get("labels") or [name[4:] for name in table.colnames
