@@ -87,8 +87,10 @@ _HOMES = {
     "feed_rotation_table": ".applied.feed_rotation_tables",
     "baseline_table": ".applied.feed_rotation_tables",
     "baseline_summary": ".applied.feed_rotation_tables",
+    "faraday_table": ".applied.faraday_tables",
     "plot_feed_rotation": ".applied.plotting",
     "plot_baseline": ".applied.plotting",
+    "plot_faraday": ".applied.plotting",
     # Earth orientation, warnings and errors
     "earth_orientation_status": ".earth.eop",
     "Epochs": ".earth.epochs",
@@ -136,13 +138,14 @@ if TYPE_CHECKING:  # the same names for static tools (tests/test_import_surface.
         correct_visibilities,
         rotation_matrix,
     )
+    from .applied.faraday_tables import faraday_table
     from .applied.feed_rotation_tables import (
         baseline_summary,
         baseline_table,
         feed_rotation_table,
     )
     from .applied.planning import feed_rotation_coverage, rank_sources
-    from .applied.plotting import plot_baseline, plot_feed_rotation
+    from .applied.plotting import plot_baseline, plot_faraday, plot_feed_rotation
     from .applied.rr_ll import baseline_rr_ll, rr_minus_ll
     from .core.config import conf
     from .core.exceptions import (
