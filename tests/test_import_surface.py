@@ -94,7 +94,9 @@ HEAVY = ("astropy", "numpy", "erfa")
 
 
 @pytest.mark.parametrize("statement", ["import astropy_feedrot",
-                                       "from astropy_feedrot import __version__"])
+                                       "from astropy_feedrot import __version__",
+                                       "import astropy_feedrot.cli",
+                                       "from astropy_feedrot.cli import main, build_parser"])
 def test_importing_the_surface_imports_nothing_heavy(statement):
     # In a fresh interpreter: astropy (astropy.units, astropy.coordinates), numpy and
     # pyerfa wait for the first name that needs them.

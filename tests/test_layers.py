@@ -44,6 +44,16 @@ MAY_IMPORT["__init__"] = set(MAY_IMPORT) - {"__init__", "__main__", "cli", "gnss
 
 #: Imports inside functions: for optional or heavy dependencies only, each named here.
 LAZY = {
+    # feedrot starts without astropy: the parser runs a command through a function that
+    # imports the command's family (and astropy with it) when the command runs, and
+    # main imports what runs every command only once the command line has parsed.
+    ("cli", "cli.running"): "start-up time of feedrot --help and --version",
+    ("cli.parser", "cli.tables"): "start-up time",
+    ("cli.parser", "cli.demo"): "start-up time",
+    ("cli.parser", "cli.stations"): "start-up time",
+    ("cli.parser", "cli.coverage"): "start-up time",
+    ("cli.parser", "cli.data"): "start-up time",
+    ("cli.parser", "cli.rinex"): "start-up time",
 }
 
 

@@ -1,9 +1,8 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""What the commands of ``feedrot`` share: reading values, sites, stations,
-sources and times from the command line, the options of the table commands,
-and the checked output files of a table and its figure."""
+"""What the commands of ``feedrot`` share when they run: reading values, sites,
+stations, sources and times from the command line, and the checked output files
+of a table and its figure (the options themselves are in `astropy_feedrot.cli.parser`)."""
 
-import argparse
 import math
 import os
 import re
@@ -27,78 +26,17 @@ from ..core.outputs import (
 from ..data import sample_file
 from ..engine.antenna import Antenna
 from ..io import FileFormatError
-from ..stations.catalogue import FOCUS_NAMES, default_catalogue, focus_from_name, read_catalogue
+from ..stations.catalogue import default_catalogue, focus_from_name, read_catalogue
 from ..stations.labels import mount_from_label
-from .views import FORMATS, output_format, print_table
+from .parser import CELESTIAL_FRAMES, MAX_EPOCHS, PHASE_UNIT_NAMES, SITE_FORMAT, one_line
+from .views import output_format, print_table
 
 __all__ = [
-    "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT", "UsageError", "Parser",
-    "one_line", "parse_quantity", "elevation_limit", "parse_time", "time_span", "parse_site",
-    "parse_antenna",
-    "catalogue_antenna", "natural_target", "one_source", "read_path", "read_input",
-    "station_catalogue", "input_files", "figure_types", "drawer", "table_outputs",
-    "write_table", "add_time_options", "add_natural_options", "add_common_options",
-    "examples", "PHASE_UNITS", "add_units_option", "in_units",
+    "parse_quantity", "elevation_limit", "parse_time", "time_span", "parse_site",
+    "parse_antenna", "catalogue_antenna", "natural_target", "one_source", "read_path",
+    "read_input", "station_catalogue", "input_files", "figure_types", "drawer",
+    "table_outputs", "write_table", "PHASE_UNITS", "in_units",
 ]
-
-#: Most epochs one command may compute (about 1.6 GB and half a minute for
-#: a natural source; a satellite with the nominal attitude is ten times slower).
-MAX_EPOCHS = 1_000_000
-
-
-#: Frames accepted by ``--frame``: celestial frames, whose coordinates need
-#: no observing time or place (unlike altaz or hadec).
-CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalactic",
-                    "barycentricmeanecliptic", "barycentrictrueecliptic")
-
-
-ANTENNA_HELP = (
-    "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
-    "not matter; NAME@NETWORK for a name two stations share, e.g. KP@EHT) or a site "
-    "'LAT,LON,HEIGHT' in degrees, degrees and metres with --mount and --focus"
-)
-
-
-SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
-
-
-def examples(commands):
-    """The ``--help`` epilog listing example commands, each whole on one line.
-
-    (A command continued with a trailing backslash cannot be copied from a
-    list of several: pasted, the lines join into one.)
-    """
-    for command in commands:
-        if "\n" in command or command.rstrip().endswith("\\"):
-            raise ValueError(f"an example must be one line: {command!r}")
-    return "examples:\n" + "\n".join(f"  {command}" for command in commands)
-
-
-class UsageError(Exception):
-    """A command line that argparse cannot read."""
-
-
-class Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line (no usage block).
-
-    Options are never abbreviated: ``demo --output x`` is an unknown option,
-    not ``--output-dir x``.
-    """
-
-    def __init__(self, *args, **kwargs):
-        kwargs.setdefault("allow_abbrev", False)
-        super().__init__(*args, **kwargs)
-
-    def error(self, message):
-        if "expected one argument" in message:
-            message += " (write --option=VALUE for a value that starts with '-')"
-        raise UsageError(f"{message}; see '{self.prog} --help'")
-
-
-def one_line(text):
-    """``text`` on one line: its lines joined with '; '."""
-    return "; ".join(" ".join(line.split()) for line in str(text).splitlines() if line.strip())
-
 
 # Values ------------------------------------------------------------------------------------
 
@@ -378,7 +316,7 @@ def write_table(table, paths, kind, overwrite=False, form=None):
 
 
 #: Units of ``--units``: a phase in cycles, radians or degrees.
-PHASE_UNITS = {"cycles": u.cycle, "rad": u.rad, "deg": u.deg}
+PHASE_UNITS = dict(zip(PHASE_UNIT_NAMES, (u.cycle, u.rad, u.deg)))
 
 
 def in_units(table, units, columns):
@@ -390,65 +328,3 @@ def in_units(table, units, columns):
             target = unit / u.s if quantity.unit.is_equivalent(u.deg / u.s) else unit
             table[name] = quantity.to(target)
     return table
-
-
-# Options ----------------------------------------------------------------------------------
-
-
-def add_units_option(parser, default):
-    """Add ``--units cycles|rad|deg``: the unit of phase columns."""
-    parser.add_argument("--units", choices=tuple(PHASE_UNITS), default=default,
-                        help=f"unit of the feed rotation (wind-up) columns: cycles, rad or deg "
-                        f"(default {default}; azimuth and elevation stay in deg)")
-
-
-def add_time_options(parser, required=True):
-    group = parser.add_argument_group("time")
-    group.add_argument("--start", metavar="TIME",
-                       help="first epoch, ISO UTC (e.g. 2023-01-25T18:00) or 'now'"
-                       + ("" if required else "; default: start of the SP3 file"))
-    group.add_argument("--stop", metavar="TIME", help="last epoch (included if on the step)"
-                       + ("" if required else "; default: end of the SP3 file"))
-    group.add_argument("--step", metavar="DURATION", default="10min",
-                       help="sampling interval with a unit (30s, 10min, 1h; default 10min; a "
-                       f"plain number is seconds); at most {MAX_EPOCHS} epochs per run")
-
-
-def add_natural_options(parser):
-    group = parser.add_argument_group("natural source (coordinates are parsed offline)")
-    group.add_argument("--source", metavar="COORD",
-                       help="coordinates in one string, e.g. '03h19m48.16s +41d30m42.1s'")
-    group.add_argument("--ra", metavar="RA", help="right ascension: hours if sexagesimal "
-                       "(03:19:48.16, 3h19m48s), degrees if a plain number")
-    group.add_argument("--dec", metavar="DEC", help="declination in degrees (+41:30:42.1, 41.51)")
-    group.add_argument("--frame", metavar="FRAME",
-                       help="celestial frame of the coordinates (default icrs): "
-                       + ", ".join(CELESTIAL_FRAMES))
-
-
-def add_common_options(parser):
-    group = parser.add_argument_group("antenna and output")
-    group.add_argument("--mount", metavar="CODE", help="mount of a LAT,LON,HEIGHT site: AZEL "
-                       "(default), EQUA, X-YN, X-YE, NASR, NASL, BWG, GNSS")
-    group.add_argument("--focus", metavar="NAME",
-                       help="focus of a LAT,LON,HEIGHT site: " + ", ".join(
-                           k for k in FOCUS_NAMES if k))
-    group.add_argument("--catalogue", metavar="FILE",
-                       help="an ECSV station catalogue of one's own instead of the embedded one")
-    group.add_argument("--polarization", choices=("RCP", "LCP"), type=str.upper,
-                       help="hand of the receiver (default: the satellite's hand; RCP for a "
-                       "natural source); a satellite is heard by a receiver of its own hand only")
-    group.add_argument("--min-elevation", metavar="ANGLE",
-                       help="NaN below this elevation (degrees, or with a unit); the continuous "
-                       "series restarts after such gaps")
-    group.add_argument("-o", "--output", metavar="FILE",
-                       help="write the table here instead of standard output, in the format of "
-                       "its extension: " + ", ".join(TABLE_FORMATS))
-    group.add_argument("--format", choices=FORMATS,
-                       help="the table on standard output: text (aligned, 0.001 deg; the "
-                       "default on a terminal), ecsv (every digit; the default on a pipe) or "
-                       "csv")
-    group.add_argument("--plot", metavar="FILE.png", help="also draw the table (needs "
-                       "matplotlib; .png, .pdf, .svg...)")
-    group.add_argument("--overwrite", action="store_true",
-                       help="replace an existing output file (never an input)")

@@ -2,8 +2,6 @@
 """``feedrot coverage``: the range of feed rotation that candidate polarization
 calibrators offer the stations of a network."""
 
-import argparse
-
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import SkyCoord
@@ -19,31 +17,20 @@ from ..core.outputs import (
 )
 from ..stations import catalogue
 from .common import (
-    add_time_options,
     catalogue_antenna,
     elevation_limit,
-    examples,
     figure_types,
     input_files,
-    one_line,
     one_source,
     parse_quantity,
     time_span,
 )
+from .parser import one_line
 
-__all__ = ["EXAMPLES", "register"]
-
-#: Examples of ``feedrot coverage``, one command line each.
-EXAMPLES = [
-    "feedrot coverage --stations EFLSBERG YEBES40M WETTZ13S "
-    "--source '3C84=03h19m48.16s +41d30m42.1s' --source '3C286=13h31m08.29s +30d30m33.0s' "
-    "--start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png",
-    "feedrot coverage --stations VLBA --source '03h19m48.16s +41d30m42.1s' "
-    "--start 2024-03-01 --stop 2024-03-02",
-]
+__all__ = ["run_coverage"]
 
 
-def _run_coverage(args):
+def run_coverage(args):
     types = figure_types() if args.plot is not None else ()
     paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS)),
                            ("--plot", args.plot, types)],
@@ -124,35 +111,3 @@ def _run_coverage(args):
         if path is not None:
             print(f"{option}: {path}")
     return 0
-
-
-def register(commands):
-    """Add ``coverage`` to the subparsers ``commands``."""
-    coverage = commands.add_parser(
-        "coverage", help="the range of feed rotation of candidate polarization calibrators",
-        description="For every station and source, the range of continuous feed rotation "
-        "while the source is above the elevation limit, the time above it, and the sources "
-        "ranked by their worst station (a polarization calibrator needs a wide range at "
-        "every station). Names of networks expand to their stations where the catalogue "
-        "knows them.",
-        epilog=examples(EXAMPLES),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    coverage.add_argument("--stations", nargs="+", required=True, metavar="NAME",
-                          help="station names of the catalogue (or names of networks; "
-                               "NAME@NETWORK for a name two stations share, e.g. KP@EHT)")
-    coverage.add_argument("--source", action="append", required=True, metavar="[NAME=]COORD",
-                          help="a source's coordinates (ICRS), named or not, e.g. "
-                          "'3C84=03h19m48.16s +41d30m42.1s' or '03h19m48.16s +41d30m42.1s'; "
-                          "repeat for more")
-    add_time_options(coverage)
-    coverage.add_argument("--min-elevation", metavar="ANGLE",
-                          help="elevation limit (degrees, or with a unit; default 10)")
-    coverage.add_argument("-o", "--output", metavar="FILE",
-                          help="also write the table here, in the format of its extension: "
-                          + ", ".join(TABLE_FORMATS))
-    coverage.add_argument("--plot", metavar="FILE.png",
-                          help="draw the tracks: one panel per source, one line per station "
-                          "(needs matplotlib)")
-    coverage.add_argument("--overwrite", action="store_true",
-                          help="replace existing output files")
-    coverage.set_defaults(run=_run_coverage)

@@ -3,7 +3,6 @@
 file as read, and the feed rotation removed (or applied): a corrected copy of
 any file, or a Measurement Set corrected in place."""
 
-import argparse
 import contextlib
 import os
 import shutil
@@ -23,7 +22,6 @@ from ..core.outputs import (
     write_files,
 )
 from ..visibilities import (
-    MOUNTS,
     CorrectionRefused,
     antenna_table,
     check_output_format,
@@ -33,35 +31,13 @@ from ..visibilities import (
     parse_feeds,
     read_antennas,
 )
-from ..visibilities.poles import CONVENTIONS, convention_options
-from .common import CELESTIAL_FRAMES, examples, one_line
+from ..visibilities.poles import convention_options
+from .parser import one_line
 
-__all__ = ["EXAMPLES", "check_correct_output", "register"]
-
-#: Examples of ``feedrot antennas`` and ``feedrot correct``, one command line each.
-EXAMPLES = {
-    "antennas": ["feedrot antennas experiment.idifits",
-                 "feedrot antennas vla.ms -o antennas.ecsv",
-                 "feedrot antennas vla.uvfits --mounts catalogue"],
-    "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
-                "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
-                "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric",
-                "feedrot correct vla.ms --in-place",
-                "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
-                "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
-                "feedrot correct vla.uvfits -o vla_catalogue.uvfits --mounts catalogue",
-                "feedrot correct vla.ms --in-place --convention casa --workers 2"],
-}
+__all__ = ["run_antennas", "run_correct", "check_correct_output"]
 
 
-#: The help of ``--mounts``.
-MOUNTS_HELP = ("whose mount and focus an antenna within 100 m of a station of the catalogue "
-               "takes where the two differ (said in a warning): the file's (default; many "
-               "writers put MNTSTA 0, alt-az, for every antenna) or the catalogue's, which "
-               "also gives its mount to an antenna whose MOUNT is empty or unknown")
-
-
-def _run_antennas(args):
+def run_antennas(args):
     paths = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
                           [("FILE", args.file)], args.overwrite)
     antennas, software = read_antennas(args.file, vertical=args.vertical, mounts=args.mounts)
@@ -180,7 +156,7 @@ def _columns(args):
                 overwrite_column=args.overwrite_column)
 
 
-def _run_correct(args):
+def run_correct(args):
     args.vertical, args.pole = convention_options(args.convention, args.vertical, args.pole)
     options = dict(direction="apply" if args.apply else "remove", frame=args.frame,
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
@@ -223,102 +199,3 @@ def _run_correct(args):
             shutil.rmtree(work)
     _summary(args, args.output, f"from {args.input}")
     return 0
-
-
-def register(commands):
-    """Add ``antennas`` and ``correct`` to the subparsers ``commands``."""
-    antennas = commands.add_parser(
-        "antennas", help="the antennas of a visibility file, as read",
-        description="The antennas of a visibility file (FITS-IDI, UVFITS, uvh5, Measurement "
-        "Set, Miriad, SMA Mir) as read for the correction: number, name, ITRF position, "
-        "mount label (in the file's convention), mount, focus, receptors and their angles, "
-        "the station catalogue's station within 100 m with its mount and focus, and what "
-        "keeps an antenna from being corrected as the file gives it (an orbiting antenna, a "
-        "mount without a model, receptors that cannot be used, a mount that differs from "
-        "the catalogue's).",
-        epilog=examples(EXAMPLES["antennas"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    antennas.add_argument("file", metavar="FILE", help="a visibility file or directory")
-    antennas.add_argument("--vertical", choices=("geodetic", "geocentric"), default="geodetic",
-                          help="the local vertical (geocentric reproduces CASA)")
-    antennas.add_argument("--mounts", choices=MOUNTS, default="file", help=MOUNTS_HELP)
-    antennas.add_argument("-o", "--output", metavar="FILE",
-                          help="write the table here (format of its extension) instead of "
-                          "standard output")
-    antennas.add_argument("--overwrite", action="store_true",
-                          help="replace an existing output file")
-    antennas.set_defaults(run=_run_antennas)
-
-    correct = commands.add_parser(
-        "correct", help="remove (or apply) the feed rotation of a visibility file",
-        description="Remove the feed rotation from every visibility (or, with --apply, "
-        "apply it to a model): into a copy, FITS-IDI to FITS-IDI (a chunk at a time), a "
-        "Measurement Set to .ms as a casacore copy corrected as --in-place would, and every "
-        "format pyuvdata reads to the format of the output's extension (.uvfits, .uvh5, "
-        ".ms; .fits is the input's kind), the input never modified; or a Measurement Set "
-        "in place (--in-place), from one column into another (python-casacore), every other "
-        "column left as it was. Data whose history says they were corrected already (by "
-        "feedrot, AIPS CLCOR PANG or CASA applycal parang=True) are refused without --redo, "
-        "and columns feedrot did not write without --overwrite-column.",
-        epilog=examples(EXAMPLES["correct"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
-    correct.add_argument("-o", "--output", metavar="OUTPUT",
-                         help="the corrected copy (not with --in-place)")
-    correct.add_argument("--in-place", action="store_true",
-                         help="correct a Measurement Set in place: read --data-column, write "
-                         "--column")
-    correct.add_argument("--data-column", metavar="COLUMN",
-                         help="Measurement Sets: the column read (default DATA; with --apply, "
-                         "--column itself: a model corrupted in place)")
-    correct.add_argument("--column", metavar="COLUMN",
-                         help="Measurement Sets (--in-place, or -o OUTPUT.ms: a casacore copy "
-                         "corrected in place): the visibility column written, created if "
-                         "missing (default CORRECTED_DATA)")
-    correct.add_argument("--overwrite-column", action="store_true",
-                         help="write into an existing column that feedrot did not write "
-                         "(MODEL_DATA, a CORRECTED_DATA that CASA filled): its values are "
-                         "replaced")
-    correct.add_argument("--apply", action="store_true",
-                         help="apply the feed rotation (corrupt a sky model) instead of "
-                         "removing it")
-    correct.add_argument("--feeds", metavar="R,L|X,Y",
-                         help="receptors for antennas the file gives none (ATCA Miriad, old "
-                         "UVFITS) or unusable ones (linear dipoles both at angle 0, as LWA and "
-                         "PAPER Measurement Sets give): two letters with optional angles in "
-                         "degrees, e.g. X:0,Y:90; without it, antennas without receptors take "
-                         "the station catalogue's where it states them: for the station of "
-                         "their name within 100 m, else for the pad within 5 m, else for every "
-                         "station of the file's telescope alike (said in a warning); antennas "
-                         "with unusable ones are refused, named")
-    correct.add_argument("--mounts", choices=MOUNTS, default="file", help=MOUNTS_HELP)
-    correct.add_argument("--redo", action="store_true",
-                         help="correct data whose history says they were corrected in the "
-                         "same direction already (by feedrot, by AIPS CLCOR PANG, by CASA "
-                         "applycal parang=True), or recompute a column that holds this "
-                         "correction already")
-    correct.add_argument("--frame", default="apparent", choices=("apparent",) + CELESTIAL_FRAMES,
-                         help="north of the corrected polarization angles: the pole of date "
-                         "(default, as in Python, CASA and AIPS) or a catalogue frame such "
-                         "as icrs")
-    correct.add_argument("--convention", choices=tuple(CONVENTIONS), default="rigorous",
-                         help="rigorous (default: the geodetic vertical and the Earth-fixed "
-                         "pole) or casa (CASA's applycal(parang=True): the geocentric vertical "
-                         "and the pole of date); --vertical and --pole replace its choices")
-    correct.add_argument("--vertical", choices=("geodetic", "geocentric"),
-                         help="the local vertical (default: the convention's; geocentric "
-                         "reproduces CASA)")
-    correct.add_argument("--pole", choices=("itrs", "casa"),
-                         help="the pole of the parallactic angle: the Earth-fixed z axis with "
-                         "polar motion or CASA's, without (default: the convention's)")
-    correct.add_argument("--dask", metavar="SCHEDULER",
-                         help="correct the chunks of a Measurement Set or FITS-IDI file on "
-                         "the workers of this dask.distributed scheduler (its address)")
-    correct.add_argument("--workers", type=int, metavar="N",
-                         help="correct the chunks on a local dask cluster of N worker "
-                         "processes")
-    correct.add_argument("--overwrite", action="store_true",
-                         help="replace an existing output (never the input)")
-    correct.add_argument("--quiet", action="store_true",
-                         help="no progress bar, and no summary line on success")
-    correct.set_defaults(run=_run_correct)

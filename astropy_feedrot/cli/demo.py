@@ -1,7 +1,6 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """``feedrot demo``: the paper's Section 4.1 simulation on embedded data."""
 
-import argparse
 from pathlib import Path
 
 from astropy import units as u
@@ -10,12 +9,13 @@ from ..applied.feed_rotation_tables import baseline_summary
 from ..applied.simulations import gps_short_baseline
 from ..core.extras import install_hint
 from ..core.outputs import CommandError, check_outputs, table_writer, write_files
-from .common import MAX_EPOCHS, drawer, examples, figure_types, parse_quantity
+from .common import drawer, figure_types, parse_quantity
+from .parser import MAX_EPOCHS
 
-__all__ = ["register"]
+__all__ = ["run_demo"]
 
 
-def _run_demo(args):
+def run_demo(args):
     directory = Path(args.output_dir).expanduser()
     if directory.exists() and not directory.is_dir():
         raise CommandError(f"--output-dir: {args.output_dir!r} is not a directory")
@@ -54,23 +54,3 @@ def _run_demo(args):
     else:
         print(f"figure: skipped (matplotlib: {install_hint('all', 'matplotlib')})")
     return 0
-
-
-def register(commands):
-    """Add ``demo`` to the subparsers ``commands``."""
-    demo = commands.add_parser(
-        "demo", help="the paper's Section 4.1 simulation, on embedded data",
-        description="GPS SVN 76 over the GNSS antenna DBR205 and the telescope FD-VLBA "
-        "(Sec. 4.1 of the paper): prints a summary and writes feedrot_demo.ecsv and "
-        "feedrot_demo.png (like Figs 10-11).",
-        epilog=examples(["feedrot demo", "feedrot demo --step 30s --overwrite",
-                         "feedrot demo --output-dir results"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    demo.add_argument("--output-dir", default=".", metavar="DIR",
-                      help="where to write the table and figure (default: here); made if "
-                      "it does not exist")
-    demo.add_argument("--step", default="60s", metavar="DURATION",
-                      help="sampling interval (default 60s)")
-    demo.add_argument("--overwrite", action="store_true",
-                      help="replace feedrot_demo.ecsv and feedrot_demo.png if they exist")
-    demo.set_defaults(run=_run_demo)

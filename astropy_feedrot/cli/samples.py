@@ -8,17 +8,15 @@ examples and a first try. ``feedrot samples`` lists them with what each is;
 (``feedrot rinex "$(feedrot samples gnss_sample.rnx)" ...``).
 """
 
-import argparse
 import os
 
 from ..core.outputs import CommandError
 from ..data import DESCRIPTIONS, SAMPLES, sample_file
-from .common import examples
 
-__all__ = ["register"]
+__all__ = ["run_samples"]
 
 
-def _run_samples(args):
+def run_samples(args):
     if args.name is None:
         width = max(len(name) for name in SAMPLES)
         for name in SAMPLES:
@@ -31,16 +29,3 @@ def _run_samples(args):
                            + ", ".join(SAMPLES))
     print(sample_file(args.name))
     return 0
-
-
-def register(commands):
-    """Add ``samples`` to the subparsers ``commands``."""
-    samples = commands.add_parser(
-        "samples", help="the sample files shipped with the package, and where they lie",
-        description="List the sample files shipped with the package (orbits, attitude, "
-        "observations, the station catalogue, a visibility file) with what each is, or "
-        "print the path of one to give to another command.",
-        epilog=examples(["feedrot samples", "feedrot samples gnss_sample.sp3"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    samples.add_argument("name", nargs="?", metavar="NAME", help="a sample file: its path")
-    samples.set_defaults(run=_run_samples)

@@ -10,7 +10,6 @@ extension, and on a pipe (standard output not a terminal) the listing is
 ECSV unless ``--format`` says otherwise.
 """
 
-import argparse
 import fnmatch
 import sys
 
@@ -20,16 +19,14 @@ from astropy.coordinates import EarthLocation
 from astropy.table import Table
 
 from ..core.outputs import TABLE_FORMATS, CommandError, check_outputs
-from .common import examples, input_files, one_line, station_catalogue, write_table
-from .views import FORMATS, output_format
+from .common import input_files, station_catalogue, write_table
+from .parser import NEAR_LIMIT, one_line
+from .views import output_format
 
-__all__ = ["register"]
+__all__ = ["run_stations"]
 
 #: The columns of the listing, one station a line.
 LISTING = ("name", "networks", "mount", "focus", "aliases")
-
-#: Stations ``--near`` lists unless ``--limit`` says otherwise.
-NEAR_LIMIT = 10
 
 
 def _names(table):
@@ -122,7 +119,7 @@ def _selected(args, catalogue):
     return selected
 
 
-def _run_stations(args):
+def run_stations(args):
     if args.limit is not None and args.limit < 1:
         raise CommandError(f"--limit: expected a positive number of stations, got {args.limit}")
     output = check_outputs([("-o/--output", args.output, tuple(TABLE_FORMATS))],
@@ -155,41 +152,3 @@ def _run_stations(args):
     else:
         selected.write(sys.stdout, format=f"ascii.{form}")
     return 0
-
-
-def register(commands):
-    """Add ``stations`` to the subparsers ``commands``."""
-    stations = commands.add_parser(
-        "stations", help="list, search or show the station catalogue",
-        description="List the station catalogue one station a line (name, networks, mount, "
-        "focus, aliases), search it, or show one station in full with the source of each "
-        "value. With -o, every column of the chosen stations in the format of the file's "
-        "extension; piped, ECSV (or --format).",
-        epilog=examples(["feedrot stations", "feedrot stations YEBES40M", "feedrot stations 'EF*'",
-                         "feedrot stations --network VLBA", "feedrot stations --mount NASR",
-                         "feedrot stations --near -3.09,40.52",
-                         "feedrot stations --network EHT -o eht.ecsv"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    stations.add_argument("pattern", nargs="?", metavar="NAME",
-                          help="a station (its name or an alias: shown in full), or a pattern "
-                               "of names ('EF*', or a part of a name: 'yebes'), case-insensitive")
-    stations.add_argument("--catalogue", metavar="FILE", help="an ECSV catalogue of one's own")
-    stations.add_argument("--network", metavar="NAME",
-                          help="only the stations of a network (VLBA, EVN, EHT...; "
-                               "case-insensitive)")
-    stations.add_argument("--mount", metavar="CODE",
-                          help="only the stations with this geodetic mount code (AZEL, EQUA, "
-                               "X-YE, X-YN, NASR, NASL, BWG, GNSS)")
-    stations.add_argument("--near", metavar="LON,LAT",
-                          help=f"the stations nearest a place (degrees east, north), nearest "
-                               f"first, with their distance (km); {NEAR_LIMIT} unless --limit")
-    stations.add_argument("--limit", metavar="N", type=int, help="at most N stations")
-    stations.add_argument("--format", choices=FORMATS,
-                          help="text (aligned, the default on a terminal), ecsv (the default "
-                               "on a pipe) or csv")
-    stations.add_argument("-o", "--output", metavar="FILE",
-                          help="write every column of the chosen stations here, in the format "
-                               "of its extension: " + ", ".join(TABLE_FORMATS))
-    stations.add_argument("--overwrite", action="store_true",
-                          help="replace an existing output file (never an input)")
-    stations.set_defaults(run=_run_stations)

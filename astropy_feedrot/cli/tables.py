@@ -3,7 +3,6 @@
 of the feed rotation of one antenna, or of both antennas of a baseline with
 their rotation delay, over a span of time."""
 
-import argparse
 import warnings
 
 import numpy as np
@@ -20,16 +19,9 @@ from ..transmitters.quaternion_attitude import QuaternionAttitude
 from ..transmitters.satellite import Satellite
 from ..transmitters.sp3_orbit import POSITION_TOLERANCE, points_needed
 from .common import (
-    ANTENNA_HELP,
-    add_common_options,
-    add_natural_options,
-    add_time_options,
-    add_units_option,
     elevation_limit,
-    examples,
     in_units,
     natural_target,
-    one_line,
     parse_antenna,
     parse_quantity,
     read_input,
@@ -38,35 +30,9 @@ from .common import (
     time_span,
     write_table,
 )
+from .parser import one_line
 
-__all__ = ["EXAMPLES", "register"]
-
-#: Examples of each command, one command line each (``--help`` prints them as they are;
-#: the tests run each of them, with the sample files under the names they use).
-EXAMPLES = {
-    "natural": [
-        'feedrot natural YEBES40M --source "03h19m48.16s +41d30m42.1s" '
-        "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --step 10min",
-        "feedrot natural EFLSBERG --ra 12:29:06.7 --dec +02:03:09 --start 2024-03-01 "
-        "--stop 2024-03-02 -o 3c273.ecsv --plot 3c273.png",
-        'feedrot natural 40.5247,-3.0869,988 --mount NASR --source "187.27d 2.05d" '
-        "--start 2024-03-01T20:00 --stop 2024-03-01T22:00 --step 1min",
-    ],
-    "satellite": [
-        "feedrot satellite DBR205 --tle gps.tle --sat 41328 --start 2023-01-25T06:00 "
-        "--stop 2023-01-25T17:00 --step 30s --min-elevation 10",
-        "feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G01 --points 4 -o g01.fits",
-        "feedrot satellite GGAO12M --sp3 igs.sp3 --points 4 --step 30s --units cycles "
-        "-o all.ecsv",
-    ],
-    "baseline": [
-        "feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 "
-        "--stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10",
-        'feedrot baseline EFLSBERG YEBES40M --source "03h19m48.16s +41d30m42.1s" '
-        "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --frequency 8.4GHz",
-    ],
-}
-
+__all__ = ["run_natural", "run_satellite", "run_baseline"]
 
 _SATELLITE_OPTIONS = ("tle", "sp3", "sat", "orbex", "points", "satellite_polarization")
 
@@ -206,17 +172,17 @@ def _run_single(args):
     return 0
 
 
-def _run_natural(args):
+def run_natural(args):
     return _run_single(args)
 
 
-def _run_satellite(args):
+def run_satellite(args):
     if args.tle is None and args.sp3 is None:
         raise CommandError("give the satellite's orbit with --tle FILE or --sp3 FILE --sat NAME")
     return _run_single(args)
 
 
-def _run_baseline(args):
+def run_baseline(args):
     paths = table_outputs(args)
     frequency = parse_quantity(args.frequency, u.MHz, "--frequency")
     catalogue = station_catalogue(args)
@@ -230,61 +196,3 @@ def _run_baseline(args):
                                  for name in _PHASE_COLUMNS])
     write_table(table, paths, "baseline", overwrite=args.overwrite, form=args.format)
     return 0
-
-
-def _add_satellite_options(parser):
-    group = parser.add_argument_group("satellite")
-    group.add_argument("--tle", metavar="FILE", help="two- or three-line element file")
-    group.add_argument("--sp3", metavar="FILE", help="IGS SP3 orbit file (nominal attitude "
-                       "unless --orbex)")
-    group.add_argument("--sat", metavar="NAME", help="satellite: SP3 name (G05), or TLE name or "
-                       "catalogue number when the file has several; without it, every "
-                       "satellite of an SP3 file (one row per epoch and satellite, column prn)")
-    group.add_argument("--orbex", metavar="FILE", help="ORBEX attitude quaternions (with --sp3)")
-    group.add_argument("--points", metavar="N", type=int,
-                       help="epochs of the SP3 interpolation window (default 10, or all epochs "
-                       "of a shorter file)")
-    group.add_argument("--satellite-polarization", choices=("RCP", "LCP"), type=str.upper,
-                       help="hand the satellite transmits (default RCP, as GNSS satellites)")
-
-
-def register(commands):
-    """Add ``natural``, ``satellite`` and ``baseline`` to the subparsers ``commands``."""
-    natural = commands.add_parser(
-        "natural", help="a natural radio source seen by one antenna",
-        description="Feed rotation of one antenna observing a natural radio source.",
-        epilog=examples(EXAMPLES["natural"]), formatter_class=argparse.RawDescriptionHelpFormatter)
-    natural.add_argument("antenna", metavar="ANTENNA", help=ANTENNA_HELP)
-    add_natural_options(natural)
-    add_time_options(natural)
-    add_common_options(natural)
-    natural.set_defaults(run=_run_natural)
-
-    satellite = commands.add_parser(
-        "satellite", help="a satellite seen by one antenna",
-        description="Feed rotation (wind-up) of one antenna observing a satellite, split into "
-        "transmitter and receiver terms.",
-        epilog=examples(EXAMPLES["satellite"]),
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    satellite.add_argument("antenna", metavar="ANTENNA", help=ANTENNA_HELP)
-    _add_satellite_options(satellite)
-    add_units_option(satellite, "deg")
-    add_time_options(satellite, required=False)
-    add_common_options(satellite)
-    satellite.set_defaults(run=_run_satellite)
-
-    baseline = commands.add_parser(
-        "baseline", help="both antennas of a baseline and the rotation delay",
-        description="Feed rotation at both ends of a baseline and the rotation delay "
-        "(antenna 2 minus antenna 1) at a frequency. The target is a natural source "
-        "(--source or --ra/--dec) or a satellite (--tle or --sp3).",
-        epilog=examples(EXAMPLES["baseline"]), formatter_class=argparse.RawDescriptionHelpFormatter)
-    baseline.add_argument("antennas", metavar="ANTENNA", nargs=2, help=ANTENNA_HELP)
-    baseline.add_argument("--frequency", required=True, metavar="FREQ",
-                          help="observing frequency with a unit (1575.42MHz; plain: MHz)")
-    add_natural_options(baseline)
-    _add_satellite_options(baseline)
-    add_units_option(baseline, "deg")
-    add_time_options(baseline, required=False)
-    add_common_options(baseline)
-    baseline.set_defaults(run=_run_baseline)

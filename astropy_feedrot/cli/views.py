@@ -18,10 +18,7 @@ import sys
 from astropy import units as u
 from astropy.time import Time
 
-__all__ = ["FORMATS", "TEXT_ANGLE", "output_format", "for_people", "print_table"]
-
-#: What ``--format`` takes.
-FORMATS = ("text", "ecsv", "csv")
+__all__ = ["TEXT_ANGLE", "output_format", "for_people", "print_table"]
 
 #: The resolution of angles in the text view.
 TEXT_ANGLE = 0.001 * u.deg
@@ -34,7 +31,7 @@ def output_format(chosen, stream=None):
     Parameters
     ----------
     chosen : str or None
-        ``--format``: one of `FORMATS`, or None.
+        ``--format``: one of `~astropy_feedrot.cli.parser.FORMATS`, or None.
     stream : file-like, optional
         Where the table goes (default ``sys.stdout``).
 

@@ -22,8 +22,6 @@ import tempfile
 import warnings
 from pathlib import Path
 
-from astropy.io.fits.verify import VerifyWarning
-
 __all__ = ["CommandError", "TABLE_FORMATS", "same_file", "check_outputs", "table_format",
            "table_writer", "new_file_mode", "publish", "write_files"]
 
@@ -222,6 +220,10 @@ def table_writer(table, fmt):
     """
 
     def write(name):
+        # astropy when a table is written, not when the module is imported: the
+        # command line's parser (and so 'feedrot --help') imports this module.
+        from astropy.io.fits.verify import VerifyWarning
+
         options = {"path": "feedrot", "serialize_meta": True} if fmt == "hdf5" else {}
         with warnings.catch_warnings():
             # Header keywords longer than 8 characters are written as HIERARCH cards.

@@ -39,6 +39,7 @@ from astropy.coordinates import EarthLocation
 from astropy.table import QTable
 from astropy.time import Time
 
+from ..core.choices import ATTITUDES
 from ..core.exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
 from ..core.outputs import same_file, write_files
 from ..earth.frames import check_station_xyz, local_frame
@@ -59,9 +60,6 @@ from .rinex_header import SYSTEMS
 from .streams import RinexWriter
 
 __all__ = ["ATTITUDES", "RinexCorrection", "correct_rinex", "receiver_axes", "join_orbex"]
-
-#: The transmitter attitudes `correct_rinex` offers.
-ATTITUDES = ("nominal", "model", "orbex")
 
 #: Data epochs per block: the working memory of a block is about 1 kB per
 #: observation line (2880 epochs of 40 satellites: about 120 MB at most).

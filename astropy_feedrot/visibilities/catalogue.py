@@ -37,6 +37,7 @@ import numpy as np
 from astropy import units as u
 
 from ..antennas.focus import CassegrainFocus
+from ..core.choices import MOUNTS
 from ..core.exceptions import CatalogueMountWarning, CatalogueReceptorsWarning, warn_caller
 from ..engine.antenna import Antenna
 from ..stations.catalogue import StationCatalogue, default_catalogue, read_catalogue
@@ -46,11 +47,6 @@ from .unusable import UnusableAntenna
 
 __all__ = ["catalogue_receptors", "catalogue_mounts", "catalogue_stations", "StationMatch",
            "MOUNTS", "CATALOGUE_TOLERANCE", "PAD_TOLERANCE", "ARRAY_TOLERANCE"]
-
-#: Whose mounts and foci a correction uses: the file's (``'file'``, the
-#: default) or, for antennas within `CATALOGUE_TOLERANCE` of a station, the
-#: station catalogue's (``'catalogue'``); see `catalogue_mounts`.
-MOUNTS = ("file", "catalogue")
 
 #: Largest distance between an antenna of a file and the catalogue's station of
 #: its name for the station to lend the antenna its receptors

@@ -17,18 +17,9 @@ import contextlib
 
 from astropy.utils import iers
 
+from ..core.choices import CONVENTIONS, POLES
+
 __all__ = ["POLES", "CONVENTIONS", "pole_context", "convention_options"]
-
-#: The poles offered: ``'itrs'`` (Earth-fixed z, with polar motion; default)
-#: and ``'casa'`` (no polar motion, as CASA).
-POLES = ("itrs", "casa")
-
-#: The conventions of a correction, as the vertical and the pole they choose:
-#: ``'rigorous'`` (the package's: the geodetic vertical, the Earth-fixed pole;
-#: the default) and ``'casa'`` (CASA's ``applycal(parang=True)``: the
-#: geocentric vertical, no polar motion). Circular receptors turn with the
-#: first receptor's angle in both, as in CASA.
-CONVENTIONS = {"rigorous": ("geodetic", "itrs"), "casa": ("geocentric", "casa")}
 
 # The polar-motion columns of astropy's IERS tables.
 _PM_COLUMNS = ("PM_x", "PM_y", "PM_x_A", "PM_y_A", "PM_X_B", "PM_Y_B")
