@@ -49,6 +49,7 @@ LAZY = {
     # main imports what runs every command only once the command line has parsed.
     ("cli", "cli.running"): "start-up time of feedrot --help and --version",
     ("cli.parser", "cli.tables"): "start-up time",
+    ("cli.parser", "cli.faraday"): "start-up time",
     ("cli.parser", "cli.demo"): "start-up time",
     ("cli.parser", "cli.stations"): "start-up time",
     ("cli.parser", "cli.coverage"): "start-up time",

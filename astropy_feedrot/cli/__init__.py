@@ -7,7 +7,9 @@ format follows its extension, and optionally a figure); ``feedrot demo`` runs
 the paper's Section 4.1 simulation on embedded data; ``feedrot stations``
 lists the station catalogue (``--network``, ``--mount``); ``feedrot
 coverage`` tabulates the range of feed rotation that candidate polarization
-calibrators offer a network. ``feedrot antennas`` lists the antennas of a
+calibrators offer a network. ``feedrot faraday`` tabulates the ionosphere's
+rotation measure, its Faraday rotation and the feed rotation of stations.
+``feedrot antennas`` lists the antennas of a
 visibility file as read, and ``feedrot correct`` writes a copy of a
 visibility file with the feed rotation removed, or corrects a Measurement Set
 in place (see `astropy_feedrot.visibilities`). ``feedrot rinex`` writes a copy
@@ -17,8 +19,8 @@ of a RINEX observation file with the carrier-phase wind-up removed (see
 The grammar of every command (arguments, options, help, examples) is
 `astropy_feedrot.cli.parser`, built without importing astropy: ``feedrot
 --version`` and ``feedrot --help`` start at once. Each family of commands is
-a module of this package (``tables``, ``demo``, ``stations``, ``coverage``,
-``data``, ``rinex``, ``samples``), imported when one of its commands runs,
+a module of this package (``tables``, ``faraday``, ``demo``, ``stations``,
+``coverage``, ``data``, ``rinex``, ``samples``), imported when one of its commands runs,
 through `astropy_feedrot.cli.running`; what they share is in ``common``.
 
 Every error is one line on standard error and a non-zero exit status. No file

@@ -263,8 +263,10 @@ def station_catalogue(args):
 
 def input_files(args):
     """(option, path) of every file the command reads."""
-    inputs = [(f"--{name}", getattr(args, name)) for name in ("tle", "sp3", "orbex", "catalogue")
+    inputs = [(f"--{name.replace('_', '-')}", getattr(args, name))
+              for name in ("tle", "sp3", "orbex", "catalogue", "rm_table")
               if getattr(args, name, None) is not None]
+    inputs += [("--ionex", path) for path in getattr(args, "ionex", None) or ()]
     if getattr(args, "catalogue", None) is None:
         inputs.append(("embedded station catalogue", str(sample_file("stations.ecsv"))))
     return inputs

@@ -5,8 +5,8 @@ The parser is built from plain constants (here and in
 `astropy_feedrot.core.choices`) without importing astropy, numpy or the
 modules that do the work: ``feedrot --version`` and ``feedrot --help`` start
 in a tenth of a second instead of a second. Each command runs from the module
-of its family (``tables``, ``demo``, ``stations``, ``coverage``, ``data``,
-``rinex``, ``samples``), imported only when the command runs (``_run_*``
+of its family (``tables``, ``faraday``, ``demo``, ``stations``, ``coverage``,
+``data``, ``rinex``, ``samples``), imported only when the command runs (``_run_*``
 below: the function-level imports that tests/test_layers.py names).
 """
 
@@ -48,6 +48,16 @@ EXAMPLES = {
         "--stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10",
         'feedrot baseline EFLSBERG YEBES40M --source "03h19m48.16s +41d30m42.1s" '
         "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --frequency 8.4GHz",
+    ],
+    "faraday": [
+        'feedrot faraday EFLSBERG YEBES40M --source "05h34m31.94s +22d00m52.2s" '
+        "--start 2020-01-08T16:00 --stop 2020-01-09T06:00 --step 30min "
+        "--ionex codg0080.20i.Z codg0090.20i.Z --frequency 1.4GHz --frequency 5GHz",
+        'feedrot faraday WSTRBORK --source "05h34m31.94s +22d00m52.2s" --start 2020-01-08T20:00 '
+        "--stop 2020-01-09T02:00 --step 10min --ionex codg0080.20i.Z codg0090.20i.Z "
+        "--frequency 150MHz --min-elevation 20 -o crab.ecsv --plot crab.png",
+        'feedrot faraday EFLSBERG --source "03h19m48.16s +41d30m42.1s" --start 2024-06-01T08:00 '
+        "--stop 2024-06-01T10:00 --step 10min --rm-table rm.ecsv --frequency 1.4GHz",
     ],
     "demo": ["feedrot demo", "feedrot demo --step 30s --overwrite",
              "feedrot demo --output-dir results"],
@@ -199,7 +209,8 @@ def add_natural_options(parser):
                        + ", ".join(CELESTIAL_FRAMES))
 
 
-def add_common_options(parser):
+def add_common_options(parser, polarization=True):
+    """Add the antenna and output options; ``--polarization`` unless ``polarization`` is False."""
     group = parser.add_argument_group("antenna and output")
     group.add_argument("--mount", metavar="CODE", help="mount of a LAT,LON,HEIGHT site: AZEL "
                        "(default), EQUA, X-YN, X-YE, NASR, NASL, BWG, GNSS")
@@ -207,9 +218,11 @@ def add_common_options(parser):
                        help="focus of a LAT,LON,HEIGHT site: " + ", ".join(FOCI))
     group.add_argument("--catalogue", metavar="FILE",
                        help="an ECSV station catalogue of one's own instead of the embedded one")
-    group.add_argument("--polarization", choices=("RCP", "LCP"), type=str.upper,
-                       help="hand of the receiver (default: the satellite's hand; RCP for a "
-                       "natural source); a satellite is heard by a receiver of its own hand only")
+    if polarization:
+        group.add_argument("--polarization", choices=("RCP", "LCP"), type=str.upper,
+                           help="hand of the receiver (default: the satellite's hand; RCP for "
+                           "a natural source); a satellite is heard by a receiver of its own "
+                           "hand only")
     group.add_argument("--min-elevation", metavar="ANGLE",
                        help="NaN below this elevation (degrees, or with a unit); the continuous "
                        "series restarts after such gaps")
@@ -242,7 +255,8 @@ def build_parser():
         "the rate of the feed rotation (deg/s).",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=examples(EXAMPLES["demo"][:1] + EXAMPLES["stations"][:1]
-                        + [EXAMPLES[name][0] for name in ("natural", "satellite", "baseline")]
+                        + [EXAMPLES[name][0] for name in ("natural", "satellite", "baseline",
+                                                          "faraday")]
                         + [EXAMPLES["coverage"][1], EXAMPLES["antennas"][0],
                            EXAMPLES["correct"][0], EXAMPLES["rinex"][0]])
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples; "
@@ -251,8 +265,8 @@ def build_parser():
     parser.add_argument("--version", action="version", version=f"feedrot {version}",
                         help="show the version of astropy_feedrot and exit")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for add in (_add_tables, _add_demo, _add_stations, _add_coverage, _add_files, _add_rinex,
-                _add_samples):
+    for add in (_add_tables, _add_faraday, _add_demo, _add_stations, _add_coverage, _add_files,
+                _add_rinex, _add_samples):
         add(commands)
     return parser
 
@@ -316,6 +330,34 @@ def _add_tables(commands):
     add_time_options(baseline, required=False)
     add_common_options(baseline)
     baseline.set_defaults(run=_run_baseline)
+
+
+def _add_faraday(commands):
+    faraday = commands.add_parser(
+        "faraday", help="ionospheric Faraday rotation beside the feed rotation, per station",
+        description="Per station and epoch: the elevation, the ionosphere's rotation measure "
+        "RM along the line of sight (rad/m2), the Faraday rotation chi = RM lambda^2 at each "
+        "--frequency (deg, positive from north through east), the feed rotation Phi and "
+        "psi = Phi - chi (deg), the angle a correction removes. NaN below the horizon (or "
+        "--min-elevation).",
+        epilog=examples(EXAMPLES["faraday"]),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    faraday.add_argument("stations", metavar="STATION", nargs="+", help=ANTENNA_HELP)
+    add_natural_options(faraday)
+    add_time_options(faraday)
+    group = faraday.add_argument_group("ionosphere and frequency")
+    group.add_argument("--ionex", metavar="FILE", nargs="+",
+                       help="IONEX global ionosphere maps, one file per UTC day (plain, .gz or "
+                       ".Z), read through spinifex with the IGRF field (needs the extra "
+                       "'ionosphere'); nothing is downloaded")
+    group.add_argument("--rm-table", metavar="FILE",
+                       help="your own rotation measures instead: a table (ECSV) with columns "
+                       "time, rm (rad / m2) and optionally antenna (station names)")
+    group.add_argument("--frequency", metavar="FREQ", action="append", required=True,
+                       help="observing frequency with a unit (1.4GHz, 150MHz; plain: MHz); "
+                       "repeat it for several: one chi and one psi column each")
+    add_common_options(faraday, polarization=False)
+    faraday.set_defaults(run=_run_faraday)
 
 
 def _add_demo(commands):
@@ -579,6 +621,11 @@ def _run_satellite(args):
 def _run_baseline(args):
     from .tables import run_baseline
     return run_baseline(args)
+
+
+def _run_faraday(args):
+    from .faraday import run_faraday
+    return run_faraday(args)
 
 
 def _run_demo(args):

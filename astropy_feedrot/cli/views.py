@@ -18,10 +18,14 @@ import sys
 from astropy import units as u
 from astropy.time import Time
 
-__all__ = ["TEXT_ANGLE", "output_format", "for_people", "print_table"]
+__all__ = ["TEXT_ANGLE", "TEXT_ROTATION_MEASURE", "output_format", "for_people", "print_table"]
 
 #: The resolution of angles in the text view.
 TEXT_ANGLE = 0.001 * u.deg
+
+#: The resolution of rotation measures in the text view: what IONEX maps support (their
+#: 0.1 TECU is a few 0.001 rad/m2), 0.003 deg of Faraday rotation at 1.4 GHz.
+TEXT_ROTATION_MEASURE = 0.001 * u.rad / u.m**2
 
 
 def output_format(chosen, stream=None):
@@ -55,10 +59,12 @@ def output_format(chosen, stream=None):
 
 def _decimals(unit):
     """Decimals that show `TEXT_ANGLE` in ``unit`` (an angle, or an angle per second), or
-    None for a unit that is neither."""
-    for per, extra in ((u.dimensionless_unscaled, 0), (u.s, 3)):
+    `TEXT_ROTATION_MEASURE`, or None for a unit that is none of these."""
+    for resolution, per, extra in ((TEXT_ANGLE, u.dimensionless_unscaled, 0),
+                                   (TEXT_ANGLE, u.s, 3),
+                                   (TEXT_ROTATION_MEASURE, u.dimensionless_unscaled, 0)):
         try:
-            step = (TEXT_ANGLE / per).to_value(unit)
+            step = (resolution / per).to_value(unit)
         except u.UnitConversionError:
             continue
         return max(0, math.ceil(-math.log10(step))) + extra
@@ -69,8 +75,8 @@ def for_people(table):
     """A copy of ``table`` whose columns print with the digits the physics supports.
 
     Angle columns to 0.001 deg in their unit, angle rates to 1e-6 of their unit
-    per second; times as ISO UTC to the second; other numbers with six
-    significant digits; exact zeros stay 0.
+    per second, rotation measures to 0.001 rad/m2; times as ISO UTC to the
+    second; other numbers with six significant digits; exact zeros stay 0.
 
     Parameters
     ----------

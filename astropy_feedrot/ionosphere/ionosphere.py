@@ -339,7 +339,7 @@ class Ionosphere:
     def _names(antenna, location_shape, count):
         if antenna is None:
             return [None] * count
-        names = [antenna] if isinstance(antenna, str) else list(np.ravel(antenna))
+        names = [antenna] if isinstance(antenna, str) else [str(name) for name in np.ravel(antenna)]
         if len(names) == 1 and count == 1:
             return names
         if np.shape(antenna) != location_shape:

@@ -1,7 +1,7 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """The command line, probed as a hostile user would: every refusal is one line.
 
-Each subcommand (natural, satellite, baseline, stations, demo) gets absurd
+Each subcommand (natural, satellite, baseline, faraday, stations, demo) gets absurd
 steps, spans and times, frames that need an observer, sites off the Earth,
 unreadable, empty, binary and directory inputs, wrong units and unknown
 choices. Each must end with a non-zero exit status and exactly one line on
@@ -16,7 +16,9 @@ import subprocess
 import sys
 
 import pytest
-from astropy.table import Table
+from astropy import units as u
+from astropy.table import QTable, Table
+from astropy.time import Time
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 import astropy_feedrot.cli.common
@@ -46,7 +48,10 @@ def files(tmp_path_factory):
     directory = root / "a-directory"
     directory.mkdir()
     (root / "out").mkdir()
-    return {"{TLE}": tle, "{EMPTY}": empty, "{GARBAGE}": garbage, "{DIR}": directory,
+    rm = root / "rm.ecsv"  # rotation measures for feedrot faraday, over SPAN
+    QTable({"time": Time(["2023-01-25T00:00", "2023-01-26T00:00"]),
+            "rm": [0.5, 1.5] * u.rad / u.m**2}).write(rm)
+    return {"{RM}": rm, "{TLE}": tle, "{EMPTY}": empty, "{GARBAGE}": garbage, "{DIR}": directory,
             "{MISSING}": root / "missing.txt", "{SP3}": sample_file("sample.sp3"),
             "{OBX}": sample_file("sample.obx"), "{OUT}": root / "out"}
 
@@ -72,8 +77,10 @@ SP3 = ["satellite", "FD-VLBA", "--sp3", "{SP3}", "--sat", "G01", "--points", "4"
 BASELINE = ["baseline", "DBR205", "FD-VLBA", "--frequency", "1GHz", "--source", SOURCE, *SPAN]
 BASELINE_SAT = ["baseline", "DBR205", "FD-VLBA", "--frequency", "1GHz", "--tle", "{TLE}",
                 *SAT_SPAN]
+FARADAY = ["faraday", "EFLSBERG", "--source", SOURCE, *SPAN, "--rm-table", "{RM}",
+           "--frequency", "1.4GHz"]
 TIMED = {"natural": NATURAL, "satellite": SATELLITE, "baseline": BASELINE,
-         "baseline-satellite": BASELINE_SAT}
+         "baseline-satellite": BASELINE_SAT, "faraday": FARADAY}
 
 #: Options any timed command refuses, with the message.
 TIMED_CASES = [
@@ -124,6 +131,9 @@ TIMED_CASES = [
 @pytest.mark.parametrize("command", TIMED)
 @pytest.mark.parametrize("extra, match", TIMED_CASES)
 def test_timed_commands(capsys, files, command, extra, match):
+    if command == "faraday" and "--polarization" in extra:
+        # The plane's rotation has no hand: faraday has no --polarization.
+        match = r"unrecognized arguments: --polarization"
     status, out, err = run(capsys, files, [*TIMED[command], *extra])
     usage = "argument" in match or "unrecognized" in match
     assert_one_line_error(status, out, err, match, usage=usage)
@@ -151,11 +161,11 @@ NATURAL_CASES = [
 ]
 
 
-@pytest.mark.parametrize("command", ["natural", "baseline"])
+@pytest.mark.parametrize("command", ["natural", "baseline", "faraday"])
 @pytest.mark.parametrize("extra, match", NATURAL_CASES)
 def test_natural_targets(capsys, files, command, extra, match):
     base = TIMED[command]
-    if "--tle" in extra and command == "natural":
+    if "--tle" in extra and command in ("natural", "faraday"):
         match = r"unrecognized arguments: --tle"
     status, out, err = run(capsys, files, [*base, *extra])
     assert_one_line_error(status, out, err, match, usage="unrecognized" in match)
@@ -193,7 +203,7 @@ SITES = [
 
 
 @pytest.mark.parametrize("site, match", SITES)
-@pytest.mark.parametrize("command", ["natural", "satellite", "baseline"])
+@pytest.mark.parametrize("command", ["natural", "satellite", "baseline", "faraday"])
 def test_sites(capsys, files, site, match, command):
     base = TIMED[command]
     argv = ([base[0], site, *base[2:]] if command != "baseline" else
@@ -343,7 +353,7 @@ def test_stations(capsys, files, path, match):
 
 @pytest.mark.parametrize("argv, match", [
     (["nosuch"], r"argument COMMAND: invalid choice: 'nosuch' \(choose from 'natural', "
-     r"'satellite', 'baseline', 'demo', 'stations', 'coverage', 'antennas', 'correct', "
+     r"'satellite', 'baseline', 'faraday', 'demo', 'stations', 'coverage', 'antennas', 'correct', "
      r"'rinex', 'samples'\); "
      r"see 'feedrot --help'"),
     (["natural"], r"the following arguments are required: ANTENNA; see 'feedrot natural --help'"),
@@ -465,9 +475,10 @@ def test_combinations_of_bad_values(capsys, files, command, bad, data):
             continue  # no --frame with a satellite: not a bad value but a bad option
         value = data.draw(st.sampled_from(BAD_VALUES[option]), label=option)
         argv += [option, value] if option == "-o" or value in files else [f"{option}={value}"]
-        # An LCP receiver is legal for a natural source, not for an RCP satellite.
+        # An LCP receiver is legal for a natural source, not for an RCP satellite (and
+        # faraday has no --polarization).
         refused |= not (option == "--polarization" and value == "LCP"
-                        and "satellite" not in command)
+                        and command in ("natural", "baseline"))
     status, out, err = run(capsys, files, argv)
     check_outcome(status, out, err)
     assert (status != 0) == refused, argv

@@ -2,6 +2,7 @@
 """Every example of every ``--help`` runs as printed; ``feedrot --version``."""
 
 import contextlib
+import importlib.util
 import io
 import shlex
 import shutil
@@ -9,6 +10,9 @@ import tarfile
 from pathlib import Path
 
 import pytest
+from astropy import units as u
+from astropy.table import QTable
+from astropy.time import Time
 from fitsidi_writer import write_fitsidi
 
 from astropy_feedrot import __version__
@@ -17,7 +21,7 @@ from astropy_feedrot.cli import main
 from astropy_feedrot.data import sample_file
 
 DATA = Path(__file__).parent.parent / "data" / "uvdata"
-COMMANDS = ["", "natural", "satellite", "baseline", "demo", "stations", "coverage",
+COMMANDS = ["", "natural", "satellite", "baseline", "faraday", "demo", "stations", "coverage",
             "antennas", "correct", "rinex", "samples"]
 
 
@@ -81,12 +85,24 @@ def files(tmp_path, monkeypatch):
         archive.extractall(tmp_path, filter="data")
     (tmp_path / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms").rename(tmp_path / "vla.ms")
     _add_model(tmp_path / "vla.ms")
+    # feedrot faraday: the IONEX files spinifex ships (where it is installed) and a table
+    # of rotation measures for Effelsberg.
+    if importlib.util.find_spec("spinifex") is not None:
+        from astropy_feedrot.ionosphere import sample_ionex
+
+        for path in sample_ionex("codg00[89]0.20i.Z"):
+            shutil.copy(path, tmp_path / path.name)
+    QTable({"time": Time(["2024-06-01T00:00", "2024-06-02T00:00"]),
+            "rm": [0.5, 1.5] * u.rad / u.m**2,
+            "antenna": ["EFLSBERG"] * 2}).write(tmp_path / "rm.ecsv")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
 
 @pytest.mark.parametrize("command, line", EXAMPLES, ids=[line for _, line in EXAMPLES])
 def test_every_help_example_runs_as_printed(files, capsys, command, line):
+    if "--ionex" in line and importlib.util.find_spec("spinifex") is None:
+        pytest.skip("IONEX maps need spinifex: python -m pip install -e '.[ionosphere]'")
     argv = shlex.split(line)
     assert argv[0] == "feedrot"
     status = main(argv[1:])
