@@ -30,6 +30,9 @@ One module per format, on shared steps:
   and ``FEED`` receptors), `~astropy_feedrot.visibilities.uvdata` (everything
   pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the
   antenna tables FITS-IDI and UVFITS share;
+* `~astropy_feedrot.visibilities.faraday`: the ionospheric Faraday rotation
+  in a correction (the RM of each row's antennas, lambda^2 of each format's
+  channels), beside the feed rotation;
 * `~astropy_feedrot.visibilities.files`: any file, by its kind
   (`read_antennas`, `antenna_table`, `correct_file`), as ``feedrot
   antennas`` and ``feedrot correct`` use them.

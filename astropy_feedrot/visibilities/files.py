@@ -31,6 +31,7 @@ from astropy.table import Table
 
 from ..antennas.focus import CassegrainFocus
 from ..core.outputs import publish, same_file
+from ..ionosphere import IonosphereError
 from ..stations.labels import label_from_mount
 from .antenna_tables import writing_program
 from .catalogue import (
@@ -333,7 +334,7 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
                  progress=False, direction="remove", feeds=None, redo=False, pole=None,
                  client=None, catalogue=None, data_column=None,
                  corrected_column="CORRECTED_DATA", overwrite_column=False,
-                 mounts="file", convention="rigorous"):
+                 mounts="file", convention="rigorous", ionosphere=None):
     """Write a copy of a visibility file with the feed rotation removed.
 
     Parameters
@@ -399,6 +400,9 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
         `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
         ``catalogue`` takes where the two differ: the file's (default) or the
         catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`).
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Remove (apply) the ionospheric Faraday rotation too, per antenna,
+        epoch and channel, in the same pass (:doc:`/ionosphere`).
 
     Returns
     -------
@@ -462,12 +466,13 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
             try:
                 correct_ms(temporary, direction=direction, frame=frame, vertical=vertical,
                            progress=progress, feeds=feeds, redo=redo, pole=pole,
-                           client=client, mounts=mounts, catalogue=catalogue, **columns)
+                           client=client, mounts=mounts, catalogue=catalogue,
+                           ionosphere=ionosphere, **columns)
             except CorrectionRefused as error:  # named as the input, not the copy
                 raise type(error)(error.template.replace(str(temporary), str(source))) \
                     from None
-            except MSError as error:
-                raise MSError(str(error).replace(str(temporary), str(source))) from None
+            except (MSError, IonosphereError) as error:
+                raise type(error)(str(error).replace(str(temporary), str(source))) from None
             except KeyboardInterrupt:
                 raise KeyboardInterrupt(f"{str(target)!r} was not written (the copy being "
                                         "corrected is removed)") from None
@@ -479,7 +484,8 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     if kind == "fits-idi":
         correct_fitsidi(source, target, frame=frame, overwrite=overwrite, progress=progress,
                         vertical=vertical, direction=direction, feeds=feeds, redo=redo,
-                        pole=pole, client=client, catalogue=catalogue, mounts=mounts)
+                        pole=pole, client=client, catalogue=catalogue, mounts=mounts,
+                        ionosphere=ionosphere)
         return target
 
     if kind == "ms":  # pyuvdata reads DATA: what the HISTORY says of it (CASA's too)
@@ -488,7 +494,7 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     check_history(uv.history, direction, str(source), redo=redo)  # the file named
     correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
                    direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
-                   mounts=mounts, pole=pole)
+                   mounts=mounts, pole=pole, ionosphere=ionosphere)
     work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
     try:
         temporary = work / target.name

@@ -30,6 +30,7 @@ from ..core.outputs import new_file_mode, publish, same_file
 from ..core.progress import progress_steps
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .catalogue import catalogue_mounts, catalogue_receptors
+from .faraday import check_ionosphere, fitsidi_lambda_squared, ionosphere_text, row_angles
 from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
 from .poles import POLES, convention_options, pole_context
@@ -324,6 +325,8 @@ class _Plan:
         self.scales = {c.name: (c.bscale, c.bzero) for c in hdu.columns}
         # Antennas whose rows are left as they are (orbiting), and how many rows.
         self.skip, self.skipped_rows = (), 0
+        # With an ionosphere: the FREQID column and {FREQID: lambda^2 of the samples}.
+        self.freqid, self.faraday = None, None
 
 
 def _rows_of(plan, records, name):
@@ -364,7 +367,8 @@ def _row_sources(plan, records, sources, name):
     return a1, a2, date + time, source
 
 
-def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, note=""):
+def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, note="",
+                 ionosphere=None):
     """The receptors' position angles of every row of one UV_DATA table, computed once
     per distinct epoch, source and antenna (the rows' few metadata bytes are read, a
     chunk mapped at a time)."""
@@ -393,7 +397,8 @@ def _angle_table(path, plan, antennas, sources, scale, frame, name, per_chunk, n
         antennas, jd, source, a1, a2, sources, lambda t: Time(t, format="jd", scale=scale),
         products=plan.products, frame=frame, where=f"{name}, table UV_DATA",
         hint="the ANTENNA table has no row for it; give the feeds (feeds=Receptors(...), "
-             "or --feeds R,L on the command line)" + (f"; {note}" if note else ""))
+             "or --feeds R,L on the command line)" + (f"; {note}" if note else ""),
+        ionosphere=ionosphere)
 
 
 def _correct_chunk(records, plan, table, sources, name, direction):
@@ -416,7 +421,6 @@ def _correct_rows(records, plan, table, sources, name, direction):
     """Correct the FLUX of records in place; the number of NaN rows."""
     a1, a2, jd, source = _row_sources(plan, records, sources, name)
     n = len(a1)
-    theta1, theta2 = table(jd, source, a1), table(jd, source, a2)
     # Corrected where they lie, in the file's byte order (the rows are this thread's
     # own buffer): numpy's loops swap the bytes of a block at a time in the cache,
     # in the precision stored, and the chunk is neither copied nor swapped.
@@ -430,13 +434,13 @@ def _correct_rows(records, plan, table, sources, name, direction):
         vis.real, vis.imag = flux[..., 0], flux[..., 1]
     axis = plan.stokes_axis + 1
     moved = np.moveaxis(vis, axis, -1)
-    expand = (n,) + (1,) * (moved.ndim - 2) + (2,)
-    correct_receptor_visibilities(moved, theta1.reshape(expand) * u.deg,
-                                  theta2.reshape(expand) * u.deg, plan.products,
+    freqid = None if plan.freqid is None else _int_column(records, plan, plan.freqid)
+    theta1, theta2 = row_angles(table, jd, source, a1, a2, moved.ndim, plan.faraday, freqid)
+    correct_receptor_visibilities(moved, theta1 * u.deg, theta2 * u.deg, plan.products,
                                   conjugate=True, out=moved, direction=direction)
     if plan.complex != 2:
         flux[..., 0], flux[..., 1] = vis.real, vis.imag
-    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
+    bad = (np.isnan(theta1) | np.isnan(theta2)).reshape(n, -1).any(axis=1)
     if bad.any():
         flux[bad, ..., 0:2] = np.nan
         if plan.complex == 3:
@@ -584,7 +588,7 @@ def _copy_range(fin, fout, begin, end, shift):
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
                     software=None, vertical=None, chunk_bytes=None, direction="remove",
                     feeds=None, redo=False, pole=None, client=None, catalogue=None,
-                    mounts="file", convention="rigorous"):
+                    mounts="file", convention="rigorous", ionosphere=None):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -599,10 +603,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     output : str or os.PathLike
         The file to write (not the input).
     frame : str, optional
-        North of reference of the corrected data: ``'apparent'`` (default,
-        the true pole of date) or a celestial frame such as ``'icrs'``, whose
-        north differs from the apparent one by precession and nutation (see
-        `~astropy_feedrot.visibilities.frame_position_angle`).
+        North of the corrected data: ``'apparent'`` (default, the pole of date) or a
+        celestial frame such as ``'icrs'`` (`~astropy_feedrot.visibilities.frame_position_angle`).
     overwrite : bool, optional
         Replace ``output`` if it exists.
     progress : bool or callable, optional
@@ -649,6 +651,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         station takes where the two differ: the file's ``MNTSTA`` (default)
         or the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`;
         an antenna whose ``MNTSTA`` has no model takes its station's).
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Remove (apply) the Faraday rotation too (`~astropy_feedrot.visibilities.faraday`).
 
     Returns
     -------
@@ -715,6 +719,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     """
     vertical, pole = convention_options(convention, vertical, pole)
     direction = check_direction(direction)
+    ionosphere = check_ionosphere(ionosphere)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     source, target = _check_paths(path, output, overwrite)
@@ -746,7 +751,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     warn_unusual_angles(ground, source)
     new_header = _with_history(source, header_end, history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
-        "both antennas of every row", frame=frame_name, vertical=vertical))
+        "both antennas of every row" + ionosphere_text(ionosphere, " "),
+        frame=frame_name, vertical=vertical))
     directory = os.path.dirname(os.path.abspath(target))
     handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{os.path.basename(target)}.",
                                          suffix=".part")
@@ -757,6 +763,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     try:
         with open_fits(source) as hdul:
             plans = [_Plan(hdul, index, source) for index in indices]
+            for plan in plans if ionosphere is not None else ():
+                plan.freqid, plan.faraday = fitsidi_lambda_squared(hdul, plan.index, source)
         shift = _copy_around(source, temporary, new_header,
                              header_end, [(plan.offset, plan.offset + plan.rows
                                            * plan.dtype.itemsize) for plan in plans])
@@ -771,7 +779,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
             tables = {plan.index: _angle_table(source, plan, antennas, sources, scale,
                                                frame, source,
                                                max(1, chunk_bytes // plan.dtype.itemsize),
-                                               note)
+                                               note, ionosphere)
                       for plan in plans if plan.rows}
         with progress_steps(progress, len(work)) as step:
             for count in _chunks(work, client, source, temporary, shift, tables, sources,

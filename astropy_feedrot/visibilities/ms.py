@@ -31,6 +31,7 @@ from ..antennas.receptors import basis_of
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.progress import progress_steps
 from .catalogue import catalogue_mounts, check_mounts_option
+from .faraday import check_ionosphere, ionosphere_text, ms_lambda_squared
 from .history import check_direction, history_entry
 from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, subtable
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of, tables as _tables
@@ -265,12 +266,15 @@ def _meta(table):
                                                   "FEED2", "FIELD_ID", "DATA_DESC_ID")}
 
 
-def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None):
-    """Per data description: rows, products, and the virtual antennas of each row
-    (not the rows ``skipped``, a mask, left as they are).
+def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None,
+          ionosphere=None):
+    """Per data description: rows, products, the virtual antennas of each row (not the
+    rows ``skipped``, a mask, left as they are), their angles and, with an ionosphere,
+    the lambda^2 of the channels (else None).
 
     Everything is checked here, before anything is written.
     """
+    channels = None if ionosphere is None else ms_lambda_squared(path, _tables())
     ddid = meta["DATA_DESC_ID"]
     missing = sorted(set(np.unique(meta["FIELD_ID"]).tolist()) - set(fields))
     if missing:
@@ -302,8 +306,9 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None):
             angles = ReceptorAngleTable(
                 feeds.virtual, epochs, meta["FIELD_ID"][rows], k1, k2, fields,
                 lambda t: Time(t / 86400.0, format="mjd", scale="utc"), products=products,
-                frame=frame, where=str(path))
-        plans.append((dd, rows, products, k1, k2, angles))
+                frame=frame, where=str(path), ionosphere=ionosphere)
+        plans.append((dd, rows, products, k1, k2, angles,
+                      None if channels is None else channels[spw]))
     return plans
 
 
@@ -311,7 +316,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
                direction="remove", frame="apparent", vertical=None, chunk_rows=None,
                progress=False, feeds=None, redo=False, pole=None, client=None,
                overwrite_column=False, mounts="file", catalogue=None,
-               convention="rigorous"):
+               convention="rigorous", ionosphere=None):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -391,6 +396,13 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
         The station catalogue ``mounts`` compares with: the embedded one by
         default, another, or False for none.
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Remove (apply) the ionospheric Faraday rotation too, in the same
+        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
+        \\lambda^2` per channel, with the RM of each antenna's line of sight
+        at each epoch (computed once per epoch, field and antenna) and
+        lambda^2 from ``CHAN_FREQ`` of each row's spectral window
+        (:doc:`/ionosphere`). ``HISTORY`` names the IONEX files.
 
     Returns
     -------
@@ -415,6 +427,10 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         an output column that is no visibility column like ``data_column``
         (``UVW``, ``FLAG``, a name that is no column name), or one this
         package did not write (unless ``overwrite_column``); nothing is
+        written then.
+    IonosphereError
+        If ``ionosphere`` does not cover the epochs of the data, or its
+        table of rotation measures lacks an antenna (named); nothing is
         written then.
     MSError
         For antennas whose ``MOUNT`` is empty or has no model (orbiting ones
@@ -460,6 +476,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     vertical, pole = convention_options(convention, vertical, pole)
     direction = check_direction(direction)
     check_mounts_option(mounts)
+    ionosphere = check_ionosphere(ionosphere)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     if data_column is None:
@@ -506,11 +523,12 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     skipped = np.isin(meta["ANTENNA1"], skip) | np.isin(meta["ANTENNA2"], skip)
     fields = _fields(path)
     feed_table = FeedReceptors(path, antennas, feeds)
-    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped)
+    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped,
+                  ionosphere)
     warn_unusual_angles({feed_table.number[k]: antenna
                          for k, antenna in feed_table.virtual.items()}, str(path))
     chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
-                 angles) for dd, rows, products, k1, k2, angles in plans
+                 angles, lambda2) for dd, rows, products, k1, k2, angles, lambda2 in plans
                 for k in range(0, rows.size, step_rows)]
     total = meta["TIME"].size
     progress_record.count_rows([item[0].size for item in chunking])
@@ -519,10 +537,11 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
 
     def blocks():
         for index in to_do:
-            rows, products, k1, k2, angles = chunking[index]
+            rows, products, k1, k2, angles, lambda2 = chunking[index]
             epochs, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
-            yield Block(rows_of(rows), products, angles.table, angles.places(epochs, field, k1),
-                        angles.places(epochs, field, k2), index)
+            yield Block(rows_of(rows), products, angles.packed,
+                        angles.places(epochs, field, k1), angles.places(epochs, field, k2),
+                        index, lambda2)
 
     shared = client is not None  # the workers write their chunks themselves
     late = []
@@ -568,6 +587,7 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         with locked(table, shared):
             table.removecolkeyword(corrected_column, _PARTIAL)
     _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
+                 ("" if ionosphere is None else f" {ionosphere_text(ionosphere)}") +
                  ("" if pole == "itrs" else f" (pole={pole})") +
                  (f" (not the baselines to the orbiting antennas "
                   f"{', '.join(map(str, skip))})" if skip else ""))

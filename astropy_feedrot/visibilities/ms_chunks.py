@@ -23,6 +23,7 @@ import numpy as np
 from ..applied.correction import correct_receptor_visibilities
 from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..core.extras import install_hint
+from .faraday import faraday_angles
 from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
@@ -96,7 +97,11 @@ class Block:
     ``table[place1[k]]`` and ``table[place2[k]]``
     (`~astropy_feedrot.visibilities.receptors.ReceptorAngleTable`: each distinct
     time, source and antenna once, sent to each dask worker once). ``index`` is
-    the chunk's place in the run (the progress keyword counts chunks).
+    the chunk's place in the run (the progress keyword counts chunks). With an
+    ionosphere, ``table`` has a third column, the rotation measure (rad m^-2)
+    of each antenna's line of sight, and ``lambda2`` the squared wavelengths
+    (m^2) of the chunk's channels: the angles are then taken per channel
+    (`~astropy_feedrot.visibilities.faraday.faraday_angles`).
 
     Examples
     --------
@@ -108,17 +113,24 @@ class Block:
     array([10., 20., 20.])
     """
 
-    def __init__(self, rows, products, table, place1, place2, index=0):
+    def __init__(self, rows, products, table, place1, place2, index=0, lambda2=None):
         self.rows, self.products, self.table = rows, products, table
         self.place1, self.place2, self.index = place1, place2, index
+        self.lambda2 = lambda2
 
     def theta(self):
-        """The position angles (deg) of the receptors of both antennas, each (N, 2)."""
-        return self.table[self.place1], self.table[self.place2]
+        """The position angles (deg) of the receptors of both antennas, each (N, 2), or
+        with an ionosphere each (N, channels, 2)."""
+        if self.lambda2 is None:
+            return self.table[self.place1], self.table[self.place2]
+        one, two = self.table[self.place1], self.table[self.place2]
+        return (faraday_angles(one[:, :2], one[:, 2], self.lambda2),
+                faraday_angles(two[:, :2], two[:, 2], self.lambda2))
 
     def sent(self):
         """The block without its angle table (a dask task takes that apart)."""
-        return Block(self.rows, self.products, None, self.place1, self.place2, self.index)
+        return Block(self.rows, self.products, None, self.place1, self.place2, self.index,
+                     self.lambda2)
 
 
 def rows_of(rows):
@@ -231,12 +243,12 @@ class Progress:
 def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
     theta1, theta2 = block.theta()
-    # One angle pair per row, for every channel.
+    if block.lambda2 is None:  # one angle pair per row, for every channel
+        theta1, theta2 = theta1[:, None, :], theta2[:, None, :]
     with np.errstate(invalid="ignore"):  # NaN and inf in the data (LWA's) give NaN
-        correct_receptor_visibilities(data, theta1[:, None, :] * u.deg,
-                                      theta2[:, None, :] * u.deg, block.products, out=data,
-                                      direction=direction)
-    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
+        correct_receptor_visibilities(data, theta1 * u.deg, theta2 * u.deg, block.products,
+                                      out=data, direction=direction)
+    bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
     if bad.any():
         data[bad] = np.nan
     return int(np.count_nonzero(bad))

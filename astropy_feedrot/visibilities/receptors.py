@@ -31,6 +31,7 @@ from ..antennas.receptors import RECEPTOR_TYPES, Receptors, basis_of
 from ..core.exceptions import DegenerateGeometryWarning, ReceptorAngleWarning, warn_caller
 from ..earth.frames import local_frame
 from ..engine.antenna import Antenna
+from .faraday import rotation_measure_rows
 from .rows import feed_rotation_rows
 
 __all__ = ["receptor_position_angles", "ReceptorAngleTable", "check_receptors", "with_receptors",
@@ -326,6 +327,10 @@ class ReceptorAngleTable:
         Turns an array of ``time`` values into a `~astropy.time.Time`.
     products, frame, where, hint
         As `receptor_position_angles`.
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Also the rotation measure of each (time, source, antenna), in
+        ``rm`` (rad m^-2; `~astropy_feedrot.visibilities.faraday`), computed
+        here once as the angles are; None (default) leaves ``rm`` None.
 
     Examples
     --------
@@ -348,7 +353,8 @@ class ReceptorAngleTable:
     """
 
     def __init__(self, antennas, time, source, key1, key2, sources, to_time, *, products,
-                 frame="apparent", where="the data", hint="give the antennas' receptors"):
+                 frame="apparent", where="the data", hint="give the antennas' receptors",
+                 ionosphere=None):
         time, source = np.asarray(time, float), np.asarray(source)
         self.times, at = _distinct(time)
         self.sources = np.unique(source)
@@ -377,6 +383,14 @@ class ReceptorAngleTable:
                 sources, self.sources[rest % self.sources.size], products=products,
                 frame=frame, where=where, hint=hint)
         self.codes = codes
+        # What a chunk's rows look up (dask workers are sent it once): the angles (deg),
+        # shape (K, 2), and with an ionosphere the RM (rad m^-2) as a third column.
+        self.rm, self.packed = None, self.table
+        if ionosphere is not None:
+            self.rm = rotation_measure_rows(
+                ionosphere, antennas, keys, to_time(self.times[rest // self.sources.size]),
+                sources, self.sources[rest % self.sources.size], where=where)
+            self.packed = np.column_stack([self.table, self.rm])
 
     def _row_codes(self, at, source):
         """The code of antenna 0 in rows of times ``self.times[at]`` and ``source``."""

@@ -32,6 +32,13 @@ from ..earth.frames import VERTICALS
 from ..engine.antenna import Antenna
 from ..stations.labels import is_orbiting, mount_from_label
 from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
+from .faraday import (
+    check_ionosphere,
+    faraday_angles,
+    ionosphere_text,
+    lambda_squared,
+    rotation_measure_rows,
+)
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
 from .poles import convention_options, pole_context
@@ -282,6 +289,28 @@ def _position_angles(uv, antennas, frame, vertical, note="", skip=(), warn=False
     return theta1, theta2, basis, undefined
 
 
+def _faraday(uv, antennas, vertical, skip, ionosphere):
+    """RM (rad m^-2) of the lines of sight of ant_1 and ant_2 (Nblts,) each (0 on the
+    baselines to the antennas ``skip``), and lambda^2 (m^2) of the channels."""
+    ant1 = np.asarray(uv.ant_1_array, dtype=int)
+    ant2 = np.asarray(uv.ant_2_array, dtype=int)
+    kept = ~(np.isin(ant1, skip) | np.isin(ant2, skip))
+    used = np.unique(np.concatenate([ant1[kept], ant2[kept]]))
+    if antennas is None:
+        antennas = _antennas(uv, vertical, used)
+    lambda2 = lambda_squared(np.ravel(uv.freq_array), "the data (freq_array)")
+    rm = np.zeros((2, ant1.size))
+    if kept.any():
+        sources, _ = phase_centre_sources(uv)
+        time = Time(np.tile(np.asarray(uv.time_array)[kept], 2), format="jd", scale="utc")
+        centre = np.tile(np.asarray(uv.phase_center_id_array)[kept], 2)
+        values = rotation_measure_rows(ionosphere, antennas,
+                                       np.concatenate([ant1[kept], ant2[kept]]), time,
+                                       sources, centre)
+        rm[:, kept] = values.reshape(2, -1)
+    return rm[0], rm[1], lambda2
+
+
 def _frame_text(frame):
     return frame if isinstance(frame, str) else getattr(frame, "name", type(frame).__name__)
 
@@ -421,7 +450,8 @@ def _chunk_rows(uv):
 @iers_context()
 def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antennas=None,
                    progress=False, direction="remove", feeds=None, redo=False,
-                   catalogue=None, mounts="file", pole=None, convention="rigorous"):
+                   catalogue=None, mounts="file", pole=None, convention="rigorous",
+                   ionosphere=None):
     """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
 
     Parameters
@@ -478,6 +508,13 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
         (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
         ``mount_type`` has no model takes its station's). Not for
         ``antennas`` given: those are used as given.
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Remove (apply) the ionospheric Faraday rotation too, in the same
+        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
+        \\lambda^2` per channel (lambda^2 from ``freq_array``), with the RM
+        of each antenna's line of sight at each time (computed once per
+        time, phase centre and antenna; :doc:`/ionosphere`). The history
+        names the IONEX files.
 
     Returns
     -------
@@ -496,6 +533,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     TypeError
         If ``uv`` is not a `~pyuvdata.UVData` object, or ``progress`` is
         neither a bool nor a callable.
+    IonosphereError
+        If ``ionosphere`` does not cover the times of the data, or its table
+        of rotation measures lacks an antenna (named); ``uv`` is unchanged.
     ValueError
         For Stokes or pseudo-Stokes data, linear data without all four
         products (parallel hands only: rotate Stokes Q + iU after imaging),
@@ -560,6 +600,7 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     vertical, pole = convention_options(convention, vertical, pole)
     check_uvdata(uv)
     direction = check_direction(direction)
+    ionosphere = check_ionosphere(ionosphere)
     names, basis = _product_names(uv)
     check_history(uv.history, direction, "these data", redo=redo)
     if uv.data_array is None:
@@ -585,14 +626,20 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     if basis_feeds is not None and basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
+    faraday = None if ionosphere is None else _faraday(uv, antennas, vertical, skip, ionosphere)
     target = uv if inplace else uv.copy()
     data = target.data_array
     # Rows on baselines to an orbiting antenna: kept as they are.
     skipped = np.flatnonzero(np.isin(target.ant_1_array, skip) |
                              np.isin(target.ant_2_array, skip)) if skip else np.zeros(0, int)
     kept_rows = data[skipped].copy()
-    theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
-    theta2 = theta2[:, np.newaxis, :] * u.deg
+    if faraday is None:
+        theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
+        theta2 = theta2[:, np.newaxis, :] * u.deg
+    else:  # (Nblts, Nfreqs, 2): per frequency, a chunk at a time
+        rm1, rm2, lambda2 = faraday
+        undefined = int(np.count_nonzero(np.isnan(theta1).any(-1) | np.isnan(theta2).any(-1)
+                                         | np.isnan(rm1) | np.isnan(rm2)))
     auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
     parallel = [k for k, name in enumerate(names) if name[0] == name[1]]
     n_rows = data.shape[0]
@@ -602,8 +649,12 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
         for start in starts:
             chunk = slice(start, min(start + step, n_rows))
             block = data[chunk]
+            angle1, angle2 = theta1[chunk], theta2[chunk]
+            if faraday is not None:
+                angle1 = faraday_angles(angle1, rm1[chunk], lambda2) * u.deg
+                angle2 = faraday_angles(angle2, rm2[chunk], lambda2) * u.deg
             with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
-                correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
+                correct_receptor_visibilities(block, angle1, angle2, names,
                                               conjugate=True, out=block, direction=direction)
             if basis == "linear":
                 for row in np.flatnonzero(auto[chunk]):
@@ -612,7 +663,10 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
             done_step()
     data[skipped] = kept_rows
     if undefined:
-        bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
+        bad = np.isnan(theta1).any(axis=-1) | np.isnan(theta2).any(axis=-1)
+        bad = bad.reshape(n_rows, -1).any(axis=1)
+        if faraday is not None:
+            bad |= np.isnan(faraday[0]) | np.isnan(faraday[1])
         data[bad] = np.nan
         target.flag_array[bad] = True
         warn_caller(f"the feed rotation is undefined in {undefined} of {n_rows} "
@@ -628,6 +682,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     what = "data_array" + ("; feed_angle set to match" if direction == "remove" else "")
     if skip:
         what += f" (not the baselines to the orbiting antennas {', '.join(map(str, skip))})"
+    if ionosphere is not None:
+        what += f" {ionosphere_text(ionosphere)}"
     target.history += " " + history_entry(direction, what, frame=_frame_text(frame),
                                           vertical=vertical) + "."
     warn_skipped(antennas_all, skip, skipped.size, n_rows, "the data")

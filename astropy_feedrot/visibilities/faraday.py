@@ -1,0 +1,401 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""The ionosphere's Faraday rotation in a correction: rotation measures per antenna and
+epoch, lambda^2 per channel, and the angle that enters the correction.
+
+The ionosphere turns the wave's plane of polarization by chi = RM lambda^2
+before it reaches an antenna; for the receptors that is the same as a feed
+turned by -chi. A correction that removes both takes, for each receptor of
+each antenna, the position angle
+
+.. math:: \\theta - \\mathrm{RM}\\,\\lambda^2(\\nu)
+
+per row *and per channel* (the feed rotation's :math:`\\theta` is one per
+row). Here:
+
+* `rotation_measure_rows`: the RM of each (epoch, source, antenna) once,
+  with `~astropy_feedrot.ionosphere.Ionosphere.rotation_measure` (IONEX maps
+  on its 60 s grid, interpolated to the epochs; or a table); the formats look
+  their rows up as they do the feed rotation
+  (`~astropy_feedrot.visibilities.ReceptorAngleTable`);
+* the channels' lambda^2 of each format: `ms_lambda_squared` (``CHAN_FREQ``
+  of ``SPECTRAL_WINDOW``), `fitsidi_lambda_squared` (``REF_FREQ`` of
+  ``UV_DATA``, ``BANDFREQ`` and ``CH_WIDTH`` of ``FREQUENCY``),
+  `lambda_squared` (pyuvdata's ``freq_array``);
+* `faraday_angles`: the receptors' angles per row and channel;
+* `ionosphere_text`: what the history records.
+"""
+
+import numpy as np
+from astropy import constants as const
+from astropy import units as u
+from astropy.coordinates import BaseCoordinateFrame, EarthLocation, SkyCoord
+
+from ..core.inputs import as_skycoord
+from ..ionosphere import Ionosphere, IonosphereError
+from .rows import distinct_epochs
+
+__all__ = ["check_ionosphere", "rotation_measure_rows", "lambda_squared", "ms_lambda_squared",
+           "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "row_angles"]
+
+_C = const.c.to_value(u.m / u.s)
+
+
+def check_ionosphere(ionosphere):
+    """``ionosphere`` itself if it is None or an `~astropy_feedrot.ionosphere.Ionosphere`.
+
+    Raises
+    ------
+    TypeError
+        For anything else, saying how to make one.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.faraday import check_ionosphere
+    >>> check_ionosphere(None) is None
+    True
+    """
+    if ionosphere is None or isinstance(ionosphere, Ionosphere):
+        return ionosphere
+    raise TypeError(f"ionosphere must be an Ionosphere (Ionosphere.from_ionex(files) or "
+                    f"Ionosphere.from_rm(table)), got {type(ionosphere).__name__}")
+
+
+def ionosphere_text(ionosphere, before=""):
+    """What a correction's history says of the ionosphere it removed (or applied).
+
+    ``before`` precedes the text; an empty text for no ionosphere (None).
+
+    Examples
+    --------
+    >>> import astropy.units as u
+    >>> from astropy.table import QTable
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot.ionosphere import Ionosphere
+    >>> from astropy_feedrot.visibilities.faraday import ionosphere_text
+    >>> table = QTable({"time": Time(["2024-06-01T00:00", "2024-06-01T02:00"]),
+    ...                 "rm": [1.0, 3.0] * u.rad / u.m**2})
+    >>> print(ionosphere_text(Ionosphere.from_rm(table)))
+    and the ionospheric Faraday rotation (RM lambda^2 per channel) from a table of rotation ...
+    """
+    if ionosphere is None:
+        return ""
+    if ionosphere.files:
+        names = ", ".join(path.name for path in ionosphere.files)
+        source = (f"the IONEX files {names} (shell at {ionosphere.height.to_value(u.km):g} km, "
+                  "IGRF through spinifex)")
+    else:
+        source = "a table of rotation measures"
+    return f"{before}and the ionospheric Faraday rotation (RM lambda^2 per channel) from {source}"
+
+
+def _sites(antennas, keys):
+    """The distinct sites of antennas ``keys``: (EarthLocation (S,), names, site of each key)."""
+    seen, site_of = {}, []
+    for key in keys:
+        antenna = antennas[int(key)]
+        xyz = tuple(np.round(antenna.location.to_geocentric()[i].to_value(u.m), 3)
+                    for i in range(3))
+        site_of.append(seen.setdefault((antenna.name, xyz), len(seen)))
+    xyz = np.array([place for _, place in seen], dtype=float).reshape(-1, 3)
+    location = EarthLocation.from_geocentric(xyz[:, 0], xyz[:, 1], xyz[:, 2], unit=u.m)
+    names = [name for name, _ in seen]
+    return location, (None if any(n is None for n in names) else names), np.array(site_of)
+
+
+def rotation_measure_rows(ionosphere, antennas, keys, obstime, sources, source_keys,
+                          where="the data"):
+    """The rotation measure of the line of sight of each (epoch, source, antenna).
+
+    Parameters
+    ----------
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`
+        IONEX maps or a table of rotation measures.
+    antennas : mapping
+        ``{key: Antenna}``; an antenna's ``name`` selects its series of a
+        table per antenna.
+    keys : array-like of int, shape (N,)
+        The antenna of each entry.
+    obstime : `~astropy.time.Time`, shape (N,)
+        The epoch of each entry.
+    sources : mapping
+        ``{source key: SkyCoord, or a function of the epochs for a moving
+        source}`` (as `~astropy_feedrot.visibilities.feed_rotation_rows`).
+    source_keys : array-like, shape (N,)
+        The source of each entry.
+    where : str, optional
+        The data, for messages.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        RM in rad m^-2, shape (N,); NaN where the source is below an
+        antenna's horizon.
+
+    Raises
+    ------
+    IonosphereError
+        If the ionosphere does not cover the epochs, or a table per antenna
+        lacks an antenna (named): one line, before any data are written.
+
+    Notes
+    -----
+    Each source is asked once, at its distinct epochs, for all the distinct
+    sites at once: with IONEX maps the RM is computed on the ionosphere's
+    coarse grid (60 s) and interpolated, so its cost grows with the length of
+    the observation and the number of antennas, not with the rows.
+
+    Examples
+    --------
+    >>> import numpy as np, astropy.units as u
+    >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.table import QTable
+    >>> from astropy.time import Time
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.ionosphere import Ionosphere
+    >>> from astropy_feedrot.visibilities.faraday import rotation_measure_rows
+    >>> table = QTable({"time": Time(["2023-01-25T19:00", "2023-01-25T23:00"] * 2),
+    ...                 "rm": [1.0, 3.0, 2.0, 2.0] * u.rad / u.m**2,
+    ...                 "antenna": ["FD-VLBA", "FD-VLBA", "PIETOWN", "PIETOWN"]})
+    >>> antennas = {1: get_antenna("FD-VLBA"), 2: get_antenna("PIETOWN")}
+    >>> rotation_measure_rows(Ionosphere.from_rm(table), antennas, [1, 2, 1],
+    ...                       Time(["2023-01-25T20:00"] * 2 + ["2023-01-25T21:00"]),
+    ...                       {0: SkyCoord("3h19m48s +41d30m42s")}, [0, 0, 0])
+    array([1.5, 2. , 2. ])
+    """
+    keys = np.asarray(keys, dtype=int)
+    source_keys = np.asarray(source_keys)
+    out = np.full(keys.size, np.nan)
+    for source in np.unique(source_keys).tolist():
+        rows = np.flatnonzero(source_keys == source)
+        epochs, at = distinct_epochs(obstime[rows])
+        used, site_key = np.unique(keys[rows], return_inverse=True)
+        location, names, site_of = _sites(antennas, used)
+        target = sources[source]
+        if callable(target) and not isinstance(target, (SkyCoord, BaseCoordinateFrame)):
+            target = as_skycoord(target(epochs))  # a moving source: one position an epoch
+            target = target.reshape(target.shape + (1,))
+            epochs_asked = epochs.reshape(epochs.shape + (1,))
+        else:
+            epochs_asked = epochs
+        try:
+            rm = ionosphere.rotation_measure(location, target, epochs_asked, antenna=names)
+        except IonosphereError as error:
+            raise IonosphereError(f"{where}: {error}") from None
+        rm = np.asarray(rm.to_value(u.rad / u.m**2)).reshape(epochs.size, location.size)
+        out[rows] = rm[at, site_of[site_key.reshape(-1)]]
+    return out
+
+
+def lambda_squared(frequency, where="the data"):
+    """The squared wavelength (m^2) of each channel, from frequencies in Hz.
+
+    Parameters
+    ----------
+    frequency : array-like
+        Channel frequencies in Hz (a `~astropy.units.Quantity` with a
+        spectral unit is also taken).
+    where : str, optional
+        The data, for messages.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        (c / nu)^2 in m^2, of the shape of ``frequency``.
+
+    Raises
+    ------
+    ValueError
+        If a frequency is not positive and finite: lambda^2 would be wrong.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.faraday import lambda_squared
+    >>> lambda_squared([1.4e9, 5e9])  # doctest: +FLOAT_CMP
+    array([0.04585425, 0.00359502])
+    """
+    if isinstance(frequency, u.Quantity):
+        frequency = frequency.to_value(u.Hz, equivalencies=u.spectral())
+    hertz = np.asarray(frequency, dtype=float)
+    good = np.isfinite(hertz) & (hertz > 0)
+    if not np.all(good):
+        raise ValueError(f"{where}: channel frequency {hertz[~good].ravel()[0]:g} Hz is not "
+                         "positive: the Faraday rotation RM lambda^2 needs each channel's "
+                         "frequency; fix the file's frequency axis")
+    return (_C / hertz) ** 2
+
+
+def ms_lambda_squared(path, tables):
+    """lambda^2 (m^2) of the channels of each spectral window of a Measurement Set.
+
+    Parameters
+    ----------
+    path : path-like
+        The Measurement Set.
+    tables : module
+        ``casacore.tables``.
+
+    Returns
+    -------
+    dict
+        ``{SPECTRAL_WINDOW row: lambda^2 of its channels (CHAN_FREQ, Hz)}``.
+    """
+    out = {}
+    with tables.table(str(path / "SPECTRAL_WINDOW"), ack=False) as table:
+        for row in range(table.nrows()):
+            frequency = np.asarray(table.getcell("CHAN_FREQ", row), dtype=float)
+            out[row] = lambda_squared(frequency, f"{str(path)!r}, table SPECTRAL_WINDOW, "
+                                                 f"row {row}")
+    return out
+
+
+def fitsidi_lambda_squared(hdul, index, name):
+    """lambda^2 (m^2) of the samples of one ``UV_DATA`` table's ``FLUX``, per ``FREQID``.
+
+    The frequency of channel ``k`` (1-based) of band ``b``: ``REF_FREQ`` (or
+    the FREQ axis' ``CRVAL``) + ``BANDFREQ[b]`` + (k - ``REF_PIXL``) *
+    ``CH_WIDTH[b]`` (FITS-IDI, AIPS Memo 114).
+
+    Parameters
+    ----------
+    hdul : `~astropy.io.fits.HDUList`
+        The file.
+    index : int
+        The ``UV_DATA`` extension.
+    name : str
+        The file, for messages.
+
+    Returns
+    -------
+    column : str or None
+        The column of each row's ``FREQID`` (None: one setup).
+    values : dict
+        ``{FREQID: lambda^2}``, each shaped as a row's ``FLUX`` in numpy
+        order without its ``COMPLEX`` and ``STOKES`` axes, with length 1 on
+        the axes other than ``FREQ`` and ``BAND``.
+
+    Raises
+    ------
+    ValueError
+        If the frequencies cannot be read (no ``FREQUENCY`` table, no FREQ
+        axis); the message names what is missing.
+    """
+    hdu = hdul[index]
+    header = hdu.header
+    naxes = int(header["MAXIS"])
+    types = [str(header.get(f"CTYPE{k}", "")).strip().upper() for k in range(1, naxes + 1)]
+    dims = [int(header[f"MAXIS{k}"]) for k in range(1, naxes + 1)]
+    if "FREQ" not in types:
+        raise ValueError(f"{name}, table UV_DATA: no FREQ axis (CTYPEn): the Faraday "
+                         "rotation needs each channel's frequency")
+    k = types.index("FREQ") + 1
+    reference = float(header.get("REF_FREQ", header.get(f"CRVAL{k}", np.nan)))
+    pixel = float(header.get("REF_PIXL", header.get(f"CRPIX{k}", 1.0)))
+    channels = dims[k - 1]
+    frequency_table = next((h for h in hdul if h.name == "FREQUENCY"), None)
+    if frequency_table is None:
+        raise ValueError(f"{name}: no FREQUENCY table: the Faraday rotation needs each "
+                         "channel's frequency")
+    data = frequency_table.data
+    bands = dims[types.index("BAND")] if "BAND" in types else 1
+    # Numpy order of a row's FLUX: the FITS axes reversed; COMPLEX and STOKES dropped.
+    kept = [t for t in reversed(types) if t not in ("COMPLEX", "STOKES")]
+    shape = [1] * len(kept)
+    shape[kept.index("FREQ")] = channels
+    if "BAND" in kept:
+        shape[kept.index("BAND")] = bands
+    values = {}
+    for row in range(len(data)):
+        freqid = int(data["FREQID"][row]) if "FREQID" in data.names else 1
+        offset = np.asarray(data["BANDFREQ"][row], dtype=float).reshape(-1)[:bands]
+        width = np.asarray(data["CH_WIDTH"][row], dtype=float).reshape(-1)[:bands]
+        hertz = reference + offset[:, None] + (np.arange(channels) + 1 - pixel) * width[:, None]
+        if "BAND" in kept and kept.index("BAND") > kept.index("FREQ"):
+            hertz = hertz.T
+        values[freqid] = lambda_squared(hertz, f"{name}, table FREQUENCY, FREQID {freqid}"
+                                        ).reshape(shape)
+    column = "FREQID" if "FREQID" in hdu.columns.names else None
+    return column, values
+
+
+def faraday_angles(theta, rm, lambda2, per_row=False):
+    """The receptors' position angles (deg) per row and channel, the Faraday rotation taken.
+
+    Parameters
+    ----------
+    theta : `~numpy.ndarray`, shape (N, 2)
+        The receptors' position angles (deg) of one antenna of each row.
+    rm : `~numpy.ndarray`, shape (N,)
+        The rotation measure (rad m^-2) of its line of sight.
+    lambda2 : `~numpy.ndarray`, shape (...) or (N, ...)
+        lambda^2 (m^2) of the channels, the same for every row, or per row
+        with ``per_row``.
+    per_row : bool, optional
+        Whether the first axis of ``lambda2`` is the rows'.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        theta - degrees(RM lambda^2), shape (N, ..., 2): the ionosphere turns
+        the wave by +RM lambda^2, which the receptors see as a feed turned by
+        -RM lambda^2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.faraday import faraday_angles
+    >>> faraday_angles(np.array([[10.0, 10.0]]), np.array([np.pi / 180]),
+    ...                np.array([1.0, 2.0]))  # doctest: +FLOAT_CMP
+    array([[[9., 9.],
+            [8., 8.]]])
+    """
+    lambda2 = np.asarray(lambda2, dtype=float)
+    if not per_row:
+        lambda2 = lambda2[np.newaxis]
+    chi = np.degrees(rm.reshape((-1,) + (1,) * (lambda2.ndim - 1)) * lambda2)
+    return theta.reshape((theta.shape[0],) + (1,) * (chi.ndim - 1) + (2,)) - chi[..., None]
+
+
+def row_angles(table, time, source, key1, key2, ndim, faraday=None, freqid=None):
+    """The receptors' position angles (deg) of both antennas of rows, for the kernel.
+
+    Parameters
+    ----------
+    table : `~astropy_feedrot.visibilities.ReceptorAngleTable`
+        The angles (and, with an ionosphere, the RM) of the rows.
+    time, source, key1, key2 : `~numpy.ndarray`
+        The rows, as ``table`` looks them up.
+    ndim : int
+        The dimensions of the visibilities with the products last.
+    faraday : dict, optional
+        ``{setup: lambda^2}`` (`fitsidi_lambda_squared`), each shaped as a
+        row's samples without the products; None: no Faraday rotation.
+    freqid : `~numpy.ndarray`, optional
+        The setup of each row (default: the one setup).
+
+    Returns
+    -------
+    theta1, theta2 : `~numpy.ndarray`
+        Shape (N, 1, ..., 1, 2) (one angle pair per row), or with
+        ``faraday`` (N, ..., 2), per sample.
+    """
+    theta1, theta2 = table(time, source, key1), table(time, source, key2)
+    n = theta1.shape[0]
+    if faraday is None:
+        expand = (n,) + (1,) * (ndim - 2) + (2,)
+        return theta1.reshape(expand), theta2.reshape(expand)
+    if freqid is None or len(faraday) == 1:
+        lambda2, per_row = next(iter(faraday.values())), False
+        if freqid is not None and int(freqid[0]) not in faraday:
+            lambda2 = None
+    else:
+        lambda2, per_row = None, True
+    if lambda2 is None or per_row:
+        missing = sorted(set(np.unique(freqid).astype(int).tolist()) - set(faraday))
+        if missing:
+            raise ValueError(f"rows use FREQID {missing} that the FREQUENCY table lacks "
+                             f"(it has {sorted(faraday)}): their frequencies are unknown")
+        lambda2 = np.stack([faraday[int(f)] for f in freqid])
+    rm1 = table.rm[table.places(time, source, key1)]
+    rm2 = table.rm[table.places(time, source, key2)]
+    return (faraday_angles(theta1, rm1, lambda2, per_row),
+            faraday_angles(theta2, rm2, lambda2, per_row))
