@@ -95,7 +95,8 @@ def _sites(antennas, keys):
         antenna = antennas[int(key)]
         xyz = tuple(np.round(antenna.location.to_geocentric()[i].to_value(u.m), 3)
                     for i in range(3))
-        site_of.append(seen.setdefault((antenna.name, xyz), len(seen)))
+        name = None if antenna.name is None else str(antenna.name)
+        site_of.append(seen.setdefault((name, xyz), len(seen)))
     xyz = np.array([place for _, place in seen], dtype=float).reshape(-1, 3)
     location = EarthLocation.from_geocentric(xyz[:, 0], xyz[:, 1], xyz[:, 2], unit=u.m)
     names = [name for name, _ in seen]
