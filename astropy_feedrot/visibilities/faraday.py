@@ -25,11 +25,14 @@ row). Here:
 * `ionosphere_text`: what the history records.
 """
 
+import warnings
+
 import numpy as np
 from astropy import constants as const
 from astropy import units as u
 from astropy.coordinates import BaseCoordinateFrame, EarthLocation, SkyCoord
 
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.inputs import as_skycoord
 from ..ionosphere import Ionosphere, IonosphereError
 from .rows import distinct_epochs
@@ -179,11 +182,19 @@ def rotation_measure_rows(ionosphere, antennas, keys, obstime, sources, source_k
         else:
             epochs_asked = epochs
         try:
-            rm = ionosphere.rotation_measure(location, target, epochs_asked, antenna=names)
+            with warnings.catch_warnings():  # counted below, once for all sources
+                warnings.simplefilter("ignore", DegenerateGeometryWarning)
+                rm = ionosphere.rotation_measure(location, target, epochs_asked, antenna=names)
         except IonosphereError as error:
             raise IonosphereError(f"{where}: {error}") from None
         rm = np.asarray(rm.to_value(u.rad / u.m**2)).reshape(epochs.size, location.size)
         out[rows] = rm[at, site_of[site_key.reshape(-1)]]
+    below = int(np.count_nonzero(np.isnan(out)))
+    if below:
+        warn_caller(f"{where}: the rotation measure is undefined for {below} of {out.size} "
+                    "(epoch, source, antenna), where the source is below the antenna's "
+                    "horizon: the rows of those antennas and epochs are set to NaN (flagged)",
+                    DegenerateGeometryWarning)
     return out
 
 

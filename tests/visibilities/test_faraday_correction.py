@@ -12,22 +12,32 @@ source's plane of polarization on the sky, independent of how the package
 turns the receptors. The corrected EVPA must be chi0 at every channel.
 """
 
+import shutil
+
 import numpy as np
 import pytest
 from astropy import constants as const
 from astropy import units as u
+from astropy.io import fits
 from astropy.table import QTable
 from astropy.time import Time
 
+from astropy_feedrot.core.exceptions import DegenerateGeometryWarning
 from astropy_feedrot.ionosphere import Ionosphere, IonosphereError
 
 casacore = pytest.importorskip("casacore")
 
 import ms_model  # noqa: E402
 from casacore.tables import table  # noqa: E402
+from fitsidi_writer import write_fitsidi  # noqa: E402
 
-from astropy_feedrot.visibilities import correct_ms  # noqa: E402
+from astropy_feedrot.visibilities import correct_fitsidi, correct_ms, correct_uvdata  # noqa: E402
 from astropy_feedrot.visibilities.history import CorrectionRefused  # noqa: E402
+
+# The models write some stations with other mounts than the catalogue's on purpose
+# (tested in test_real_antennas.py).
+pytestmark = pytest.mark.filterwarnings(
+    "ignore::astropy_feedrot.core.exceptions.CatalogueMountWarning")
 
 C = const.c.to_value(u.m / u.s)
 RM = 3.0  # rad/m2: 15.5 deg at 1 GHz, 3.9 deg at 2 GHz
@@ -108,7 +118,7 @@ def test_ms_evpa_flat_and_round_trip(tmp_path, linear):
     with table(str(ms), ack=False) as main:
         back = main.getcol("MODEL_BACK")
     print("round trip max |back - data| / max |data|:", np.max(np.abs(back - data)) / np.max(np.abs(data)))
-    assert np.max(np.abs(back - data)) < 1e-6 * np.max(np.abs(data)) * 10
+    assert np.max(np.abs(back - data)) < 1e-6 * np.max(np.abs(data))
     # A second removal is refused, as without an ionosphere.
     with pytest.raises(CorrectionRefused, match="removed already"):
         correct_ms(ms, ionosphere=ionosphere)
@@ -140,3 +150,149 @@ def test_ms_table_lacking_an_antenna_names_it(tmp_path):
     partial = Ionosphere.from_rm(rm_table_mjd(start, stop, antennas=names[:3]))
     with pytest.raises(IonosphereError, match="has no antenna '"):
         correct_ms(ms, ionosphere=partial)
+
+
+# --- FITS-IDI ------------------------------------------------------------------------
+
+
+def faraday_fitsidi(where, products=("RR", "LL", "RL", "LR")):
+    """A FITS-IDI file of fitsidi_writer (4 VLBI stations, 2 bands of 4 channels), its
+    frequencies set to 1.0-1.3 and 1.5-1.8 GHz, the source's EVPA chi0 + RM lambda^2 per
+    channel; the channels' frequencies (band, channel) and the gains."""
+    parts = []
+    for evpa, polarized in ((0.0, 0.0), (0.0, 0.1), (45.0, 0.1)):  # I, +Q, +U
+        path = where / f"part{len(parts)}.idifits"
+        info = write_fitsidi(path, products=products, evpa=evpa, polarized=polarized,
+                             n_band=2, n_chan=4)
+        with fits.open(path) as hdul:
+            flux = hdul["UV_DATA"].data["FLUX"].reshape(len(info["rows"]), 1, 1, 2, 4,
+                                                        len(products), 2)
+            parts.append(flux[..., 0] + 1j * flux[..., 1].astype(float))
+    bandfreq, width, reference = np.array([0.0, 0.5e9]), 0.1e9, 1.0e9
+    frequency = reference + bandfreq[:, None] + np.arange(4)[None, :] * width  # REF_PIXL 1
+    chi = np.radians(CHI0 + np.degrees(RM * (C / frequency) ** 2))[None, None, None, :, :, None]
+    data = parts[0] + np.cos(2 * chi) * (parts[1] - parts[0]) \
+        + np.sin(2 * chi) * (parts[2] - parts[0])
+    path = where / "faraday.idifits"
+    shutil.copy(where / "part2.idifits", path)
+    with fits.open(path, mode="update") as hdul:
+        uv = hdul["UV_DATA"]
+        flux = np.stack([data.real, data.imag], axis=-1).astype(np.float32)
+        uv.data["FLUX"][:] = flux.reshape(len(uv.data), -1)
+        uv.header["REF_FREQ"] = reference
+        uv.header["CRVAL3"], uv.header["CDELT3"] = reference, width
+        hdul["FREQUENCY"].data["BANDFREQ"][:] = bandfreq
+        hdul["FREQUENCY"].data["CH_WIDTH"][:] = width
+    gain = 1.0 + 0.1 * np.arange(4)[None, :] + 0.01 * np.arange(2)[:, None]
+    return path, frequency, gain, info
+
+
+@pytest.mark.parametrize("products", [("RR", "LL", "RL", "LR"), ("XX", "YY", "XY", "YX")])
+def test_fitsidi_evpa_flat_and_round_trip(tmp_path, products):
+    path, frequency, gain, info = faraday_fitsidi(tmp_path, products)
+    ionosphere = Ionosphere.from_rm(rm_table_mjd(Time("2023-01-25T20:00").mjd,
+                                                 Time("2023-01-26T02:00").mjd))
+    out = tmp_path / "corrected.idifits"
+    # 3C 84 is below the horizon of one station at three epochs (its feed rotation is
+    # defined, its line of sight through the ionosphere not): those rows are NaN.
+    with pytest.warns(DegenerateGeometryWarning, match="below the antenna's horizon"), \
+            pytest.warns(DegenerateGeometryWarning, match="undefined in 12 of 60 rows"):
+        correct_fitsidi(path, out, ionosphere=ionosphere)
+    with fits.open(out) as hdul:
+        flux = hdul["UV_DATA"].data["FLUX"].reshape(-1, 1, 1, 2, 4, len(products), 2)
+        history = "\n".join(str(card) for card in hdul[0].header["HISTORY"])
+    vis = np.conj(flux[..., 0] + 1j * flux[..., 1].astype(float))[:, 0, 0] / gain[..., None]
+    up = np.isfinite(vis).all(axis=(1, 2, 3))
+    evpa = (evpa_circular if products[0] == "RR" else evpa_linear)(vis[up], list(products))
+    print("FITS-IDI EVPA max deviation (deg):", np.max(np.abs(evpa - CHI0)))
+    # The intrinsic EVPA at every channel of both bands (measured: 3e-5 deg).
+    assert np.max(np.abs(evpa - CHI0)) < 0.01
+    assert "ionospheric Faraday rotation" in history
+    back = tmp_path / "back.idifits"
+    with pytest.warns(DegenerateGeometryWarning):
+        correct_fitsidi(out, back, ionosphere=ionosphere, direction="apply")
+    with fits.open(path) as original, fits.open(back) as again:
+        before = original["UV_DATA"].data["FLUX"][up]
+        after = again["UV_DATA"].data["FLUX"][up]
+        print("FITS-IDI round trip:", np.max(np.abs(after - before)) / np.max(np.abs(before)))
+        assert np.max(np.abs(after - before)) < 1e-6 * np.max(np.abs(before))
+    with pytest.raises(ValueError, match="already"):
+        correct_fitsidi(out, tmp_path / "twice.idifits", ionosphere=ionosphere)
+
+
+# --- pyuvdata --------------------------------------------------------------------------
+
+
+def faraday_uvdata(pols, feeds, angles, rm=RM):
+    """A UVData set of four VLA-like antennas (uvdata_model), 16 channels at 1-2 GHz, the
+    source's EVPA chi0 + RM lambda^2 per channel; its channel frequencies."""
+    pytest.importorskip("pyuvdata")
+    import uvdata_model as model
+    from astropy.coordinates import EarthLocation, SkyCoord
+    from pyuvdata import Telescope, UVData
+    from pyuvdata.utils import ECEF_from_ENU
+
+    vla = EarthLocation.from_geodetic(-107.6184 * u.deg, 34.0790 * u.deg, 2124 * u.m)
+    source = SkyCoord(150 * u.deg, 30 * u.deg)
+    enu = np.array([[0.0, 0, 0], [300.0, 0, 0], [0, 500.0, 0], [-200.0, -400.0, 0]])
+    positions = ECEF_from_ENU(enu, center_loc=vla) - np.array(
+        [vla.x.to_value(u.m), vla.y.to_value(u.m), vla.z.to_value(u.m)])
+    telescope = Telescope.new(name="TESTARRAY", instrument="TESTARRAY", location=vla,
+                              antenna_positions=positions,
+                              antenna_names=["A0", "A1", "A2", "A3"],
+                              antenna_numbers=[0, 1, 2, 3], feed_array=feeds,
+                              feed_angle=np.radians(angles), mount_type="alt-az")
+    frequency = np.linspace(1.0e9, 2.0e9, 16)
+    centre = {0: dict(cat_name="SRC", cat_type="sidereal", cat_lon=source.ra.rad,
+                      cat_lat=source.dec.rad, cat_frame="icrs", cat_epoch=2000.0)}
+    with pytest.warns(UserWarning, match="Recalculating uvw_array"):
+        uv = UVData.new(freq_array=frequency, polarization_array=pols,
+                        channel_width=np.full(16, 62.5e6),
+                        times=2460000.75 + np.arange(4) * 1800.0 / 86400,
+                        telescope=telescope, antpairs=[(0, 1), (0, 2), (1, 3), (2, 3)],
+                        do_blt_outer=True, empty=True, phase_center_catalog=centre)
+    parts = []
+    for stokes in ((1.0, 0.0, 0.0, 0.05), (1.0, 0.1, 0.0, 0.05), (1.0, 0.0, 0.1, 0.05)):
+        model.inject(uv, stokes, lambda times: source, "alt-az")
+        parts.append(uv.data_array.copy())
+    chi = np.radians(CHI0 + np.degrees(rm * (C / frequency) ** 2))[None, :, None]
+    uv.data_array = parts[0] + np.cos(2 * chi) * (parts[1] - parts[0]) \
+        + np.sin(2 * chi) * (parts[2] - parts[0])
+    return uv
+
+
+@pytest.mark.parametrize("pols, feeds, angles",
+                         [(["rr", "ll", "rl", "lr"], ["r", "l"], [0.0, 0.0]),
+                          (["xx", "xy", "yx", "yy"], ["x", "y"], [0.0, 90.0])])
+def test_uvdata_evpa_flat_and_round_trip(pols, feeds, angles):
+    from astropy_feedrot.visibilities.uvdata import PRODUCT_CODES
+
+    uv = faraday_uvdata(pols, [feeds] * 4, [angles] * 4)
+    ionosphere = Ionosphere.from_rm(rm_table_mjd(uv.time_array.min() - 2400000.5,
+                                                 uv.time_array.max() - 2400000.5))
+    out = correct_uvdata(uv, ionosphere=ionosphere)
+    names = [PRODUCT_CODES[c] for c in out.polarization_array]
+    vis = np.conj(out.data_array)  # pyuvdata stores the conjugate of <v1 v2*>
+    evpa = (evpa_circular if names[0] == "RR" else evpa_linear)(vis, names)
+    # The intrinsic EVPA at every channel (measured: 1e-13 deg, double precision).
+    assert np.max(np.abs(evpa - CHI0)) < 0.01
+    assert "ionospheric Faraday rotation" in out.history
+    back = correct_uvdata(out, ionosphere=ionosphere, direction="apply")
+    assert np.max(np.abs(back.data_array - uv.data_array)) < 1e-6
+    with pytest.raises(ValueError, match="already"):
+        correct_uvdata(out, ionosphere=ionosphere)
+
+
+def test_uvdata_rm_per_antenna_round_trip():
+    """Different RM at each antenna: removing and applying give the data back, and the
+    corrected RR of a baseline loses the differential rotation."""
+    uv = faraday_uvdata(["rr", "ll", "rl", "lr"], [["r", "l"]] * 4, [[0.0, 0.0]] * 4, rm=0.0)
+    start, stop = uv.time_array.min() - 2400000.5, uv.time_array.max() - 2400000.5
+    table = QTable({"time": Time(np.repeat([start - 0.01, stop + 0.01], 4), format="mjd"),
+                    "rm": np.tile([1.0, -2.0, 0.5, 4.0], 2) * u.rad / u.m**2,
+                    "antenna": ["A0", "A1", "A2", "A3"] * 2})
+    ionosphere = Ionosphere.from_rm(table)
+    corrupted = correct_uvdata(correct_uvdata(uv), ionosphere=ionosphere, direction="apply",
+                               redo=True)
+    again = correct_uvdata(corrupted, ionosphere=ionosphere, redo=True)
+    assert np.max(np.abs(again.data_array - correct_uvdata(uv).data_array)) < 1e-12
