@@ -223,7 +223,7 @@ def lambda_squared(frequency, where="the data"):
     --------
     >>> from astropy_feedrot.visibilities.faraday import lambda_squared
     >>> lambda_squared([1.4e9, 5e9])  # doctest: +FLOAT_CMP
-    array([0.04585425, 0.00359502])
+    array([0.04585486, 0.00359502])
     """
     if isinstance(frequency, u.Quantity):
         frequency = frequency.to_value(u.Hz, equivalencies=u.spectral())
