@@ -209,8 +209,11 @@ def add_natural_options(parser):
                        + ", ".join(CELESTIAL_FRAMES))
 
 
-def add_common_options(parser, polarization=True):
-    """Add the antenna and output options; ``--polarization`` unless ``polarization`` is False."""
+def add_common_options(parser, polarization=True,
+                       min_elevation="NaN below this elevation (degrees, or with a unit); the "
+                       "continuous series restarts after such gaps"):
+    """Add the antenna and output options: ``--polarization`` unless ``polarization`` is
+    False, ``--min-elevation`` with the help ``min_elevation``."""
     group = parser.add_argument_group("antenna and output")
     group.add_argument("--mount", metavar="CODE", help="mount of a LAT,LON,HEIGHT site: AZEL "
                        "(default), EQUA, X-YN, X-YE, NASR, NASL, BWG, GNSS")
@@ -223,9 +226,7 @@ def add_common_options(parser, polarization=True):
                            help="hand of the receiver (default: the satellite's hand; RCP for "
                            "a natural source); a satellite is heard by a receiver of its own "
                            "hand only")
-    group.add_argument("--min-elevation", metavar="ANGLE",
-                       help="NaN below this elevation (degrees, or with a unit); the continuous "
-                       "series restarts after such gaps")
+    group.add_argument("--min-elevation", metavar="ANGLE", help=min_elevation)
     group.add_argument("-o", "--output", metavar="FILE",
                        help="write the table here instead of standard output, in the format of "
                        "its extension: " + ", ".join(TABLE_FORMATS))
@@ -356,7 +357,9 @@ def _add_faraday(commands):
     group.add_argument("--frequency", metavar="FREQ", action="append", required=True,
                        help="observing frequency with a unit (1.4GHz, 150MHz; plain: MHz); "
                        "repeat it for several: one chi and one psi column each")
-    add_common_options(faraday, polarization=False)
+    add_common_options(faraday, polarization=False,
+                       min_elevation="every value but the elevation NaN below this elevation "
+                       "(degrees, or with a unit; from 0 to 90; default: the horizon)")
     faraday.set_defaults(run=_run_faraday)
 
 

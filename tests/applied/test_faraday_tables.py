@@ -164,3 +164,27 @@ def test_refusals(kwargs, error, match):
                  "ionosphere": Ionosphere.from_rm(RM), "frequency": FREQUENCIES, **kwargs}
     with pytest.raises(error, match=match):
         faraday_table(**arguments)
+
+
+def test_plot_faraday():
+    pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    from astropy_feedrot.applied.plotting import plot_faraday
+
+    table = faraday_table(STATIONS, SOURCE, TIMES, Ionosphere.from_rm(RM), FREQUENCIES)
+    fig = plot_faraday(table)
+    # elevation, RM, feed rotation, then one panel per frequency.
+    assert [ax.get_ylabel() for ax in fig.axes] == [
+        "elevation [deg]", "RM [rad/m$^2$]", "feed rotation [deg]", "150MHz [deg]",
+        "1.4GHz [deg]", "5GHz [deg]"]
+    # One line per station in the RM panel, drawn from the table's own numbers.
+    lines = fig.axes[1].get_lines()
+    assert len(lines) == 2
+    assert np.array_equal(lines[0].get_ydata(), column(table, "rm", STATIONS[0]).value)
+    assert any("RM from a table" in text.get_text() for text in fig.texts)
+    plt.close(fig)
+    del table["psi_5GHz"]
+    with pytest.raises(KeyError, match="the table lacks column.s. psi_5GHz; plot a "
+                                       "faraday_table"):
+        plot_faraday(table)
