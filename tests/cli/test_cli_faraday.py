@@ -277,3 +277,18 @@ def test_missing_spinifex_gives_the_install_hint(tmp_path):
                                     "spinifex")
     assert "python -m pip install spinifex" in result.stderr
     assert "[ionosphere]" in result.stderr
+
+
+@pytest.mark.parametrize("extension", [".fits", ".hdf5"])
+def test_fits_and_hdf5_keep_the_units(capsys, tmp_path, rm_table, extension):
+    if extension == ".hdf5":
+        pytest.importorskip("h5py")
+    path = tmp_path / f"faraday{extension}"
+    status, _, err = run(capsys, "faraday", "EFLSBERG", "--source", SOURCE, *RM_SPAN,
+                         "--rm-table", rm_table, *FREQUENCIES, "-o", path)
+    assert status == 0 and err == "", err
+    table = QTable.read(path, **({"astropy_native": True} if extension == ".fits" else {}))
+    assert isinstance(table["time"], Time)
+    assert table["rm"].unit == u.rad / u.m**2 and table["psi_1.4GHz"].unit == u.deg
+    # 06:00 at Effelsberg: 0.5 + 2 * 6 / 24 = 1 rad/m2.
+    assert np.isclose(table["rm"][0].value, 1.0, rtol=1e-12)
