@@ -654,7 +654,7 @@ class Antenna:
         rotation does (removing it leaves the source's intrinsic angle);
         without ``ionosphere`` it is the feed rotation, repeated over the
         frequencies (epochs first, frequency last). ``kwargs`` go to
-        `feed_rotation`.
+        `feed_rotation`; for an LCP receiver both terms change sign.
 
         Examples
         --------
@@ -677,7 +677,9 @@ class Antenna:
         phi = self.feed_rotation(target, obstime, **kwargs)
         rm = 0 * u.rad / u.m**2 if ionosphere is None else \
             self.rotation_measure(target, obstime, ionosphere)
-        return polarization_rotation(phi, rm, frequency)
+        # The Faraday rotation changes sign with the hand, as the feed rotation does.
+        sign = equations.receiver_sign(target, kwargs.get("polarization"))
+        return polarization_rotation(phi, sign * rm, frequency)
 
     @iers_context()  # one check of the Earth-orientation tables per call
     def feed_rotation_rate(self, target, obstime, polarization=None, form=None,

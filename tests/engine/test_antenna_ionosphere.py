@@ -63,6 +63,9 @@ def test_polarization_rotation_is_feed_minus_faraday(per_antenna):
     lhcp = ef.polarization_rotation(SOURCE, TIMES, FREQUENCIES, polarization="LCP")
     assert_quantity_allclose(lhcp[:, 0], ef.feed_rotation(SOURCE, TIMES, polarization="LCP"),
                              atol=0 * u.deg)
+    # An LCP receiver sees both rotations with the other sign: -(Phi - chi).
+    lhcp = ef.polarization_rotation(SOURCE, TIMES, FREQUENCIES, per_antenna, polarization="LCP")
+    assert_quantity_allclose(lhcp, -(phi[:, np.newaxis] - chi), atol=1e-9 * u.deg)
 
 
 def test_a_named_series_needs_a_named_antenna(per_antenna):
