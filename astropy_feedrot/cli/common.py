@@ -6,6 +6,7 @@ of a table and its figure (the options themselves are in `astropy_feedrot.cli.pa
 import math
 import os
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -35,7 +36,7 @@ __all__ = [
     "parse_quantity", "elevation_limit", "parse_time", "time_span", "parse_site",
     "parse_antenna", "catalogue_antenna", "natural_target", "one_source", "read_path",
     "read_input", "station_catalogue", "input_files", "figure_types", "drawer",
-    "table_outputs", "write_table", "PHASE_UNITS", "in_units",
+    "table_outputs", "write_table", "show_progress", "wrote", "PHASE_UNITS", "in_units",
 ]
 
 # Values ------------------------------------------------------------------------------------
@@ -304,17 +305,42 @@ def table_outputs(args):
     return paths
 
 
-def write_table(table, paths, kind, overwrite=False, form=None):
+def write_table(table, paths, kind, overwrite=False, form=None, step=None):
     """Write ``table`` to ``paths`` (table, figure), or print it: as ``form``
-    (`~astropy_feedrot.cli.views.output_format`) when no table file is given."""
+    (`~astropy_feedrot.cli.views.output_format`) when no table file is given;
+    ``step(rows)`` is called as rows are written or printed."""
     output, figure = paths
     files = []
     if output is not None:
-        files.append((output, table_writer(table, table_format(output))))
+        files.append((output, table_writer(table, table_format(output), step)))
     if figure is not None:
         files.append((figure, drawer(table, kind, figure)))
-    then = None if output is not None else (lambda: print_table(table, output_format(form)))
+    then = None if output is not None else (
+        lambda: print_table(table, output_format(form), step=step))
     write_files(files, then, overwrite=overwrite)
+
+
+def show_progress(args, stream=None):
+    """Whether a command draws a progress bar: when standard error is a terminal, and
+    unless the table is printed as text on the terminal (its lines show the progress).
+
+    ``args.output`` and ``args.format`` are those of `add_common_options`; a
+    command without them draws its bar whenever standard error is a terminal.
+    """
+    stream = sys.stderr if stream is None else stream
+    isatty = getattr(stream, "isatty", None)
+    if isatty is None or not isatty():
+        return False
+    printed = hasattr(args, "output") and args.output is None
+    return not (printed and output_format(getattr(args, "format", None)) == "text")
+
+
+def wrote(paths, what):
+    """The summary line of a table command on success, on standard error: each file
+    written (named as given), and what the table holds."""
+    named = [str(path) for path in paths if path is not None]
+    if named:
+        print(f"feedrot: {' and '.join(named)}: {what}", file=sys.stderr)
 
 
 #: Units of ``--units``: a phase in cycles, radians or degrees.

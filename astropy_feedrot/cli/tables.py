@@ -12,6 +12,7 @@ from astropy.table import vstack
 from ..applied.feed_rotation_tables import baseline_table, feed_rotation_table
 from ..core.exceptions import OrbitWarning, warn_caller
 from ..core.outputs import CommandError
+from ..core.progress import progress_steps
 from ..io import read_sp3, read_tle
 from ..transmitters.nominal_attitude import NominalAttitude
 from ..transmitters.orbits import SP3Orbit, TLEOrbit
@@ -25,10 +26,12 @@ from .common import (
     parse_antenna,
     parse_quantity,
     read_input,
+    show_progress,
     station_catalogue,
     table_outputs,
     time_span,
     write_table,
+    wrote,
 )
 from .parser import one_line
 
@@ -135,6 +138,10 @@ def _target(args):
     return natural_target(args), None
 
 
+def _rows(count):
+    return f"{count} row{'' if count == 1 else 's'}"
+
+
 def _run_single(args):
     paths = table_outputs(args)
     catalogue = station_catalogue(args)
@@ -142,10 +149,23 @@ def _run_single(args):
     min_elevation = elevation_limit(args)
     target, span = _target(args)
     times = time_span(args, default=span)
+    if isinstance(target, list) and args.plot is not None:
+        raise CommandError("--plot draws one satellite; choose it with --sat (e.g. --sat "
+                           f"{target[0].name})")
+    rows = times.size * (len(target) if isinstance(target, list) else 1)
+    # One bar over the rows written: drawn at once (the table is computed at 0 %),
+    # moved by each block of rows written.
+    with progress_steps(show_progress(args), rows) as step:
+        table = _single_table(args, antenna, target, times, min_elevation)
+        write_table(table, paths, "feed_rotation", overwrite=args.overwrite, form=args.format,
+                    step=step)
+    wrote([args.output, args.plot], f"{_rows(len(table))} of the feed rotation of "
+          f"{table.meta['antenna']} observing {table.meta['target']}")
+    return 0
+
+
+def _single_table(args, antenna, target, times, min_elevation):
     if isinstance(target, list):  # every satellite of an SP3 file
-        if args.plot is not None:
-            raise CommandError("--plot draws one satellite; choose it with --sat (e.g. --sat "
-                               f"{target[0].name})")
         tables = []
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", OrbitWarning)  # holes: NaN rows, as documented
@@ -168,8 +188,7 @@ def _run_single(args):
                          index=table.colnames.index("continuous") + 1)
     if getattr(args, "units", None) is not None:
         in_units(table, args.units, _PHASE_COLUMNS)
-    write_table(table, paths, "feed_rotation", overwrite=args.overwrite, form=args.format)
-    return 0
+    return table
 
 
 def run_natural(args):
@@ -190,9 +209,15 @@ def run_baseline(args):
     min_elevation = elevation_limit(args)
     target, span = _target(args)
     times = time_span(args, default=span)
-    table = baseline_table(first, second, target, times, frequency,
-                           polarization=args.polarization, min_elevation=min_elevation)
-    in_units(table, args.units, [f"{antenna}_{name}" for antenna in table.meta["antennas"]
-                                 for name in _PHASE_COLUMNS])
-    write_table(table, paths, "baseline", overwrite=args.overwrite, form=args.format)
+    with progress_steps(show_progress(args), times.size) as step:
+        table = baseline_table(first, second, target, times, frequency,
+                               polarization=args.polarization, min_elevation=min_elevation)
+        in_units(table, args.units, [f"{antenna}_{name}" for antenna in table.meta["antennas"]
+                                     for name in _PHASE_COLUMNS])
+        write_table(table, paths, "baseline", overwrite=args.overwrite, form=args.format,
+                    step=step)
+    first, second = table.meta["antennas"]
+    wrote([args.output, args.plot], f"{_rows(len(table))} of the feed rotation of {first} and "
+          f"{second} observing {table.meta['target']}, and their rotation delay at "
+          f"{table.meta['frequency']}")
     return 0

@@ -18,6 +18,8 @@ import sys
 from astropy import units as u
 from astropy.time import Time
 
+from ..core.outputs import write_table_blocks
+
 __all__ = ["TEXT_ANGLE", "TEXT_ROTATION_MEASURE", "output_format", "for_people", "print_table"]
 
 #: The resolution of angles in the text view.
@@ -114,7 +116,7 @@ def for_people(table):
     return view
 
 
-def print_table(table, form, stream=None):
+def print_table(table, form, stream=None, step=None):
     """Print ``table`` on ``stream`` (standard output) as ``form``: text, ecsv or csv.
 
     Parameters
@@ -123,6 +125,10 @@ def print_table(table, form, stream=None):
     form : {'text', 'ecsv', 'csv'}
         See `output_format`.
     stream : file-like, optional
+    step : callable, optional
+        Called as ``step(rows)`` as rows are printed: after each block of
+        ECSV or CSV (`~astropy_feedrot.core.outputs.write_table_blocks`),
+        once for the text view.
 
     Examples
     --------
@@ -139,5 +145,7 @@ def print_table(table, form, stream=None):
     stream = sys.stdout if stream is None else stream
     if form == "text":
         print("\n".join(for_people(table).pformat(max_lines=-1, max_width=-1)), file=stream)
+        if step is not None:
+            step(len(table))
     else:
-        table.write(stream, format=f"ascii.{form}")
+        write_table_blocks(table, f"ascii.{form}", stream, step)

@@ -15,6 +15,7 @@ replacing the other. Used by the ``feedrot`` command line
 
 import contextlib
 import importlib.util
+import io
 import os
 import shutil
 import stat
@@ -23,7 +24,8 @@ import warnings
 from pathlib import Path
 
 __all__ = ["CommandError", "TABLE_FORMATS", "same_file", "check_outputs", "table_format",
-           "table_writer", "new_file_mode", "publish", "write_files"]
+           "table_writer", "write_table_blocks", "BLOCK_ROWS", "new_file_mode", "publish",
+           "write_files"]
 
 
 class CommandError(Exception):
@@ -193,7 +195,98 @@ def table_format(path):
     return fmt
 
 
-def table_writer(table, fmt):
+#: Rows of a text table formatted at a time by `write_table_blocks`: the steps of a
+#: progress bar while a long table is written (ECSV: about 0.25 s each).
+BLOCK_ROWS = 10_000
+
+# Text formats that `write_table_blocks` writes in blocks of rows: one line per row.
+_LINE_FORMATS = ("ascii.ecsv", "ascii.csv")
+
+
+def _one_line_per_row(table):
+    """Whether every row of ``table`` is written on one line (no string holds a newline)."""
+    # numpy when a table is written, not when the module is imported: the command
+    # line's parser (and so 'feedrot --help') imports this module.
+    import numpy as np
+
+    for name in table.colnames:
+        column = table[name]
+        kind = getattr(column, "dtype", np.dtype(float)).kind
+        if kind == "O":
+            return False
+        if kind in "US":
+            text = np.asarray(column).astype(str)
+            if np.any(np.char.find(text, "\n") >= 0) or np.any(np.char.find(text, "\r") >= 0):
+                return False
+    return True
+
+
+def write_table_blocks(table, fmt, stream, step=None):
+    """Write ``table`` as ``fmt`` to an open text ``stream``, `BLOCK_ROWS` rows at a time.
+
+    The text is the same, byte for byte, as ``table.write(stream, format=fmt)``
+    writes: the header of the first block, then the rows of every block (each
+    value is formatted on its own). Formats other than ECSV and CSV, and
+    tables whose strings hold line breaks, are written in one block.
+
+    Parameters
+    ----------
+    table : `~astropy.table.Table`
+    fmt : str
+        A value of `TABLE_FORMATS` that writes text (``ascii.ecsv``,
+        ``ascii.csv``, ``ascii.html``).
+    stream : file-like
+        Open for writing text.
+    step : callable, optional
+        Called as ``step(rows)`` after each block
+        (`~astropy_feedrot.core.progress.progress_steps`).
+
+    Raises
+    ------
+    RuntimeError
+        If a block's header differs from the first block's (which would
+        make the blocks differ from the table written at once); nothing
+        the package writes does.
+
+    Examples
+    --------
+    >>> import io
+    >>> import numpy as np
+    >>> from astropy.table import Table
+    >>> from astropy_feedrot.core.outputs import write_table_blocks
+    >>> table = Table({"a": np.arange(25_000.0)})
+    >>> whole, blocks, steps = io.StringIO(), io.StringIO(), []
+    >>> table.write(whole, format="ascii.ecsv")
+    >>> write_table_blocks(table, "ascii.ecsv", blocks, steps.append)
+    >>> blocks.getvalue() == whole.getvalue(), steps
+    (True, [10000, 10000, 5000])
+    """
+    step = (lambda rows: None) if step is None else step
+    rows = len(table)
+    if fmt not in _LINE_FORMATS or rows <= BLOCK_ROWS or not _one_line_per_row(table):
+        table.write(stream, format=fmt)
+        step(rows)
+        return
+    header = None
+    for start in range(0, rows, BLOCK_ROWS):
+        block = table[start:start + BLOCK_ROWS]
+        text = io.StringIO()
+        block.write(text, format=fmt)
+        # The writer joins its lines with os.linesep and ends with one: header lines,
+        # then one line per row.
+        lines = text.getvalue().split(os.linesep)
+        count = len(lines) - 1 - len(block)
+        if header is None:
+            header = lines[:count]
+        elif lines[:count] != header:
+            raise RuntimeError(f"the {fmt} header of rows {start} to {start + len(block)} "
+                               "differs from that of the first rows; write the table at once "
+                               "(Table.write)")
+        stream.write(os.linesep.join(lines if start == 0 else lines[count:]))
+        step(len(block))
+
+
+def table_writer(table, fmt, step=None):
     """A function that writes ``table`` in format ``fmt`` to a file name, for `write_files`.
 
     Parameters
@@ -201,6 +294,9 @@ def table_writer(table, fmt):
     table : `~astropy.table.Table`
     fmt : str
         A value of `TABLE_FORMATS`.
+    step : callable, optional
+        Called as ``step(rows)`` as rows are written: after each block of
+        an ECSV or CSV file (`write_table_blocks`), once for other formats.
 
     Returns
     -------
@@ -220,6 +316,11 @@ def table_writer(table, fmt):
     """
 
     def write(name):
+        if fmt in _LINE_FORMATS:
+            # As astropy opens a file it writes text to: no translation of line ends.
+            with open(name, "w", newline="") as stream:
+                write_table_blocks(table, fmt, stream, step)
+            return
         # astropy when a table is written, not when the module is imported: the
         # command line's parser (and so 'feedrot --help') imports this module.
         from astropy.io.fits.verify import VerifyWarning
@@ -229,6 +330,8 @@ def table_writer(table, fmt):
             # Header keywords longer than 8 characters are written as HIERARCH cards.
             warnings.filterwarnings("ignore", "Keyword name", VerifyWarning)
             table.write(name, format=fmt, overwrite=True, **options)
+        if step is not None:
+            step(len(table))
     return write
 
 

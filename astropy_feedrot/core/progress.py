@@ -1,12 +1,17 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Progress of long corrections, as the caller asks for it.
+"""Progress of long work, as the caller asks for it.
 
 `~astropy_feedrot.visibilities.correct_uvdata`,
-`~astropy_feedrot.visibilities.correct_fitsidi` and
-`~astropy_feedrot.visibilities.correct_ms` take ``progress=True`` (astropy's
-`~astropy.utils.console.ProgressBar`), ``False`` or a callable
+`~astropy_feedrot.visibilities.correct_fitsidi`,
+`~astropy_feedrot.visibilities.correct_ms` and
+`~astropy_feedrot.gnss.correct_rinex` take ``progress=True`` (astropy's
+`~astropy.utils.console.ProgressBar` on standard error, drawn only when
+standard error is a terminal), ``False`` or a callable
 ``progress(done, total)``; `progress_steps` turns that into one function to
-call after each step.
+call after each step, and the ``feedrot`` commands use it for their bars.
+The work is counted in the units it is done in (chunks of rows, blocks of
+epochs, bytes of a file read): a step may count several units, so that a
+bar moves once per block, never once per epoch.
 """
 
 import contextlib
@@ -19,21 +24,23 @@ __all__ = ["progress_steps"]
 
 @contextlib.contextmanager
 def progress_steps(progress, total):
-    """A function to call after each of ``total`` steps, reporting as ``progress`` asks.
+    """A function to call after each step of work ``total`` units long, reporting as
+    ``progress`` asks.
 
     Parameters
     ----------
     progress : bool, None or callable
         True: astropy's `~astropy.utils.console.ProgressBar` on standard
-        output; False or None: nothing; a callable: called as
-        ``progress(done, total)`` after each step.
+        error (silent unless standard error is a terminal); False or None:
+        nothing; a callable: called as ``progress(done, total)`` after each
+        step, ``done`` counting the units done so far.
     total : int
-        The number of steps.
+        The units of work (steps, rows, bytes...).
 
     Yields
     ------
     callable
-        ``step()``, to call once a step is done.
+        ``step(count=1)``, to call once ``count`` more units are done.
 
     Raises
     ------
@@ -44,26 +51,30 @@ def progress_steps(progress, total):
     --------
     >>> from astropy_feedrot.core.progress import progress_steps
     >>> calls = []
-    >>> with progress_steps(lambda done, total: calls.append((done, total)), 2) as step:
+    >>> with progress_steps(lambda done, total: calls.append((done, total)), 5) as step:
     ...     step()
-    ...     step()
+    ...     step(4)
     >>> calls
-    [(1, 2), (2, 2)]
+    [(1, 5), (5, 5)]
     """
     if progress is True:
-        with ProgressBar(total, file=sys.stdout) as bar:
-            yield bar.update
+        with ProgressBar(total, file=sys.stderr) as bar:
+            yield _counter(lambda done, total: bar.update(done), total)
     elif callable(progress):
-        done = 0
-
-        def step():
-            nonlocal done
-            done += 1
-            progress(done, total)
-
-        yield step
+        yield _counter(progress, total)
     elif progress is False or progress is None:
-        yield lambda: None
+        yield lambda count=1: None
     else:
         raise TypeError(f"progress must be True, False or a callable (done, total), got "
                         f"{type(progress).__name__}")
+
+
+def _counter(report, total):
+    """``step(count=1)``: adds ``count`` to the units done and reports them."""
+    done = 0
+
+    def step(count=1):
+        nonlocal done
+        done += count
+        report(done, total)
+    return step

@@ -527,7 +527,7 @@ def test_interrupted_run_leaves_files_as_they_were(capsys, tmp_path, monkeypatch
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    def half_written(table, fmt):
+    def half_written(table, fmt, step=None):
         def write(name):
             with open(name, "wb") as handle:
                 handle.write(b"# %ECSV 1.0\n# ---\n")

@@ -165,8 +165,9 @@ def test_satellite_with_too_few_points_says_so(tmp_path, capsys):
             "-o", str(tmp_path / "g01.ecsv")]
     assert main(argv + ["--points", "2"]) == 0
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith(
+    # The warning, then the summary line.
+    assert err.count("\n") == 2 and err.startswith(
         "feedrot: warning: --points 2 at the SP3 file's 900 s interval: its positions may be "
         f"off by more than 10 m between epochs; --points {needed} keeps them within")
     assert main(argv + ["--points", str(needed), "--overwrite"]) == 0
-    assert capsys.readouterr().err == ""
+    assert capsys.readouterr().err.startswith(f"feedrot: {tmp_path / 'g01.ecsv'}: ")

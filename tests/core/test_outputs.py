@@ -94,8 +94,8 @@ def test_two_runs_into_one_output_do_not_both_succeed(tmp_path, capsys, monkeypa
     writer = astropy_feedrot.cli.common.table_writer
     runs = []
 
-    def racing_writer(table, fmt):
-        write = writer(table, fmt)
+    def racing_writer(table, fmt, step=None):
+        write = writer(table, fmt, step)
         if not runs:
             runs.append(None)
             runs[0] = main(argv)  # the other run, from start to end
@@ -106,7 +106,9 @@ def test_two_runs_into_one_output_do_not_both_succeed(tmp_path, capsys, monkeypa
     status = main(argv)
     err = capsys.readouterr().err
     assert runs == [0] and status == 1
-    assert re.fullmatch(r"feedrot: error: .*out\.ecsv' exists \(made by another program while "
+    # The other run's line of success, then this one's error.
+    assert re.fullmatch(r"feedrot: .*out\.ecsv: 4 rows of the feed rotation of .*\n"
+                        r"feedrot: error: .*out\.ecsv' exists \(made by another program while "
                         r"this one ran\?\); nothing was replaced; add --overwrite to replace "
                         r"it\n", err), err
     assert "first" not in output.read_text()

@@ -1,0 +1,131 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""Signs of life: the progress bars of long commands, on a terminal only, and the line
+that says what was written."""
+
+import argparse
+import io
+import os
+import pathlib
+import pty
+import subprocess
+import sys
+import threading
+
+import pytest
+
+import astropy_feedrot
+from astropy_feedrot.cli import main
+from astropy_feedrot.cli.common import show_progress
+
+SOURCE = "03h19m48.16s +41d30m42.1s"  # 3C 84
+# 30,001 epochs: four blocks of rows (core.outputs.BLOCK_ROWS) in a text file.
+LONG = ["natural", "EFLSBERG", "--source", SOURCE, "--start", "2023-01-25T00:00",
+        "--stop", "2023-01-25T08:20", "--step", "1s"]
+# This checkout's package, whatever the subprocess's working directory.
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(
+    [str(pathlib.Path(astropy_feedrot.__file__).parents[1])]
+    + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+
+
+def feedrot(argv, cwd, terminal):
+    """Run feedrot with standard error on a terminal (a pseudo-terminal) or a pipe:
+    (exit status, standard output, standard error)."""
+    command = [sys.executable, "-m", "astropy_feedrot", *argv]
+    if not terminal:
+        done = subprocess.run(command, cwd=cwd, env=ENV, capture_output=True, timeout=300)
+        return done.returncode, done.stdout, done.stderr.decode()
+    main_fd, side = pty.openpty()
+    process = subprocess.Popen(command, cwd=cwd, env=ENV, stdout=subprocess.PIPE,
+                               stderr=side)
+    os.close(side)
+    drawn = []
+
+    def read_terminal():  # as it is written, until the process closes it
+        while True:
+            try:
+                data = os.read(main_fd, 65536)
+            except OSError:  # EIO: the other side is closed
+                return
+            if not data:
+                return
+            drawn.append(data)
+
+    reader = threading.Thread(target=read_terminal)
+    reader.start()
+    out, _ = process.communicate(timeout=300)  # standard output read meanwhile
+    reader.join(timeout=60)
+    os.close(main_fd)
+    # A terminal turns "\n" into "\r\n".
+    return process.returncode, out, b"".join(drawn).decode().replace("\r\n", "\n")
+
+
+def bars(err):
+    """The drawings of the bar (each starts with a carriage return)."""
+    return [line for line in err.split("\r") if line.startswith("|")]
+
+
+def test_a_bar_on_a_terminal_while_a_long_table_is_written_and_the_same_file(tmp_path):
+    status, out, err = feedrot(LONG + ["-o", "bar.ecsv"], tmp_path, terminal=True)
+    assert status == 0, err
+    drawn = bars(err)
+    # Drawn at 0 % while the table is computed, after each of the four blocks, at the end.
+    assert len(drawn) >= 5, err
+    assert "( 0.00%)" in drawn[0] and "(100.00%)" in drawn[-1]
+    shown = {line.split("(")[1].split(")")[0] for line in drawn}
+    assert {"33.33%", "66.66%"} <= shown, shown  # blocks of 10,000 rows of 30,001
+    assert err.endswith("\nfeedrot: bar.ecsv: 30001 rows of the feed rotation of EFLSBERG "
+                        f"observing {SOURCE} (icrs)\n")
+    # Without a terminal: no bar, the one summary line, and the same bytes written.
+    status, out, err = feedrot(LONG + ["-o", "plain.ecsv"], tmp_path, terminal=False)
+    assert status == 0 and "\r" not in err
+    assert err == ("feedrot: plain.ecsv: 30001 rows of the feed rotation of EFLSBERG "
+                   f"observing {SOURCE} (icrs)\n")
+    assert (tmp_path / "bar.ecsv").read_bytes() == (tmp_path / "plain.ecsv").read_bytes()
+
+
+@pytest.mark.parametrize("form", ["ecsv", "csv"])
+def test_a_table_on_a_pipe_is_the_same_with_a_bar(tmp_path, form):
+    status, with_bar, err = feedrot(LONG + ["--format", form], tmp_path, terminal=True)
+    assert status == 0 and len(bars(err)) >= 5, err
+    status, without, err = feedrot(LONG + ["--format", form], tmp_path, terminal=False)
+    # Nothing written to a file: no summary line either.
+    assert status == 0 and err == ""
+    assert with_bar == without and without.count(b"\n") > 30001
+
+
+def test_nothing_but_the_summary_line_in_the_tests(capsys, tmp_path):
+    # Standard error is not a terminal here: no bar, one line.
+    argv = LONG[:-4] + ["--stop", "2023-01-25T00:10", "--step", "1min"]
+    assert main(argv + ["-o", str(tmp_path / "t.fits"), "--plot", str(tmp_path / "t.png")]) == 0
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err == (f"feedrot: {tmp_path / 't.fits'} and {tmp_path / 't.png'}: 11 rows of the "
+                   f"feed rotation of EFLSBERG observing {SOURCE} (icrs)\n")
+
+
+def test_the_baseline_summary_names_both_antennas_and_the_frequency(capsys, tmp_path):
+    assert main(["baseline", "EFLSBERG", "YEBES40M", "--source", SOURCE, "--start",
+                 "2023-01-25T18:00", "--stop", "2023-01-25T19:00", "--frequency", "8.4GHz",
+                 "-o", str(tmp_path / "b.ecsv")]) == 0
+    assert capsys.readouterr().err == (
+        f"feedrot: {tmp_path / 'b.ecsv'}: 7 rows of the feed rotation of EFLSBERG and "
+        f"YEBES40M observing {SOURCE} (icrs), and their rotation delay at 8400.0 MHz\n")
+
+
+class Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+@pytest.mark.parametrize("output, form, stdout_terminal, expected", [
+    ("t.ecsv", None, True, True),       # a file: the bar
+    (None, None, False, True),          # ECSV on a pipe: the bar
+    (None, None, True, False),          # the text view on the terminal: its lines
+    (None, "text", False, False),       # the text view, printed at once
+    (None, "ecsv", True, True),         # ECSV asked for on the terminal, in blocks
+])
+def test_when_a_bar_is_drawn(monkeypatch, output, form, stdout_terminal, expected):
+    monkeypatch.setattr(sys, "stdout", Terminal() if stdout_terminal else io.StringIO())
+    args = argparse.Namespace(output=output, format=form)
+    assert show_progress(args, Terminal()) is expected
+    assert show_progress(args, io.StringIO()) is False
