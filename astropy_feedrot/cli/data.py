@@ -31,7 +31,9 @@ from ..visibilities import (
     parse_feeds,
     read_antennas,
 )
+from ..ionosphere import IonosphereError
 from ..visibilities.poles import convention_options
+from .faraday import ionosphere_option
 from .parser import one_line
 
 __all__ = ["run_antennas", "run_correct", "check_correct_output"]
@@ -129,7 +131,7 @@ def _run_in_place(args, options):
         raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
                            "files are corrected into a copy (-o OUTPUT)")
     try:
-        with _client(args) as client:
+        with _client(args) as client, _ionosphere_errors(args):
             correct_ms(args.input, client=client, **_columns(args), **options)
     except ImportError as error:
         raise CommandError(one_line(error)) from None
@@ -146,7 +148,9 @@ def _summary(args, path, what):
     if args.quiet:
         return
     done = "applied" if args.apply else "removed"
-    print(f"feedrot: {path}: feed rotation {done} {what} ({args.convention} convention: "
+    faraday = "" if args.ionex is None and args.rm_table is None else \
+        " and ionospheric Faraday rotation"
+    print(f"feedrot: {path}: feed rotation{faraday} {done} {what} ({args.convention} convention: "
           f"vertical {args.vertical}, pole {args.pole}; frame {args.frame})", file=sys.stderr)
 
 
@@ -156,11 +160,26 @@ def _columns(args):
                 overwrite_column=args.overwrite_column)
 
 
+@contextlib.contextmanager
+def _ionosphere_errors(args):
+    """An ionosphere that does not cover the data (or lacks an antenna) as one line naming
+    the option that gave it."""
+    try:
+        yield
+    except IonosphereError as error:
+        option = "--ionex" if args.ionex is not None else "--rm-table"
+        raise CommandError(f"{option}: {one_line(error)}") from None
+
+
 def run_correct(args):
     args.vertical, args.pole = convention_options(args.convention, args.vertical, args.pole)
+    ionosphere = None
+    if args.ionex is not None or args.rm_table is not None:  # before any work
+        ionosphere, _ = ionosphere_option(args)
     options = dict(direction="apply" if args.apply else "remove", frame=args.frame,
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
-                   feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts)
+                   feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts,
+                   ionosphere=ionosphere)
     if args.in_place:
         return _run_in_place(args, options)
     if args.output is None:
@@ -183,7 +202,7 @@ def run_correct(args):
     try:
         temporary = work / target.name
         try:
-            with _client(args) as client:
+            with _client(args) as client, _ionosphere_errors(args):
                 correct_file(args.input, temporary, client=client, **columns, **options)
         except ImportError as error:
             raise CommandError(one_line(error)) from None

@@ -27,7 +27,7 @@ from .common import (
 )
 from .parser import one_line
 
-__all__ = ["run_faraday"]
+__all__ = ["run_faraday", "ionosphere_option"]
 
 _IONOSPHERE_HINT = ("give the ionosphere with --ionex FILE [FILE ...] (IONEX maps, one file per "
                     "UTC day) or --rm-table FILE (a table of rotation measures)")
@@ -55,8 +55,9 @@ def _read_rm_table(path):
         raise CommandError(f"--rm-table: {path!r}: {one_line(error)}") from None
 
 
-def _ionosphere(args):
-    """The `Ionosphere` of ``--ionex`` or ``--rm-table``, and the option that gave it."""
+def ionosphere_option(args):
+    """The `Ionosphere` of ``--ionex`` or ``--rm-table``, and the option that gave it
+    (also for ``feedrot correct``)."""
     if (args.ionex is None) == (args.rm_table is None):
         raise CommandError(_IONOSPHERE_HINT + ("" if args.ionex is None else ", not both"))
     if args.rm_table is not None:
@@ -82,7 +83,7 @@ def run_faraday(args):
                            "the horizon")
     target = natural_target(args)
     times = time_span(args)
-    ionosphere, option = _ionosphere(args)
+    ionosphere, option = ionosphere_option(args)
     try:
         table = faraday_table(antennas, target, times, ionosphere, frequencies,
                               min_elevation=min_elevation)

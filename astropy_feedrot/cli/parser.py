@@ -85,7 +85,8 @@ EXAMPLES = {
                 "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
                 "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
                 "feedrot correct vla.uvfits -o vla_catalogue.uvfits --mounts catalogue",
-                "feedrot correct vla.ms --in-place --convention casa --workers 2"],
+                "feedrot correct vla.ms --in-place --convention casa --workers 2",
+                "feedrot correct vla.ms --in-place --rm-table vla_rm.ecsv"],
     "rinex": ["feedrot rinex obs.rnx --sp3 gnss.sp3 -o corrected.rnx",
               "feedrot rinex obs.rnx --sp3 gnss.sp3 -o out.rnx --table windup.ecsv --units deg"],
     "samples": ["feedrot samples",
@@ -532,6 +533,18 @@ def _add_files(commands):
     correct.add_argument("--pole", choices=POLES,
                          help="the pole of the parallactic angle: the Earth-fixed z axis with "
                          "polar motion or CASA's, without (default: the convention's)")
+    ionosphere = correct.add_argument_group(
+        "ionospheric Faraday rotation (removed, or with --apply applied, with the feed "
+        "rotation: per antenna, epoch and channel)")
+    ionosphere.add_argument("--ionex", metavar="FILE", nargs="+",
+                            help="IONEX global ionosphere maps covering the observation, one "
+                            "file per UTC day (plain, .gz or .Z), read through spinifex with "
+                            "the IGRF field (needs the extra 'ionosphere'); nothing is "
+                            "downloaded; the HISTORY names them")
+    ionosphere.add_argument("--rm-table", metavar="FILE",
+                            help="your own rotation measures instead: a table (ECSV) with "
+                            "columns time, rm (rad / m2) and optionally antenna (the file's "
+                            "antenna names; without it one series serves every antenna)")
     correct.add_argument("--dask", metavar="SCHEDULER",
                          help="correct the chunks of a Measurement Set or FITS-IDI file on "
                          "the workers of this dask.distributed scheduler (its address)")

@@ -95,6 +95,9 @@ def files(tmp_path, monkeypatch):
     QTable({"time": Time(["2024-06-01T00:00", "2024-06-02T00:00"]),
             "rm": [0.5, 1.5] * u.rad / u.m**2,
             "antenna": ["EFLSBERG"] * 2}).write(tmp_path / "rm.ecsv")
+    # feedrot correct --rm-table: one series of rotation measures for every antenna of vla.ms.
+    QTable({"time": Time(["2009-01-01T00:00", "2020-01-01T00:00"]),
+            "rm": [2.0, 2.0] * u.rad / u.m**2}).write(tmp_path / "vla_rm.ecsv")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
