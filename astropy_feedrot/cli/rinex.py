@@ -16,8 +16,9 @@ from ..core.outputs import (
     table_writer,
     write_files,
 )
+from ..core.progress import progress_steps
 from ..gnss import correct_rinex
-from .common import in_units, parse_quantity, read_path
+from .common import in_units, parse_quantity, read_path, show_progress
 from .parser import one_line
 
 __all__ = ["run_rinex", "summary"]
@@ -64,16 +65,19 @@ def run_rinex(args):
                                _position(args.position),
                                form=args.form, table=table is not None,
                                metadata=args.metadata,
-                               overwrite=args.overwrite)
+                               overwrite=args.overwrite, progress=show_progress(args))
     except FileExistsError as error:
         raise CommandError(f"-o/--output: {one_line(error)}") from None
     except ImportError as error:
         raise CommandError(one_line(error)) from None
     if table is not None:
         windup = in_units(report.windup, args.units, ["windup"])
-        write_files([(table, table_writer(windup, table_format(table)))],
-                    overwrite=args.overwrite)
-    print(f"feedrot: {report.output}: {summary(report)}", file=sys.stderr)
+        with progress_steps(show_progress(args), len(windup)) as step:  # a second bar: rows
+            write_files([(table, table_writer(windup, table_format(table), step))],
+                        overwrite=args.overwrite)
+    # The outputs named as given.
+    named = " and ".join(str(path) for path in (args.output, args.table) if path is not None)
+    print(f"feedrot: {named}: {summary(report)}", file=sys.stderr)
     return 0
 
 

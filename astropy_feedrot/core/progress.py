@@ -19,7 +19,24 @@ import sys
 
 from astropy.utils.console import ProgressBar
 
-__all__ = ["progress_steps"]
+__all__ = ["progress_steps", "check_progress"]
+
+
+def check_progress(progress):
+    """``progress`` if it is one that `progress_steps` takes, else a TypeError.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.core.progress import check_progress
+    >>> check_progress("yes")
+    Traceback (most recent call last):
+    ...
+    TypeError: progress must be True, False or a callable (done, total), got str
+    """
+    if not (progress is True or progress is False or progress is None or callable(progress)):
+        raise TypeError(f"progress must be True, False or a callable (done, total), got "
+                        f"{type(progress).__name__}")
+    return progress
 
 
 @contextlib.contextmanager
@@ -57,16 +74,14 @@ def progress_steps(progress, total):
     >>> calls
     [(1, 5), (5, 5)]
     """
+    check_progress(progress)
     if progress is True:
         with ProgressBar(total, file=sys.stderr) as bar:
             yield _counter(lambda done, total: bar.update(done), total)
     elif callable(progress):
         yield _counter(progress, total)
-    elif progress is False or progress is None:
-        yield lambda count=1: None
     else:
-        raise TypeError(f"progress must be True, False or a callable (done, total), got "
-                        f"{type(progress).__name__}")
+        yield lambda count=1: None
 
 
 def _counter(report, total):

@@ -42,6 +42,7 @@ from astropy.time import Time
 from ..core.choices import ATTITUDES
 from ..core.exceptions import DegenerateGeometryWarning, OrbitWarning, warn_caller
 from ..core.outputs import same_file, write_files
+from ..core.progress import check_progress, progress_steps
 from ..earth.frames import check_station_xyz, local_frame
 from ..earth.orientation import EarthOrientation
 from ..engine.equations import check_form
@@ -315,7 +316,7 @@ def _as_list(value, what):
 
 def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300 * u.s,
                   points=None, position=None, form="beyerle", metadata=None, table=False,
-                  overwrite=False):
+                  overwrite=False, progress=False):
     """Write a copy of a RINEX observation file with the carrier-phase wind-up removed.
 
     Parameters
@@ -362,6 +363,12 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         (``RinexCorrection.windup``; its memory grows with the file).
     overwrite : bool, optional
         Whether an existing ``output`` may be replaced.
+    progress : bool or callable, optional
+        True shows astropy's `~astropy.utils.console.ProgressBar` (on
+        standard error, when it is a terminal) over the bytes of ``source``
+        read, moved after each block of epochs is corrected and written; a
+        callable is called as ``progress(done, total)`` then (bytes).
+        Nothing for a ``source`` given as a file object.
 
     Returns
     -------
@@ -380,7 +387,8 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
         and ``position`` is not given, the file gives ``ANTENNA: ZERODIR
         XYZ``, or for an unknown ``attitude``.
     TypeError
-        If ``points`` is not an integer.
+        If ``points`` is not an integer, or ``progress`` neither a bool nor
+        a callable.
     FileExistsError
         If ``output`` exists and ``overwrite`` is False.
 
@@ -425,6 +433,7 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
     """
     if attitude is None:
         attitude = "orbex" if orbex is not None else "nominal"
+    check_progress(progress)
     form = check_form(form)
     if attitude not in ATTITUDES:
         raise ValueError(f"attitude must be one of {ATTITUDES}, got {attitude!r}")
@@ -458,19 +467,31 @@ def correct_rinex(source, output, sp3, *, orbex=None, attitude=None, max_gap=300
                            form, margin, reader.name)
             state.rows = [] if table else None
             out = RinexWriter(body)
-            block, epochs = [], 0
-            for record in reader:
-                block.append(record)
-                epochs += record.observations
-                if epochs >= BLOCK_EPOCHS or reader.header is not state.header:
-                    state.correct(block)
-                    for done in block:
-                        out.write_record(done)
-                    block, epochs = [], 0
-                    state.use(reader.header)
-            state.correct(block)
-            for done in block:
-                out.write_record(done)
+            size = reader.size
+            with progress_steps(progress if size is not None else False, size or 0) as step:
+                read = 0  # bytes of the file behind the blocks written
+
+                def moved(now):
+                    nonlocal read
+                    if now is not None and now > read:
+                        step(now - read)
+                        read = now
+
+                block, epochs = [], 0
+                for record in reader:
+                    block.append(record)
+                    epochs += record.observations
+                    if epochs >= BLOCK_EPOCHS or reader.header is not state.header:
+                        state.correct(block)
+                        for done in block:
+                            out.write_record(done)
+                        block, epochs = [], 0
+                        state.use(reader.header)
+                        moved(reader.bytes_read())
+                state.correct(block)
+                for done in block:
+                    out.write_record(done)
+                moved(size)
             body.seek(0)
             with RinexWriter(name) as writer:
                 writer.write_header(header, _comments(attitude, state.totals))

@@ -45,6 +45,7 @@ line) are read through the ``crx2rnx`` program of the optional `hatanaka
 
 import contextlib
 import dataclasses
+import os
 import zlib
 
 import numpy as np
@@ -326,7 +327,11 @@ class RinexReader:
         self.name = name or source_name(source)
         self._stack = contextlib.ExitStack()
         self._pipe = None
+        self._file = None
         try:
+            if isinstance(source, (str, os.PathLike)):
+                # Opened here, so that `bytes_read` can follow the file as it is read.
+                source = self._file = self._stack.enter_context(open(source, "rb"))
             self._lines, self._pipe = open_rinex_lines(source, self._stack, self.name)
             self.lineno = 0
             self.header = self._read_header()
@@ -345,6 +350,21 @@ class RinexReader:
 
     def __exit__(self, *exc):
         self.close()
+
+    @property
+    def size(self):
+        """Bytes of the file as stored (compressed if it is), or None if a file object was
+        given."""
+        return None if self._file is None else os.fstat(self._file.fileno()).st_size
+
+    def bytes_read(self):
+        """Bytes of the file as stored read so far (at most `size`), or None if a file
+        object was given.
+
+        The records come a buffer behind (for Compact RINEX, also the pipe to
+        ``crx2rnx``): a measure of progress, not a place in the file.
+        """
+        return None if self._file is None else min(self._file.tell(), self.size)
 
     # -- lines -------------------------------------------------------------------------
 

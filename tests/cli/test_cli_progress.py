@@ -16,6 +16,7 @@ import pytest
 import astropy_feedrot
 from astropy_feedrot.cli import main
 from astropy_feedrot.cli.common import show_progress
+from astropy_feedrot.data import sample_file
 
 SOURCE = "03h19m48.16s +41d30m42.1s"  # 3C 84
 # 30,001 epochs: four blocks of rows (core.outputs.BLOCK_ROWS) in a text file.
@@ -129,3 +130,20 @@ def test_when_a_bar_is_drawn(monkeypatch, output, form, stdout_terminal, expecte
     args = argparse.Namespace(output=output, format=form)
     assert show_progress(args, Terminal()) is expected
     assert show_progress(args, io.StringIO()) is False
+
+
+def test_rinex_draws_its_bar_on_a_terminal_and_names_the_outputs_as_given(tmp_path):
+    rnx, sp3 = (str(sample_file(name)) for name in ("gnss_sample.rnx", "gnss_sample.sp3"))
+    argv = ["rinex", rnx, "--sp3", sp3, "-o", "out.rnx", "--table", "windup.ecsv"]
+    status, _, err = feedrot(argv, tmp_path, terminal=True)
+    assert status == 0, err
+    drawn = bars(err)
+    # Two bars: the bytes of the file read (one block), then the rows of the table.
+    assert sum("( 0.00%)" in line for line in drawn) == 2, err
+    assert sum("(100.00%)" in line for line in drawn) >= 2, err
+    summary = ("feedrot: out.rnx and windup.ecsv: 1920 carrier phases of 640 observations at "
+               "40 epochs corrected, 16 arcs, 0 epochs untouched\n")
+    assert err.endswith("\n" + summary)
+    status, _, err = feedrot(argv[:-4] + ["-o", "plain.rnx"], tmp_path, terminal=False)
+    assert status == 0 and err == summary.replace("out.rnx and windup.ecsv", "plain.rnx")
+    assert (tmp_path / "out.rnx").read_bytes() == (tmp_path / "plain.rnx").read_bytes()
