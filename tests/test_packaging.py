@@ -56,3 +56,18 @@ def test_install_instructions_do_not_use_the_package_index():
     for path in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.rst"))]:
         for line in path.read_text().splitlines():
             assert not re.search(r"pip install (-U )?astropy[_-]feedrot\b", line), (path, line)
+
+
+def test_package_data_holds_every_sample_file():
+    # A Measurement Set is a folder of tables: 'data/*' alone left its files out of the
+    # wheel (setuptools globs the patterns below each package; checked on a built wheel:
+    # all 78 files of vla_sim.ms inside).
+    package = ROOT / "astropy_feedrot"
+    patterns = PYPROJECT["tool"]["setuptools"]["package-data"]["astropy_feedrot"]
+    shipped = {path for pattern in patterns for path in package.glob(pattern) if path.is_file()}
+    from astropy_feedrot.data import SAMPLES, sample_file
+
+    for name in SAMPLES:
+        path = sample_file(name)
+        files = [path] if path.is_file() else [p for p in path.rglob("*") if p.is_file()]
+        assert files and set(files) <= shipped, name

@@ -613,11 +613,16 @@ def _add_samples(commands):
     samples = commands.add_parser(
         "samples", help="the sample files shipped with the package, and where they lie",
         description="List the sample files shipped with the package (orbits, attitude, "
-        "observations, the station catalogue, a visibility file) with what each is, or "
-        "print the path of one to give to another command.",
+        "observations, the station catalogue, visibility files) with what each is, print "
+        "the path of one to give to another command, or copy one here to change it.",
         epilog=examples(EXAMPLES["samples"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     samples.add_argument("name", nargs="?", metavar="NAME", help="a sample file: its path")
+    samples.add_argument("--copy", action="store_true",
+                         help="copy the sample into the current directory (under its name) "
+                         "and print the copy's path, to change it (correct it in place)")
+    samples.add_argument("--overwrite", action="store_true",
+                         help="with --copy, replace a file or folder of that name here")
     samples.set_defaults(run=run_samples)
 
 
