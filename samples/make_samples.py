@@ -14,6 +14,16 @@ Run from the repository root (README.md here says where each comes from)::
 ``difx_k08161.idifits``
     ``misc/K08161.0.FITS`` of aplavin/VLBIFiles.jl-testdata, copied whole
     (checked against its SHA-1).
+``codg0080.20i.Z``, ``codg0090.20i.Z``
+    CODE's global ionosphere maps of 2020 January 8 and 9, as spinifex ships
+    them with its tests (``spinifex/data/tests``; needs spinifex installed),
+    copied whole.
+``rm_effelsberg.ecsv``
+    A made-up table of rotation measures for ``feedrot faraday --rm-table``:
+    Effelsberg, 0.5 and 1.5 rad/m2 on 2024-06-01 and 02 at 00:00 UTC.
+``rm_constant.ecsv``
+    A made-up rotation measure, 2 rad/m2 for every antenna from 2008 to 2025,
+    for ``feedrot correct --rm-table`` on the visibility samples.
 ``vla_sim.ms``
     The Measurement Set that CASA's simulator wrote for the tests,
     ``tests/data/real/casa_sim_vla_2spw.ms.tar.gz``, without its
@@ -31,6 +41,7 @@ import tempfile
 from pathlib import Path
 
 import astropy.units as u
+from astropy.table import QTable
 from astropy.time import Time
 
 from astropy_feedrot import TLEOrbit
@@ -66,6 +77,24 @@ def copy_k08161(testdata, path):
     path.write_bytes(raw)
 
 
+def copy_ionex(data):
+    from astropy_feedrot.ionosphere import sample_ionex  # spinifex's files
+
+    for path in sample_ionex("codg00[89]0.20i.Z"):
+        shutil.copyfile(path, data / path.name)
+
+
+def make_rm_table(path):
+    QTable({"time": Time(["2024-06-01T00:00", "2024-06-02T00:00"], scale="utc"),
+            "rm": [0.5, 1.5] * u.rad / u.m**2,
+            "antenna": ["EFLSBERG"] * 2}).write(path, overwrite=True)
+
+
+def make_rm_constant(path):
+    QTable({"time": Time(["2008-01-01T00:00", "2025-01-01T00:00"], scale="utc"),
+            "rm": [2.0, 2.0] * u.rad / u.m**2}).write(path, overwrite=True)
+
+
 def make_ms(path):
     from casacore.tables import table  # the ms extra
 
@@ -89,6 +118,9 @@ def main(argv=None):
     args = parser.parse_args(argv)
     make_tle(DATA / "gps.tle")
     copy_k08161(args.vlbifiles, DATA / "difx_k08161.idifits")
+    copy_ionex(DATA)
+    make_rm_table(DATA / "rm_effelsberg.ecsv")
+    make_rm_constant(DATA / "rm_constant.ecsv")
     make_ms(DATA / "vla_sim.ms")
 
 

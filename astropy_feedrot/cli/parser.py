@@ -26,41 +26,60 @@ __all__ = [
 
 
 #: The examples of each command, one command line each: its ``--help`` prints them as
-#: they are (and ``feedrot --help`` one or two of each); the tests run them.
+#: they are (and ``feedrot --help`` one or two of each); tests/cli/test_cli_examples.py runs
+#: each in an empty directory. Files are the shipped samples, named as 'feedrot samples NAME'
+#: prints them (a Measurement Set corrected in place is a copy of the sample); a comment
+#: names an optional package an example needs and its extra.
+_SGP4 = "   # sgp4: the all extra"
+_PLOT = "   # matplotlib: the all extra"
+_MS = "   # python-casacore: the ms extra"
+_UVDATA = "   # pyuvdata: the uvdata extra"
+_TLE = '"$(feedrot samples gps.tle)"'
+_SP3 = '"$(feedrot samples sample.sp3)"'
+_IONEX = '"$(feedrot samples codg0080.20i.Z)" "$(feedrot samples codg0090.20i.Z)"'
+_UVFITS = '"$(feedrot samples vla_day2_8chan.uvfits)"'
+_IDI = '"$(feedrot samples difx_k08161.idifits)"'
+_MS_SAMPLE = '"$(feedrot samples vla_sim.ms)"'
+_MS_COPY = '"$(feedrot samples vla_sim.ms --copy)"'
+_GNSS = ('"$(feedrot samples gnss_sample.rnx)" --sp3 "$(feedrot samples gnss_sample.sp3)"')
 EXAMPLES = {
     "natural": [
         'feedrot natural YEBES40M --source "03h19m48.16s +41d30m42.1s" '
         "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --step 10min",
         "feedrot natural EFLSBERG --ra 12:29:06.7 --dec +02:03:09 --start 2024-03-01 "
-        "--stop 2024-03-02 -o 3c273.ecsv --plot 3c273.png",
+        "--stop 2024-03-02 -o 3c273.ecsv --plot 3c273.png" + _PLOT,
         'feedrot natural 40.5247,-3.0869,988 --mount NASR --source "187.27d 2.05d" '
         "--start 2024-03-01T20:00 --stop 2024-03-01T22:00 --step 1min",
     ],
     "satellite": [
-        "feedrot satellite DBR205 --tle gps.tle --sat 41328 --start 2023-01-25T06:00 "
-        "--stop 2023-01-25T17:00 --step 30s --min-elevation 10",
-        "feedrot satellite FD-VLBA --sp3 igs.sp3 --sat G01 --points 4 -o g01.fits",
-        "feedrot satellite GGAO12M --sp3 igs.sp3 --points 4 --step 30s --units cycles "
+        f"feedrot satellite DBR205 --tle {_TLE} --sat 41328 --start 2023-01-25T06:00 "
+        "--stop 2023-01-25T17:00 --step 30s --min-elevation 10" + _SGP4,
+        f"feedrot satellite FD-VLBA --sp3 {_SP3} --sat G01 --points 4 -o g01.fits",
+        f"feedrot satellite GGAO12M --sp3 {_SP3} --points 4 --step 30s --units cycles "
         "-o all.ecsv",
     ],
     "baseline": [
-        "feedrot baseline DBR205 FD-VLBA --tle gps.tle --start 2023-01-25T06:00 "
-        "--stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10",
+        f"feedrot baseline DBR205 FD-VLBA --tle {_TLE} --sat 41328 --start 2023-01-25T06:00 "
+        "--stop 2023-01-25T17:00 --frequency 1575.42MHz --min-elevation 10" + _SGP4,
         'feedrot baseline EFLSBERG YEBES40M --source "03h19m48.16s +41d30m42.1s" '
         "--start 2023-01-25T18:00 --stop 2023-01-26T06:00 --frequency 8.4GHz",
     ],
     "faraday": [
         'feedrot faraday EFLSBERG YEBES40M --source "05h34m31.94s +22d00m52.2s" '
         "--start 2020-01-08T16:00 --stop 2020-01-09T06:00 --step 30min "
-        "--ionex codg0080.20i.Z codg0090.20i.Z --frequency 1.4GHz --frequency 5GHz",
+        f"--ionex {_IONEX} --frequency 1.4GHz --frequency 5GHz"
+        "   # spinifex: the ionosphere extra",
         'feedrot faraday WSTRBORK --source "05h34m31.94s +22d00m52.2s" --start 2020-01-08T20:00 '
-        "--stop 2020-01-09T02:00 --step 10min --ionex codg0080.20i.Z codg0090.20i.Z "
-        "--frequency 150MHz --min-elevation 20 -o crab.ecsv --plot crab.png",
+        f"--stop 2020-01-09T02:00 --step 10min --ionex {_IONEX} "
+        "--frequency 150MHz --min-elevation 20 -o crab.ecsv --plot crab.png"
+        "   # spinifex, matplotlib: the ionosphere and all extras",
         'feedrot faraday EFLSBERG --source "03h19m48.16s +41d30m42.1s" --start 2024-06-01T08:00 '
-        "--stop 2024-06-01T10:00 --step 10min --rm-table rm.ecsv --frequency 1.4GHz",
+        '--stop 2024-06-01T10:00 --step 10min --rm-table "$(feedrot samples rm_effelsberg.ecsv)" '
+        "--frequency 1.4GHz",
     ],
-    "demo": ["feedrot demo", "feedrot demo --step 30s --overwrite",
-             "feedrot demo --output-dir results"],
+    "demo": ["feedrot demo   # sgp4 (matplotlib for the figure): the all extra",
+             "feedrot demo --step 30s --overwrite" + _SGP4,
+             "feedrot demo --output-dir results" + _SGP4],
     "stations": ["feedrot stations",
                  "feedrot stations YEBES40M",
                  "feedrot stations 'EF*'",
@@ -71,26 +90,31 @@ EXAMPLES = {
     "coverage": [
         "feedrot coverage --stations EFLSBERG YEBES40M WETTZ13S "
         "--source '3C84=03h19m48.16s +41d30m42.1s' --source '3C286=13h31m08.29s +30d30m33.0s' "
-        "--start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png",
+        "--start 2024-03-01T00:00 --stop 2024-03-02T00:00 --plot tracks.png" + _PLOT,
         "feedrot coverage --stations VLBA --source '03h19m48.16s +41d30m42.1s' "
         "--start 2024-03-01 --stop 2024-03-02",
     ],
-    "antennas": ["feedrot antennas experiment.idifits",
-                 "feedrot antennas vla.ms -o antennas.ecsv",
-                 "feedrot antennas vla.uvfits --mounts catalogue"],
-    "correct": ["feedrot correct vla.uvfits -o vla_corrected.uvfits",
-                "feedrot correct experiment.idifits -o corrected.idifits --frame icrs",
-                "feedrot correct vla.ms -o vla_corrected.ms --vertical geocentric",
-                "feedrot correct vla.ms --in-place",
-                "feedrot correct vla.ms --in-place --column MODEL_DATA --apply",
-                "feedrot correct vla.uvfits -o vla_given.uvfits --feeds R,L",
-                "feedrot correct vla.uvfits -o vla_catalogue.uvfits --mounts catalogue",
-                "feedrot correct vla.ms --in-place --convention casa --workers 2",
-                "feedrot correct vla.ms --in-place --rm-table vla_rm.ecsv"],
-    "rinex": ["feedrot rinex obs.rnx --sp3 gnss.sp3 -o corrected.rnx",
-              "feedrot rinex obs.rnx --sp3 gnss.sp3 -o out.rnx --table windup.ecsv --units deg"],
+    "antennas": [f"feedrot antennas {_IDI}",
+                 f"feedrot antennas {_MS_SAMPLE} -o antennas.ecsv" + _MS,
+                 f"feedrot antennas {_UVFITS} --mounts catalogue"],
+    "correct": [f"feedrot correct {_UVFITS} -o vla_corrected.uvfits" + _UVDATA,
+                f"feedrot correct {_IDI} -o corrected.idifits --frame icrs",
+                f"feedrot correct {_MS_SAMPLE} -o vla_corrected.ms --vertical geocentric" + _MS,
+                f"feedrot correct {_MS_COPY} --in-place" + _MS,
+                f"feedrot correct {_MS_COPY} --in-place --column MODEL_DATA --apply" + _MS,
+                f"feedrot correct {_UVFITS} -o vla_given.uvfits --feeds R,L" + _UVDATA,
+                f"feedrot correct {_UVFITS} -o vla_catalogue.uvfits --mounts catalogue"
+                + _UVDATA,
+                f"feedrot correct {_MS_COPY} --in-place --convention casa --workers 2"
+                "   # python-casacore, dask: the ms and dask extras",
+                f"feedrot correct {_MS_COPY} --overwrite --in-place "
+                '--rm-table "$(feedrot samples rm_constant.ecsv)"' + _MS],
+    "rinex": [f"feedrot rinex {_GNSS} -o corrected.rnx",
+              f"feedrot rinex {_GNSS} -o out.rnx --table windup.ecsv --units deg"],
     "samples": ["feedrot samples",
-                "feedrot samples gnss_sample.sp3"],
+                "feedrot samples gnss_sample.sp3",
+                f"feedrot antennas {_IDI}",
+                f"feedrot correct {_MS_COPY} --in-place" + _MS],
 }
 
 
@@ -262,7 +286,8 @@ def build_parser():
                         + [EXAMPLES["coverage"][1], EXAMPLES["antennas"][0],
                            EXAMPLES["correct"][0], EXAMPLES["rinex"][0]])
         + "\n\n'feedrot COMMAND --help' shows each command's options and more examples; "
-        "'feedrot samples' lists the sample files shipped with the package.",
+        "'feedrot samples' lists the sample files shipped with the package, which the "
+        "examples name.",
     )
     parser.add_argument("--version", action="version", version=f"feedrot {version}",
                         help="show the version of astropy_feedrot and exit")

@@ -51,6 +51,17 @@ says where each comes from.
     the MPIfR's DiFX test experiment k08161 (Ny-Alesund and Wettzell, RR only,
     2008-06-09), as distributed in aplavin/VLBIFiles.jl-testdata
     (``misc/K08161.0.FITS``), unchanged.
+``codg0080.20i.Z``, ``codg0090.20i.Z``
+    Real data: CODE's global ionosphere maps (IONEX, hourly, 5 x 2.5 deg) of
+    2020 January 8 and 9, as spinifex ships them with its tests; for
+    ``feedrot faraday --ionex``, which needs spinifex (the ``ionosphere``
+    extra).
+``rm_effelsberg.ecsv``
+    A made-up table of rotation measures (Effelsberg, 0.5 and 1.5 rad/m2 on
+    2024-06-01 and 02) for ``feedrot faraday --rm-table``.
+``rm_constant.ecsv``
+    A made-up rotation measure, 2 rad/m2 for every antenna from 2008 to
+    2025, for ``feedrot correct --rm-table`` on the visibility samples.
 ``vla_sim.ms``
     A Measurement Set (a directory) that CASA's simulator wrote: four VLA
     pads, two spectral windows, ``DATA`` and a ``MODEL_DATA`` column
@@ -79,6 +90,11 @@ DESCRIPTIONS = {
     "vla_day2_8chan.uvfits": "VLA, 19 antennas, RR LL RL LR, 8 channels at 36.3 GHz (real)",
     "difx_k08161.idifits": "FITS-IDI of DiFX 1.5.0, Ny-Alesund and Wettzell, RR only, "
                            "2008-06-09 (real)",
+    "codg0080.20i.Z": "IONEX: CODE's global ionosphere maps of 2020-01-08, hourly (real)",
+    "codg0090.20i.Z": "IONEX: CODE's global ionosphere maps of 2020-01-09, hourly (real)",
+    "rm_effelsberg.ecsv": "rotation measures of EFLSBERG, 2024-06-01 and 02 (made up)",
+    "rm_constant.ecsv": "a rotation measure of 2 rad/m2 for every antenna, 2008 to 2025 "
+                        "(made up)",
     "vla_sim.ms": "Measurement Set of CASA's simulator: 4 VLA pads, 2 windows, DATA and "
                   "MODEL_DATA (synthetic; the ms extra)",
 }
