@@ -31,6 +31,7 @@ from astropy.table import Table
 
 from ..antennas.focus import CassegrainFocus
 from ..core.outputs import publish, same_file
+from ..core.progress import check_progress, progress_steps
 from ..ionosphere import IonosphereError
 from ..stations.labels import label_from_mount
 from .antenna_tables import writing_program
@@ -359,7 +360,13 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     overwrite : bool, optional
         Replace an existing output (never the input).
     progress : bool or callable, optional
-        Show a progress bar (astropy's `~astropy.utils.console.ProgressBar`).
+        Show a progress bar (astropy's `~astropy.utils.console.ProgressBar`,
+        on standard error when it is a terminal), or call
+        ``progress(done, total)``: over the chunks of a FITS-IDI file or a
+        Measurement Set corrected as a Measurement Set, read and corrected
+        a chunk at a time; for a file pyuvdata reads, in bytes of the input
+        counted three times: read (at once), corrected (a chunk at a time)
+        and written (at once), so that the bar is drawn before the read.
     direction : {'remove', 'apply'}, optional
         Remove the feed rotation (default), or apply it to a model.
     feeds : `~astropy_feedrot.Receptors` or mapping, optional
@@ -490,17 +497,46 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
 
     if kind == "ms":  # pyuvdata reads DATA: what the HISTORY says of it (CASA's too)
         check_column_history(source, column_records(source), "DATA", "DATA", direction, redo)
-    uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
-    check_history(uv.history, direction, str(source), redo=redo)  # the file named
-    correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical, progress=progress,
-                   direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
-                   mounts=mounts, pole=pole, ionosphere=ionosphere)
-    work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
-    try:
-        temporary = work / target.name
-        write_uvdata(uv, temporary, kind=written)
-        publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
-    finally:
-        with contextlib.suppress(OSError):
-            shutil.rmtree(work)
+    size = _stored_size(source)
+    # pyuvdata reads and writes in one call each: the bar is drawn before the read, and
+    # counts the input's bytes three times (read, corrected chunk by chunk, written).
+    with progress_steps(check_progress(progress), 3 * size) as step:
+        uv = read_uvdata(source, file_type=PYUVDATA_TYPES[kind])
+        step(size)
+        check_history(uv.history, direction, str(source), redo=redo)  # the file named
+        correct_uvdata(uv, inplace=True, frame=frame, vertical=vertical,
+                       progress=_share(step, size) if progress else False,
+                       direction=direction, feeds=feeds, redo=redo, catalogue=catalogue,
+                       mounts=mounts, pole=pole, ionosphere=ionosphere)
+        work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+        try:
+            temporary = work / target.name
+            write_uvdata(uv, temporary, kind=written)
+            step(size)
+            publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
+        finally:
+            with contextlib.suppress(OSError):
+                shutil.rmtree(work)
     return target
+
+
+def _stored_size(path):
+    """Bytes of a file, or of every file under a directory (a Measurement Set)."""
+    path = Path(path)
+    if not path.is_dir():
+        return path.stat().st_size
+    return sum(os.path.getsize(os.path.join(root, name))
+               for root, _, names in os.walk(path) for name in names)
+
+
+def _share(step, units):
+    """A ``progress(done, total)`` of a part of the work that counts ``units`` of
+    ``step``'s, in proportion."""
+    given = 0
+
+    def report(done, total):
+        nonlocal given
+        now = units * done // max(total, 1)
+        step(now - given)
+        given = now
+    return report

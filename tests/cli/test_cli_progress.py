@@ -147,3 +147,18 @@ def test_rinex_draws_its_bar_on_a_terminal_and_names_the_outputs_as_given(tmp_pa
     status, _, err = feedrot(argv[:-4] + ["-o", "plain.rnx"], tmp_path, terminal=False)
     assert status == 0 and err == summary.replace("out.rnx and windup.ecsv", "plain.rnx")
     assert (tmp_path / "out.rnx").read_bytes() == (tmp_path / "plain.rnx").read_bytes()
+
+
+def test_correct_draws_its_bar_before_the_read(tmp_path):
+    pytest.importorskip("pyuvdata")
+    uvfits = str(sample_file("vla_day2_8chan.uvfits"))
+    status, _, err = feedrot(["correct", uvfits, "-o", "out.uvfits"], tmp_path, terminal=True)
+    assert status == 0, err
+    drawn = bars(err)
+    # At 0 % before pyuvdata reads, at a third once it has, through the chunks
+    # corrected, at two thirds before the write, at 100 % once written.
+    assert "( 0.00%)" in drawn[0] and "(100.00%)" in drawn[-1]
+    shown = {line.split("(")[1].split(")")[0] for line in drawn}
+    assert {"33.33%", "66.67%"} <= shown and len(shown) > 4, shown
+    assert err.endswith(f"\nfeedrot: out.uvfits: feed rotation removed from {uvfits} "
+                        "(rigorous convention: vertical geodetic, pole itrs; frame apparent)\n")
