@@ -21,6 +21,7 @@ from astropy.coordinates import Angle, BaseCoordinateFrame, SkyCoord
 from astropy.table import Table
 
 from ..core.inputs import as_time
+from ..core.progress import check_progress, progress_steps
 from ..earth.epochs import Epochs
 from ..earth.frames import as_elevation_limit
 from ..engine.antenna import Antenna
@@ -135,7 +136,7 @@ def _span(values):
 
 
 def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=10 * u.deg, *,
-                           names=None, tracks=False):
+                           names=None, tracks=False, progress=False):
     """The range of feed rotation each antenna sees on each target above an elevation limit.
 
     Parameters
@@ -179,8 +180,8 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     ------
     TypeError
         If ``antennas`` are not antennas, a target is not a coordinate (a
-        name alone), ``start``/``stop`` are not times or ``step`` is a plain
-        number.
+        name alone), ``start``/``stop`` are not times, ``step`` is a plain
+        number, or ``progress`` is neither a bool nor a callable.
     ValueError
         If ``targets`` is empty or names repeat, ``step`` is not positive,
         ``stop`` is not after ``start``, ``min_elevation`` is not one angle
@@ -198,6 +199,11 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
 
     Notes
     -----
+    ``progress`` (True: astropy's `~astropy.utils.console.ProgressBar` on
+    standard error when it is a terminal; or a callable ``progress(done,
+    total)``) counts the grid as one step, each antenna's elevations as one,
+    and the continuous series and their ranges as one.
+
     The feed rotation of every antenna, target and epoch comes from one call
     of `~astropy_feedrot.engine.grid.feed_rotation_grid`; elevations from
     `~astropy_feedrot.Antenna.altaz` (one call per antenna, all sharing one
@@ -235,24 +241,31 @@ def feed_rotation_coverage(antennas, targets, start, stop, step, min_elevation=1
     names_, coords = _targets(targets, names)
     times = _epochs(start, stop, step)
     limit = as_elevation_limit(min_elevation)
-    # The epochs converted once: one Epochs for the grid, one (T, 1) for the
-    # elevations, which every antenna shares.
-    phi = feed_rotation_grid(antennas, coords, Epochs(times))  # (T, A, S); checks antennas
-    column = Epochs(times[:, np.newaxis])
-    above = np.empty(phi.shape, dtype=bool)
-    for i, antenna in enumerate(antennas):
-        _, elevation = antenna.altaz(coords[np.newaxis, :], column)
-        above[:, i] = elevation.rad >= limit
-    if not above.any():
-        raise ValueError(f"no antenna sees any target above {min_elevation} from "
-                         f"{times[0].isot} to {times[-1].isot}; lower min_elevation, widen "
-                         "the span or choose other targets")
-    continuous = unwrap(phi, axis=0, mask=~above).to_value(u.deg)
-    epochs = above.sum(axis=0)  # (A, S)
-    low = np.full(epochs.shape, np.nan)
-    high = np.full(epochs.shape, np.nan)
-    for index in zip(*np.nonzero(epochs)):
-        low[index], high[index] = _span(continuous[(slice(None),) + index])
+    check_progress(progress)
+    # Steps: the grid, each antenna's elevations, the continuous series.
+    steps = (len(antennas) if isinstance(antennas, list) else 1) + 2
+    with progress_steps(progress, steps) as done:
+        # The epochs converted once: one Epochs for the grid, one (T, 1) for the
+        # elevations, which every antenna shares.
+        phi = feed_rotation_grid(antennas, coords, Epochs(times))  # (T, A, S); checks antennas
+        done()
+        column = Epochs(times[:, np.newaxis])
+        above = np.empty(phi.shape, dtype=bool)
+        for i, antenna in enumerate(antennas):
+            _, elevation = antenna.altaz(coords[np.newaxis, :], column)
+            above[:, i] = elevation.rad >= limit
+            done()
+        if not above.any():
+            raise ValueError(f"no antenna sees any target above {min_elevation} from "
+                             f"{times[0].isot} to {times[-1].isot}; lower min_elevation, "
+                             "widen the span or choose other targets")
+        continuous = unwrap(phi, axis=0, mask=~above).to_value(u.deg)
+        epochs = above.sum(axis=0)  # (A, S)
+        low = np.full(epochs.shape, np.nan)
+        high = np.full(epochs.shape, np.nan)
+        for index in zip(*np.nonzero(epochs)):
+            low[index], high[index] = _span(continuous[(slice(None),) + index])
+        done()
     n_a, n_s = epochs.shape
     antenna_names = [antenna.name or repr(antenna) for antenna in antennas]
     table = Table({

@@ -324,8 +324,9 @@ def show_progress(args, stream=None):
     """Whether a command draws a progress bar: when standard error is a terminal, and
     unless the table is printed as text on the terminal (its lines show the progress).
 
-    ``args.output`` and ``args.format`` are those of `add_common_options`; a
-    command without them draws its bar whenever standard error is a terminal.
+    ``args.output`` and ``args.format`` are those of the table commands; for
+    ``args`` without them (or None) the bar is drawn whenever standard error
+    is a terminal.
     """
     stream = sys.stderr if stream is None else stream
     isatty = getattr(stream, "isatty", None)

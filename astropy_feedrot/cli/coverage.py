@@ -23,6 +23,7 @@ from .common import (
     input_files,
     one_source,
     parse_quantity,
+    show_progress,
     time_span,
 )
 from .parser import one_line
@@ -80,9 +81,10 @@ def run_coverage(args):
     min_elevation = elevation_limit(args)
     min_elevation = 10 * u.deg if min_elevation is None else min_elevation
     step = parse_quantity(args.step, u.s, "--step")
+    # A bar whenever standard error is a terminal: the tables printed after it are short.
     table, epochs, continuous = planning.feed_rotation_coverage(
         list(antennas.values()), sources, times[0], times[-1], step, min_elevation,
-        tracks=True)
+        tracks=True, progress=show_progress(None))
     ranking = planning.rank_sources(table)
     for column in ("range", "min", "max", "hours"):
         table[column].info.format = ".2f"

@@ -162,3 +162,17 @@ def test_correct_draws_its_bar_before_the_read(tmp_path):
     assert {"33.33%", "66.67%"} <= shown and len(shown) > 4, shown
     assert err.endswith(f"\nfeedrot: out.uvfits: feed rotation removed from {uvfits} "
                         "(rigorous convention: vertical geodetic, pole itrs; frame apparent)\n")
+
+
+def test_coverage_draws_its_bar_and_prints_the_same_tables(tmp_path):
+    argv = ["coverage", "--stations", "EFLSBERG", "YEBES40M", "--source", SOURCE,
+            "--start", "2024-03-01", "--stop", "2024-03-02"]
+    status, with_bar, err = feedrot(argv, tmp_path, terminal=True)
+    assert status == 0, err
+    drawn = bars(err)
+    # The grid, each of the two stations, the continuous series: 4 steps.
+    assert "( 0.00%)" in drawn[0] and "(100.00%)" in drawn[-1]
+    assert {"25.00%", "50.00%", "75.00%"} <= {line.split("(")[1].split(")")[0]
+                                              for line in drawn}
+    status, without, err = feedrot(argv, tmp_path, terminal=False)
+    assert status == 0 and err == "" and with_bar == without
