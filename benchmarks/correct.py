@@ -15,7 +15,9 @@ speed):
   (the VLA set of the tests, 19 antennas, 64 channels, four products, its
   rows doubled until large enough and spread over 10 s epochs), corrected in
   place into ``CORRECTED_DATA``, in one process and on ``--workers`` dask
-  workers.
+  workers; and with the ionosphere's Faraday rotation (CODE's IONEX maps
+  that spinifex ships, the set's epochs moved into them), against the same
+  correction without (target: at most 1.5x).
 
 Besides the extra heap, the peak extra resident memory of the process during
 each call is sampled (psutil, every 10 ms): it counts casacore's buffers
@@ -450,11 +452,53 @@ def bench_ms(gib, results, directory, workers=0, rounds=3):
                         f"{parallel / seconds:.2f}x"))
 
 
+def bench_ms_ionosphere(gib, results, directory, rounds=3):
+    """The Measurement Set corrected with and without the ionosphere's Faraday rotation
+    (CODE's IONEX maps of 2020 January 8 and 9 that spinifex ships; the set's epochs moved
+    there), in turn: the extra cost of the RM on its 60 s grid per antenna and of the
+    angles per channel."""
+    import importlib.util
+
+    from casacore.tables import table
+
+    from astropy_feedrot.ionosphere import Ionosphere, sample_ionex
+    from astropy_feedrot.visibilities import correct_ms
+
+    if importlib.util.find_spec("spinifex") is None:
+        print("\ncorrect_ms with an ionosphere: skipped (spinifex, the extra 'ionosphere', "
+              "is not installed)")
+        return
+    print(f"\ncorrect_ms with an ionosphere: building a Measurement Set of at least {gib} "
+          "GiB ...", flush=True)
+    path, n_rows, count, size = _ms(directory, gib)
+    with table(str(path), readonly=False, ack=False) as t:
+        time_ = t.getcol("TIME")
+        start = Time("2020-01-08T06:00", scale="utc").mjd * 86400.0
+        t.putcol("TIME", time_ - time_[0] + start)
+        hours = (time_[-1] - time_[0]) / 3600
+    ionosphere = Ionosphere.from_ionex(sample_ionex("codg00[89]0.20i.Z"))
+    print(f"  {n_rows} rows over {hours:.1f} h, DATA {size / GIB:.2f} GiB; {ionosphere!r}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the source below the horizon for some hours
+        correct_ms(path)  # creates CORRECTED_DATA
+        median = _in_turn({
+            "without": lambda: correct_ms(path, redo=True),
+            "with the ionosphere": lambda: correct_ms(path, redo=True,
+                                                      ionosphere=ionosphere)}, rounds)
+    without, with_ = median["without"], median["with the ionosphere"]
+    _line("correct_ms", without, count)
+    _line("correct_ms, ionosphere=(IONEX)", with_, count, None, with_ / without,
+          "without")
+    results.append((f"Measurement Set with an ionosphere (IONEX): at most 1.5x without "
+                    f"(medians of {rounds} runs in turn)", with_ <= 1.5 * without,
+                    f"{with_ / without:.2f}x ({with_:.2f} s against {without:.2f} s)"))
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--gib", type=float, default=1.0,
                         help="size of each data set in GiB (default 1)")
-    parser.add_argument("--only", choices=("uvdata", "fitsidi", "ms"),
+    parser.add_argument("--only", choices=("uvdata", "fitsidi", "ms", "ionosphere"),
                         help="run one path only")
     parser.add_argument("--workers", type=int, default=2,
                         help="dask workers for the parallel runs (0: none; default 2)")
@@ -477,6 +521,9 @@ def main(argv=None):
     if args.only in (None, "ms"):
         with tempfile.TemporaryDirectory(dir=args.dir) as directory:
             bench_ms(args.gib, results, directory, args.workers, args.rounds)
+    if args.only in (None, "ionosphere"):
+        with tempfile.TemporaryDirectory(dir=args.dir) as directory:
+            bench_ms_ionosphere(args.gib, results, directory, args.rounds)
     print()
     for name, ok, detail in results:
         print(f"{'PASS' if ok else 'FAIL'}  {name}: {detail}")

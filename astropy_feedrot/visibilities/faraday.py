@@ -38,7 +38,8 @@ from ..ionosphere import Ionosphere, IonosphereError
 from .rows import distinct_epochs
 
 __all__ = ["check_ionosphere", "rotation_measure_rows", "lambda_squared", "ms_lambda_squared",
-           "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "row_angles"]
+           "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "row_angles",
+           "remove_circular_faraday"]
 
 _C = const.c.to_value(u.m / u.s)
 
@@ -411,3 +412,60 @@ def row_angles(table, time, source, key1, key2, ndim, faraday=None, freqid=None)
     rm2 = table.rm[table.places(time, source, key2)]
     return (faraday_angles(theta1, rm1, lambda2, per_row),
             faraday_angles(theta2, rm2, lambda2, per_row))
+
+
+def remove_circular_faraday(data, rm1, rm2, lambda2, products, *, conjugate=False,
+                            direction="remove"):
+    """Remove (or apply) the Faraday rotation of circular products, in place.
+
+    For circular receptors the correction of each product is one phase
+    factor, so the Faraday rotation's part can be applied after the feed
+    rotation's (`~astropy_feedrot.applied.correction.correct_receptor_visibilities`
+    with one angle pair per row): with chi = RM lambda^2 the angle of product
+    pq gains :math:`-s_p \\chi_1 + s_q \\chi_2` (:math:`s_R = 1`,
+    :math:`s_L = -1`). The phasors :math:`e^{i \\chi}` are computed once per
+    distinct RM of the rows (an antenna at an epoch, shared by its baselines)
+    and channel, in the data's precision; each product then takes one
+    multiplication.
+
+    Parameters
+    ----------
+    data : `~numpy.ndarray`, shape (N, C, P)
+        Visibilities, corrected in place.
+    rm1, rm2 : `~numpy.ndarray`, shape (N,)
+        RM (rad m^-2) of the two antennas of each row.
+    lambda2 : `~numpy.ndarray`, shape (C,)
+        lambda^2 (m^2) of the channels.
+    products : sequence of str
+        Circular products (``'RR'``, ``'LL'``, ``'RL'``, ``'LR'``), in the
+        order of the data.
+    conjugate : bool, optional
+        Data in pyuvdata's (and FITS-IDI's) conjugated convention.
+    direction : {'remove', 'apply'}, optional
+        As in `~astropy_feedrot.applied.correction.correct_receptor_visibilities`.
+
+    Examples
+    --------
+    RR of a baseline whose antennas see 10 and 30 deg of Faraday rotation
+    has turned by -20 deg: it is turned back.
+
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.faraday import remove_circular_faraday
+    >>> data = np.exp(1j * np.radians([[[-20.0, 20.0]]]))
+    >>> remove_circular_faraday(data, np.radians([10.0]), np.radians([30.0]),
+    ...                         np.array([1.0]), ["RR", "LL"])
+    >>> np.round(np.degrees(np.angle(data)), 9) + 0.0
+    array([[[0., 0.]]])
+    """
+    sign = (-1.0 if conjugate else 1.0) * (-1.0 if direction == "apply" else 1.0)
+    lambda2 = np.asarray(lambda2, dtype=float)
+    distinct, at = np.unique(np.concatenate([rm1, rm2]), return_inverse=True)
+    phasor = np.exp(1j * sign * np.multiply.outer(distinct, lambda2)).astype(
+        np.result_type(data.dtype, np.complex64), copy=False)
+    at = at.reshape(-1)
+    p1, p2 = phasor[at[:rm1.size]], phasor[at[rm1.size:]]
+    difference = p2 * p1.conj()  # RR: e^(i (chi2 - chi1))
+    total = (p1 * p2).conj()  # RL: e^(-i (chi1 + chi2))
+    factors = {"RR": difference, "LL": difference.conj(), "RL": total, "LR": total.conj()}
+    for k, product in enumerate(products):
+        data[..., k] *= factors[str(product).upper()]

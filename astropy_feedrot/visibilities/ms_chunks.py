@@ -23,7 +23,7 @@ import numpy as np
 from ..applied.correction import correct_receptor_visibilities
 from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..core.extras import install_hint
-from .faraday import faraday_angles
+from .faraday import faraday_angles, remove_circular_faraday
 from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
@@ -119,13 +119,15 @@ class Block:
         self.lambda2 = lambda2
 
     def theta(self):
-        """The position angles (deg) of the receptors of both antennas, each (N, 2), or
-        with an ionosphere each (N, channels, 2)."""
+        """The position angles (deg) of the receptors of both antennas, each (N, 2)."""
         if self.lambda2 is None:
             return self.table[self.place1], self.table[self.place2]
-        one, two = self.table[self.place1], self.table[self.place2]
-        return (faraday_angles(one[:, :2], one[:, 2], self.lambda2),
-                faraday_angles(two[:, :2], two[:, 2], self.lambda2))
+        return self.table[self.place1, :2], self.table[self.place2, :2]
+
+    def rotation_measures(self):
+        """The RM (rad m^-2) of the two antennas of each row, each (N,) (with an
+        ionosphere)."""
+        return self.table[self.place1, 2], self.table[self.place2, 2]
 
     def sent(self):
         """The block without its angle table (a dask task takes that apart)."""
@@ -243,12 +245,24 @@ class Progress:
 def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
     theta1, theta2 = block.theta()
-    if block.lambda2 is None:  # one angle pair per row, for every channel
-        theta1, theta2 = theta1[:, None, :], theta2[:, None, :]
+    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
+    circular = block.products[0][0] in "RL"
+    if block.lambda2 is None or circular:  # one angle pair per row, for every channel
+        angle1, angle2 = theta1[:, None, :], theta2[:, None, :]
+    else:  # linear receptors: the angles per channel mix the four products
+        rm1, rm2 = block.rotation_measures()
+        angle1 = faraday_angles(theta1, rm1, block.lambda2)
+        angle2 = faraday_angles(theta2, rm2, block.lambda2)
     with np.errstate(invalid="ignore"):  # NaN and inf in the data (LWA's) give NaN
-        correct_receptor_visibilities(data, theta1 * u.deg, theta2 * u.deg, block.products,
+        correct_receptor_visibilities(data, angle1 * u.deg, angle2 * u.deg, block.products,
                                       out=data, direction=direction)
-    bad = np.isnan(theta1).any(axis=(1, 2)) | np.isnan(theta2).any(axis=(1, 2))
+        if block.lambda2 is not None and circular:  # one phase factor more per product
+            rm1, rm2 = block.rotation_measures()
+            remove_circular_faraday(data, rm1, rm2, block.lambda2, block.products,
+                                    direction=direction)
+    if block.lambda2 is not None:
+        rm1, rm2 = block.rotation_measures()
+        bad |= np.isnan(rm1) | np.isnan(rm2)
     if bad.any():
         data[bad] = np.nan
     return int(np.count_nonzero(bad))
