@@ -15,6 +15,7 @@ import warnings
 from astropy import units as u
 
 from ..core.outputs import CommandError
+from ..core.progress import bar_drawn
 from ..earth.eop import iers_context
 from ..io import FileFormatError
 from .parser import one_line
@@ -58,7 +59,9 @@ def _warning_printer():
         text = one_line(message)
         if text not in shown:
             shown.add(text)
-            print(f"feedrot: warning: {text}", file=sys.stderr)
+            # On a line of its own, not after a progress bar being drawn.
+            start = "\n" if bar_drawn() else ""
+            print(f"{start}feedrot: warning: {text}", file=sys.stderr)
     return show
 
 

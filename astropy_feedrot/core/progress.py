@@ -19,7 +19,23 @@ import sys
 
 from astropy.utils.console import ProgressBar
 
-__all__ = ["progress_steps", "check_progress"]
+__all__ = ["progress_steps", "check_progress", "bar_drawn"]
+
+# Bars being drawn on a terminal now (`bar_drawn`).
+_drawn = 0
+
+
+def bar_drawn():
+    """Whether a progress bar is being drawn on standard error now: a message printed
+    there meanwhile starts on a new line, not after the bar.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.core.progress import bar_drawn
+    >>> bar_drawn()
+    False
+    """
+    return _drawn > 0
 
 
 def check_progress(progress):
@@ -74,10 +90,16 @@ def progress_steps(progress, total):
     >>> calls
     [(1, 5), (5, 5)]
     """
+    global _drawn
     check_progress(progress)
     if progress is True:
+        drawn = int(sys.stderr.isatty())  # astropy's bar is silent elsewhere
         with ProgressBar(total, file=sys.stderr) as bar:
-            yield _counter(lambda done, total: bar.update(done), total)
+            _drawn += drawn
+            try:
+                yield _counter(lambda done, total: bar.update(done), total)
+            finally:
+                _drawn -= drawn
     elif callable(progress):
         yield _counter(progress, total)
     else:

@@ -160,6 +160,8 @@ def test_correct_draws_its_bar_before_the_read(tmp_path):
     assert "( 0.00%)" in drawn[0] and "(100.00%)" in drawn[-1]
     shown = {line.split("(")[1].split(")")[0] for line in drawn}
     assert {"33.33%", "66.67%"} <= shown and len(shown) > 4, shown
+    # pyuvdata's warning on this file, on a line of its own below the bar.
+    assert "\nfeedrot: warning: " in err and "%)feedrot" not in err
     assert err.endswith(f"\nfeedrot: out.uvfits: feed rotation removed from {uvfits} "
                         "(rigorous convention: vertical geodetic, pole itrs; frame apparent)\n")
 

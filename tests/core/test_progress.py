@@ -14,7 +14,7 @@ from astropy.time import Time
 
 from astropy_feedrot.core import outputs
 from astropy_feedrot.core.outputs import table_writer, write_table_blocks
-from astropy_feedrot.core.progress import progress_steps
+from astropy_feedrot.core.progress import bar_drawn, progress_steps
 
 
 def test_a_callable_is_told_the_units_done():
@@ -37,6 +37,7 @@ def test_no_progress_is_silent(capsys, progress):
 def test_a_bar_on_a_standard_error_that_is_not_a_terminal_is_silent(capsys):
     with progress_steps(True, 3) as step:
         step(3)
+        assert not bar_drawn()
     assert capsys.readouterr() == ("", "")
 
 
@@ -47,6 +48,8 @@ def test_a_bar_on_a_terminal_is_drawn_at_each_step(monkeypatch):
         with progress_steps(True, 300) as step:
             for _ in range(3):
                 step(100)
+            assert bar_drawn()  # messages meanwhile start on a new line
+        assert not bar_drawn()  # once the bar is finished
     chunks = []
     while True:  # everything written, until the closed side gives EIO
         try:
