@@ -86,6 +86,13 @@ def main(argv=None):
     if not hasattr(args, "run"):
         parser.print_help()
         return 2
+    if getattr(args, "light", False):
+        # Listing or copying a sample needs neither astropy nor the Earth's orientation.
+        try:
+            return args.run(args)
+        except (CommandError, OSError) as error:
+            print(f"feedrot: error: {one_line(error)}", file=sys.stderr)
+            return 1
     # The command's modules, astropy among them, only now: the parser needed none.
     from .running import run_command
 

@@ -648,7 +648,7 @@ def _add_samples(commands):
                          "and print the copy's path, to change it (correct it in place)")
     samples.add_argument("--overwrite", action="store_true",
                          help="with --copy, replace a file or folder of that name here")
-    samples.set_defaults(run=run_samples)
+    samples.set_defaults(run=run_samples, light=True)  # run without astropy
 
 
 # The commands: each imports its family's module when it runs (and astropy with it).

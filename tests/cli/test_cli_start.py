@@ -74,6 +74,21 @@ def test_a_usage_error_imports_nothing_beyond_the_standard_library():
     assert imported(statements) == "[]"
 
 
+@pytest.mark.parametrize("argv", [["samples"], ["samples", "gps.tle"], ["samples", "nope.tle"]],
+                         ids=" ".join)
+def test_the_samples_import_nothing_beyond_the_standard_library(argv):
+    # The printed examples call 'feedrot samples NAME' for every file they name: it
+    # needs neither astropy nor the Earth's orientation, and its error is one line.
+    statements = ("import contextlib, io\n"
+                  "from astropy_feedrot.cli import main\n"
+                  "out, err = io.StringIO(), io.StringIO()\n"
+                  "with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):\n"
+                  f"    status = main({argv!r})\n"
+                  f"assert status == {int('nope.tle' in argv)}, status\n"
+                  "assert len(err.getvalue().splitlines()) == status, err.getvalue()")
+    assert imported(statements) == "[]"
+
+
 def test_a_command_imports_what_it_needs_when_it_runs():
     # The other side: running a command does import astropy.
     statements = ("import contextlib, io\n"
