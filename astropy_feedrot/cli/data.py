@@ -33,6 +33,7 @@ from ..visibilities import (
 )
 from ..ionosphere import IonosphereError
 from ..visibilities.poles import convention_options
+from .common import wrote
 from .faraday import ionosphere_option
 from .parser import one_line
 
@@ -50,6 +51,8 @@ def run_antennas(args):
                                                                  table_format(paths[0])))]
     then = None if files else (lambda: table.write(sys.stdout, format="ascii.ecsv"))
     write_files(files, then, overwrite=args.overwrite)
+    count = len(table)
+    wrote([args.output], f"{count} antenna{'s' if count != 1 else ''} of {args.file}, as read")
     return 0
 
 

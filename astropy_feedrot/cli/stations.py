@@ -19,7 +19,7 @@ from astropy.coordinates import EarthLocation
 from astropy.table import Table
 
 from ..core.outputs import TABLE_FORMATS, CommandError, check_outputs
-from .common import input_files, station_catalogue, write_table
+from .common import input_files, station_catalogue, write_table, wrote
 from .parser import NEAR_LIMIT, one_line
 from .views import output_format
 
@@ -137,6 +137,8 @@ def run_stations(args):
                            + "; 'feedrot stations' lists them all")
     if output is not None:
         write_table(selected, (output, None), "stations", overwrite=args.overwrite)
+        count = len(selected)
+        wrote([args.output], f"{count} station{'s' if count != 1 else ''} of the catalogue")
         return 0
     form = output_format(args.format)
     if form == "text":

@@ -85,6 +85,7 @@ def test_write_every_column_to_a_file(capsys, tmp_path):
     output = tmp_path / "eht.csv"
     status, out, err = run(capsys, "stations", "--network", "EHT", "-o", str(output))
     assert status == 0 and out == ""
+    assert err == f"feedrot: {output}: 11 stations of the catalogue\n"  # the file, as named
     table = Table.read(output, format="ascii.csv")
     assert len(table) == 11 and {"x", "mount_source", "focus_source"} <= set(table.colnames)
     status, _, err = run(capsys, "stations", "--network", "EHT", "-o", str(output))

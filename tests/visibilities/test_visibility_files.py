@@ -136,6 +136,9 @@ def test_command_antennas(capsys, idi, tmp_path):
     output = tmp_path / "antennas.ecsv"
     assert main(["antennas", str(idi[0]), "-o", str(output)]) == 0
     assert "label" in Table.read(output).colnames
+    # (After this file's warnings, one line per distinct warning.)
+    assert capsys.readouterr().err.endswith(f"\nfeedrot: {output}: {len(Table.read(output))} "
+                                            f"antennas of {idi[0]}, as read\n")
     assert main(["antennas", str(idi[0]), "-o", str(output)]) == 1
     assert "exists; add --overwrite" in capsys.readouterr().err
 
