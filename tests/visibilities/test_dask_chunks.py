@@ -10,16 +10,21 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from astropy.io import fits
+from astropy.time import Time
 
 distributed = pytest.importorskip("distributed")
 pytest.importorskip("casacore")
 
 from casacore.tables import table  # noqa: E402
+from faraday_model import faraday_fitsidi, faraday_ms, rm_table_mjd  # noqa: E402
 from fitsidi_writer import write_fitsidi  # noqa: E402
 from ms_model import fill_model, unpack  # noqa: E402
 
 from astropy_feedrot import UncorrectedBaselinesWarning  # noqa: E402
 from astropy_feedrot.cli import main  # noqa: E402
+from astropy_feedrot.core.exceptions import DegenerateGeometryWarning  # noqa: E402
+from astropy_feedrot.ionosphere import Ionosphere  # noqa: E402
 from astropy_feedrot.visibilities import correct_fitsidi, correct_ms  # noqa: E402
 
 # fitsidi_writer gives WETTZ13S a Nasmyth focus the catalogue does not (on purpose).
@@ -160,3 +165,24 @@ def test_ms_orbiting_antenna_on_two_workers(tmp_path, client):
         assert work.getcol("CORRECTED_DATA").tobytes() == \
             serial.getcol("CORRECTED_DATA").tobytes()
         assert work.getcol("CORRECTED_DATA")[on].tobytes() == work.getcol("DATA")[on].tobytes()
+
+
+def test_faraday_on_two_workers(tmp_path, client):
+    """With an ionosphere: the workers get the RM with the angles (no maps), and give the
+    serial result bit for bit, for a Measurement Set and a FITS-IDI file."""
+    serial, _, _, (start, stop) = faraday_ms(tmp_path / "a")
+    parallel, _, _, _ = faraday_ms(tmp_path / "b")
+    ionosphere = Ionosphere.from_rm(rm_table_mjd(start, stop))
+    correct_ms(serial, chunk_rows=40, ionosphere=ionosphere)
+    correct_ms(parallel, chunk_rows=40, client=client, ionosphere=ionosphere)
+    with table(str(serial), ack=False) as a, table(str(parallel), ack=False) as b:
+        np.testing.assert_array_equal(a.getcol("CORRECTED_DATA"), b.getcol("CORRECTED_DATA"))
+    path, _, _, _ = faraday_fitsidi(tmp_path)
+    ionosphere = Ionosphere.from_rm(rm_table_mjd(Time("2023-01-25T20:00").mjd,
+                                                 Time("2023-01-26T02:00").mjd))
+    for name, options in (("serial", {}), ("dask", {"client": client})):
+        with pytest.warns(DegenerateGeometryWarning):  # 3C 84 below a horizon: NaN rows
+            correct_fitsidi(path, tmp_path / f"{name}.idifits", chunk_bytes=4096,
+                            ionosphere=ionosphere, **options)
+    with fits.open(tmp_path / "serial.idifits") as a, fits.open(tmp_path / "dask.idifits") as b:
+        np.testing.assert_array_equal(a["UV_DATA"].data["FLUX"], b["UV_DATA"].data["FLUX"])
