@@ -214,3 +214,21 @@ def test_rm_of_every_row_is_the_ionospheres_on_real_ionex_maps():
     # them (20 us apart from the Time asked; measured: 5e-10 rad/m2, 1.3e-9 relative).
     np.testing.assert_allclose(rm1, expected[rows, pairs[:, 0] - 1], rtol=1e-8, atol=0)
     np.testing.assert_allclose(rm2, expected[rows, pairs[:, 1] - 1], rtol=1e-8, atol=0)
+
+
+def test_history_names_the_ionex_files():
+    from astropy_feedrot.visibilities.faraday import ionosphere_text
+
+    import_or_skip("spinifex", "ionosphere", "FEEDROT_REQUIRE_SPINIFEX")
+    text = ionosphere_text(Ionosphere.from_ionex(sample_ionex("codg00[89]0.20i.Z")), " ")
+    assert text == (" and the ionospheric Faraday rotation (RM lambda^2 per channel) from the "
+                    "IONEX files codg0080.20i.Z, codg0090.20i.Z (shell at 450 km, IGRF through "
+                    "spinifex)")
+    assert ionosphere_text(None, " ") == ""
+
+
+def test_not_an_ionosphere_refused():
+    # Before the files are looked at.
+    for correct in (correct_ms, lambda path, **kw: correct_fitsidi(path, "out.idifits", **kw)):
+        with pytest.raises(TypeError, match=r"ionosphere must be an Ionosphere \(Ionosphere"):
+            correct("missing", ionosphere="codg0080.20i.Z")
