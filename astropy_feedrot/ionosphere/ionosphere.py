@@ -23,6 +23,7 @@ from astropy.utils import iers
 from ..core.config import conf
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.inputs import as_location, as_skycoord, as_time, broadcast_shape
+from ..earth.eop import astropy_uses_these_arrays
 from .ionex import IonexMaps
 from .line_of_sight import rm_along_line_of_sight
 from .rm_table import RM_UNIT, RMTable
@@ -319,7 +320,9 @@ class Ionosphere:
         grid = self._grid(unique) if fixed and self.step > 0 else None
         values = np.empty((mjd.size, sites.size))
         below = np.zeros(values.shape, dtype=bool)
-        with _earth_orientation_offline():
+        # Astropy's transformations inside spinifex take the package's Earth-orientation
+        # arrays rather than reading astropy's tables anew (1-2.5 s a process).
+        with _earth_orientation_offline(), astropy_uses_these_arrays(mjd.min(), mjd.max()):
             for k in range(sites.size):  # one line of sight per site; epochs vectorised
                 rm, elevation = self._one_site(sites[k], names[k], directions, base, unique,
                                                grid)

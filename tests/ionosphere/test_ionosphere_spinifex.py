@@ -218,3 +218,31 @@ def test_pickled_ionosphere_gives_the_same_numbers():
     assert copy.height == 400 * u.km and copy.files == iono.files
     np.testing.assert_array_equal(copy.rotation_measure(WSRT, crab, epochs).value,
                                   iono.rotation_measure(WSRT, crab, epochs).value)
+
+
+def test_astropy_does_not_read_its_tables_again():
+    # spinifex's pierce points go through astropy's transformations; they take the
+    # package's Earth-orientation arrays (bit for bit astropy's) instead of astropy
+    # reading its bundled tables anew (1-2.5 s a process). In a fresh interpreter
+    # astropy's table stays unread, and the numbers are those with astropy's table.
+    import subprocess
+    import sys
+
+    script = (
+        "import astropy.units as u\n"
+        "from astropy.coordinates import EarthLocation, SkyCoord\n"
+        "from astropy.time import Time\n"
+        "from astropy.utils import iers\n"
+        "from astropy_feedrot.ionosphere import Ionosphere, sample_ionex\n"
+        "iono = Ionosphere.from_ionex(sample_ionex('codg00[89]0.20i.Z'), step=0 * u.s)\n"
+        "site = EarthLocation.from_geodetic(6.6045 * u.deg, 52.9153 * u.deg, 16 * u.m)\n"
+        "crab = SkyCoord('05h34m31.94s +22d00m52.2s')\n"
+        "t = Time('2020-01-08T22:00') + [0, 1, 2] * u.h\n"
+        "ours = iono.rotation_measure(site, crab, t)\n"
+        "assert iers.IERS_Auto.iers_table is None, 'astropy read its tables'\n"
+        "iers.IERS_Auto.open()\n"
+        "assert iers.IERS_Auto.iers_table is not None\n"
+        "assert (iono.rotation_measure(site, crab, t) == ours).all()\n")
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
