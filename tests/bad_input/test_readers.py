@@ -136,7 +136,7 @@ def test_sp3_gap_is_read_and_recorded():
 
 def test_sp3_epoch_count_disagrees_with_line_1():
     # The last epoch cut off and EOF written after the rest: line 1 still says 4 epochs.
-    # A warning, not a refusal (issue 26): gnss_lib_py's trimmed test files are so, and
+    # A warning, not a refusal: gnss_lib_py's trimmed test files are so, and
     # RTKLIB reads them.
     text = sp3_with({34: None, 35: None, 36: None, 37: None})
     with pytest.warns(OrbitWarning, match=r"^sample\.sp3: line 1 counts 4 epochs \(columns "

@@ -38,7 +38,7 @@ def test_rinex_writes_corrected_copy_and_table(tmp_path, capsys):
     (["-o", "{tmp}/a.rnx", "--position", "1,2"], "--position: expected X,Y,Z"),
     (["-o", "{tmp}/a.rnx", "--table", "{tmp}/t.txt"], "--table: cannot tell a format"),
     (["-o", "{tmp}/a.rnx", "--orbex", "{tmp}/none.obx"], "--orbex: no such file '"),
-    # Issue 26: --points 1 used to exit 0 with every satellite untouched; 2 is 4.6e-3 cycle off.
+    # --points 1 used to exit 0 with every satellite untouched; 2 is 4.6e-3 cycle off.
     (["-o", "{tmp}/a.rnx", "--points", "1"], "points=1 is too few for SP3 orbits at 900 s"),
     (["-o", "{tmp}/a.rnx", "--points", "2"], "needs at least 7 points (default 10)"),
 ])

@@ -203,7 +203,7 @@ def test_only_phases_change(tmp_path, sp3):
     report = correct_rinex(source, tmp_path / "b.rnx", sp3)
     original, corrected = _without_phases(source), _without_phases(tmp_path / "b.rnx")
     end = next(i for i, line in enumerate(original) if "END OF HEADER" in line)
-    # Two COMMENT lines, 80 columns, saying what was done (issue 26).
+    # Two COMMENT lines, 80 columns, saying what was done.
     assert corrected[end:end + 2] == [
         "astropy_feedrot: L - WIND-UP (CYCLES, RHCP, NOMINAL YAW)    COMMENT             \n",
         "WIND-UP REMOVED FROM 659 PHASES OF 13 SATELLITES            COMMENT             \n"]
@@ -212,7 +212,7 @@ def test_only_phases_change(tmp_path, sp3):
 
 
 def test_loss_of_lock_keeps_the_arc(tmp_path, sp3):
-    """A loss-of-lock flag does not restart the wind-up (it used to: issue 26).
+    """A loss-of-lock flag does not restart the wind-up (it used to).
 
     The wind-up is geometry, not a measurement: RTKLIB carries its phw through
     every flag (windupcorr, rtkcmn.c). Restarting at the principal value put a
@@ -238,7 +238,7 @@ def test_loss_of_lock_keeps_the_arc(tmp_path, sp3):
 
 
 def test_flagged_epoch_past_half_a_cycle(tmp_path, sp3):
-    """The flagged-epoch geometry of ESBC R04 (issue 26), reproduced with the synthetic orbits.
+    """The flagged-epoch geometry of ESBC R04, reproduced with the synthetic orbits.
 
     The wind-up of one satellite is followed past +0.5 cycle (or -0.5) and one
     of its phases is flagged there: every phase of the satellite keeps the
@@ -320,7 +320,7 @@ def test_orbex_attitude(tmp_path):
 
 
 def test_points_refused_before_any_work(tmp_path, sp3):
-    """Too few interpolation points for the orbit's sampling are refused (issue 26)."""
+    """Too few interpolation points for the orbit's sampling are refused."""
     from astropy_feedrot.data import sample_file
 
     source = _rinex(tmp_path / "a.rnx", epochs=3, sats=["G01", "G05"], start=START)
@@ -513,7 +513,7 @@ def test_model_attitude(tmp_path, sp3, orbits):
     path = tmp_path / "named.sp3"
     write_sp3(path, named, START, 17)
     source = _rinex(tmp_path / "a.rnx", epochs=120, sats=list(named))
-    # Satellites without a yaw law get nominal yaw, named in one warning (issue 26).
+    # Satellites without a yaw law get nominal yaw, named in one warning.
     with pytest.warns(OrbitWarning, match=r"^no yaw model for C59 \(block BDS-3G\): nominal "
                                           r"yaw used for them$"):
         report = correct_rinex(source, tmp_path / "model.rnx", path, attitude="model")
@@ -535,7 +535,7 @@ def test_model_attitude(tmp_path, sp3, orbits):
 
 def test_model_attitude_nominal_for_qzss_and_glonass_k1b(tmp_path):
     """Under attitude='model', QZSS (J01-J03) and GLONASS-K1B (R09), which have no yaw law,
-    get nominal yaw and are named in one warning (issue 26: they were left untouched,
+    get nominal yaw and are named in one warning (they were left untouched,
     9,714 phases of the real ESBC00DNK file)."""
     from astropy_feedrot.gnss.synthetic import constellation as make
 

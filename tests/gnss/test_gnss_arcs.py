@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Arcs of the wind-up and the interpolation points an orbit's sampling needs (issue 26)."""
+"""Arcs of the wind-up and the interpolation points an orbit's sampling needs."""
 
 import numpy as np
 import pytest
@@ -58,7 +58,7 @@ def test_points_needed_against_a_dense_reference(tmp_path):
     Measured here (max over 5460 rows): 2 points 1.0e-3 cycle, 3 points 4.3e-4, 4 points
     1.6e-5, 7 (the rule) 5e-8, 10 (the default) 2.4e-10. The rule keeps a margin of
     three points for these orbits: near noon and midnight turns of real files the
-    sensitivity to a position error is higher (issue 26 measured 4.6e-3 cycle for 2 points
+    sensitivity to a position error is higher (measured 4.6e-3 cycle for 2 points
     on a real day).
     """
     orbits = constellation(START, COUNTS)

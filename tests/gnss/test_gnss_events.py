@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""RINEX body events, missing and malformed values, broken compressed input (issue 26)."""
+"""RINEX body events, missing and malformed values, broken compressed input."""
 
 import gzip
 import io
@@ -113,7 +113,7 @@ def _event(lines, version="3"):
 def test_flag_4_new_observation_types_rinex_2(tmp_path, sp3):
     """A flag-4 event redefining # / TYPES OF OBSERV: the records after it are read by it.
 
-    Before issue 26 the old list was kept: C1 and L1 swapped places, C1 was corrected
+    Before, the old list was kept: C1 and L1 swapped places, C1 was corrected
     and L1 not.
     """
     path = _rnx(tmp_path, version="2.11")

@@ -1,12 +1,12 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""The wind-up correction on a real station file (issue 26).
+"""The wind-up correction on a real station file.
 
 ESBC00DNK (a Septentrio PolaRx5 of SDFE, Denmark) on 2020-06-25, RINEX 3.05 from
 georust/rinex's test resources, trimmed to nine satellites and four hours by
 tests/data/real/make_esbc.py, with the same day's GRG (CNES/CLS) MGEX final orbits at
 15 minutes, which end at 23:45. The file has 218 epochs where only R04's L3Q has its
 loss-of-lock bit set (its other four phases not), among them 12:11:30, where R04's
-continuous wind-up passes +0.5 cycle: before issue 26 the arc restarted there and
+continuous wind-up passes +0.5 cycle: before, the arc restarted there and
 L1C/L1P/L2C/L2P, unflagged, jumped by one cycle.
 """
 
@@ -228,7 +228,7 @@ def test_truncated_compact_rinex(tmp_path):
 ])
 def test_gnss_lib_py_trimmed_sp3(name, counted, held):
     """gnss_lib_py's test SP3 files, trimmed with line 1 still counting the day: read with
-    one warning (they were refused before issue 26; RTKLIB reads them)."""
+    one warning (they were refused before; RTKLIB reads them)."""
     from astropy_feedrot.io import read_sp3
 
     with pytest.warns(OrbitWarning, match=rf"{name}: line 1 counts {counted} epochs \(columns "

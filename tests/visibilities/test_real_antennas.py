@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""The antennas of real files (issue 26): mounts against the station catalogue,
+"""The antennas of real files: mounts against the station catalogue,
 orbiting antennas, receptors that are not a pair, empty mounts, NaN sources.
 
 The files are under tests/data/real/ (README.md there: source, commit, licence;

@@ -1,5 +1,5 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Real files of the field's programs, read and written right (issue 26).
+"""Real files of the field's programs, read and written right.
 
 The files are under tests/data/real/ (README.md there: source, commit,
 licence; trim_fits_rows.py made the trims, verbatim subsets of the rows).
