@@ -8,6 +8,7 @@ each frequency, the feed rotation Phi, and psi = Phi - chi, the one angle that
 enters a correction as the feed rotation does (see :doc:`/ionosphere`).
 """
 
+import os
 import warnings
 
 import numpy as np
@@ -123,7 +124,8 @@ def faraday_table(antennas, target, obstime, ionosphere, frequency, min_elevatio
         (-180, 180], RCP as in `~astropy_feedrot.Antenna.feed_rotation`) and
         ``psi_<frequency>`` (feed rotation minus chi, deg, not wrapped). The
         ``meta`` records the antennas, target, frequencies (``labels``
-        too), elevation limit and the ionosphere (with its IONEX files).
+        too), elevation limit and the ionosphere (with the names of its
+        IONEX files).
 
     Raises
     ------
@@ -217,6 +219,9 @@ def faraday_table(antennas, target, obstime, ionosphere, frequency, min_elevatio
     table.meta.update(antennas=names, target=target_name(target),
                       frequencies=[str(f) for f in frequencies], labels=labels,
                       min_elevation=str(u.Quantity(min_elevation)),
-                      ionosphere=repr(ionosphere),
-                      ionex=[str(path) for path in ionosphere.files])
+                      # Short values: FITS cards of 80 characters hold them (astropy 6
+                      # refuses a longer HIERARCH card); the files by name.
+                      ionosphere=(f"IONEX maps, shell at {ionosphere.height.to_value(u.km):g} km"
+                                  if ionosphere.files else "a table of rotation measures"),
+                      ionex=[os.path.basename(str(path)) for path in ionosphere.files])
     return table
