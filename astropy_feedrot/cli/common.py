@@ -47,9 +47,10 @@ def parse_quantity(text, unit, what):
     try:
         value = u.Quantity(text)
     except (TypeError, ValueError):
+        example = {"time": "30s, 10min", "length": "450km"}.get(str(unit.physical_type),
+                                                                "1575.42MHz, 8.4GHz")
         raise CommandError(f"{what}: cannot read {text!r} as a number with a unit "
-                           f"(e.g. {'30s, 10min' if unit == u.s else '1575.42MHz, 8.4GHz'})"
-                           ) from None
+                           f"(e.g. {example})") from None
     if value.unit == u.dimensionless_unscaled:
         value = value.value * unit
     try:

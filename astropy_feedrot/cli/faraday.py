@@ -13,17 +13,21 @@ from astropy.time import Time
 
 from ..applied.faraday_tables import faraday_table
 from ..core.outputs import CommandError
+from ..core.progress import progress_steps
 from ..ionosphere import Ionosphere, IonosphereError
+from ..ionosphere.ionosphere import DEFAULT_HEIGHT
 from .common import (
     elevation_limit,
     natural_target,
     parse_antenna,
     parse_quantity,
     read_path,
+    show_progress,
     station_catalogue,
     table_outputs,
     time_span,
     write_table,
+    wrote,
 )
 from .parser import one_line
 
@@ -60,13 +64,20 @@ def ionosphere_option(args):
     (also for ``feedrot correct``)."""
     if (args.ionex is None) == (args.rm_table is None):
         raise CommandError(_IONOSPHERE_HINT + ("" if args.ionex is None else ", not both"))
+    if args.ionex_height is not None and args.ionex is None:
+        raise CommandError("--ionex-height is the height of the IONEX maps' shell: give it "
+                           "with --ionex (a table of rotation measures has no height)")
     if args.rm_table is not None:
         return _read_rm_table(args.rm_table), "--rm-table"
     paths = [read_path(path, "--ionex") for path in args.ionex]
+    height = DEFAULT_HEIGHT if args.ionex_height is None else \
+        parse_quantity(args.ionex_height, u.km, "--ionex-height")
     try:
-        return Ionosphere.from_ionex(paths), "--ionex"
+        return Ionosphere.from_ionex(paths, height=height), "--ionex"
     except IonosphereError as error:
         raise CommandError(f"--ionex: {one_line(error)}") from None
+    except ValueError as error:  # the height out of range
+        raise CommandError(f"--ionex-height: {one_line(error)}") from None
 
 
 def run_faraday(args):
@@ -84,10 +95,17 @@ def run_faraday(args):
     target = natural_target(args)
     times = time_span(args)
     ionosphere, option = ionosphere_option(args)
-    try:
-        table = faraday_table(antennas, target, times, ionosphere, frequencies,
-                              min_elevation=min_elevation)
-    except IonosphereError as error:  # epochs outside the maps, a station not in the table
-        raise CommandError(f"{option}: {one_line(error)}") from None
-    write_table(table, paths, "faraday", overwrite=args.overwrite, form=args.format)
+    # One bar over the rows written: drawn at once (the table is computed at 0 %).
+    with progress_steps(show_progress(args), times.size * len(antennas)) as step:
+        try:
+            table = faraday_table(antennas, target, times, ionosphere, frequencies,
+                                  min_elevation=min_elevation)
+        except IonosphereError as error:  # epochs outside the maps, a station not listed
+            raise CommandError(f"{option}: {one_line(error)}") from None
+        write_table(table, paths, "faraday", overwrite=args.overwrite, form=args.format,
+                    step=step)
+    count = len(table)
+    wrote([args.output, args.plot], f"{count} row{'' if count == 1 else 's'} of the rotation "
+          f"measure, Faraday and feed rotation of {', '.join(table.meta['antennas'])} "
+          f"observing {table.meta['target']} at {', '.join(table.meta['labels'])}")
     return 0

@@ -380,6 +380,7 @@ def _add_faraday(commands):
     group.add_argument("--rm-table", metavar="FILE",
                        help="your own rotation measures instead: a table (ECSV) with columns "
                        "time, rm (rad / m2) and optionally antenna (station names)")
+    _add_ionex_height(group)
     group.add_argument("--frequency", metavar="FREQ", action="append", required=True,
                        help="observing frequency with a unit (1.4GHz, 150MHz; plain: MHz); "
                        "repeat it for several: one chi and one psi column each")
@@ -387,6 +388,13 @@ def _add_faraday(commands):
                        min_elevation="every value but the elevation NaN below this elevation "
                        "(degrees, or with a unit; from 0 to 90; default: the horizon)")
     faraday.set_defaults(run=_run_faraday)
+
+
+def _add_ionex_height(group):
+    group.add_argument("--ionex-height", metavar="HEIGHT",
+                       help="height of the ionosphere's thin shell for --ionex, with a unit "
+                       "(350km; plain: km; default 450 km, the height the IONEX maps of "
+                       "CODE, ESA, IGS and UPC state)")
 
 
 def _add_demo(commands):
@@ -570,6 +578,7 @@ def _add_files(commands):
                             help="your own rotation measures instead: a table (ECSV) with "
                             "columns time, rm (rad / m2) and optionally antenna (the file's "
                             "antenna names; without it one series serves every antenna)")
+    _add_ionex_height(ionosphere)
     correct.add_argument("--dask", metavar="SCHEDULER",
                          help="correct the chunks of a Measurement Set or FITS-IDI file on "
                          "the workers of this dask.distributed scheduler (its address)")

@@ -42,7 +42,6 @@ import erfa
 import numpy as np
 from astropy import units as u
 from astropy.config import get_cache_dir, get_config
-from astropy.table import QTable
 from astropy.coordinates.builtin_frames.utils import get_polar_motion
 from astropy.time import Time, update_leap_seconds
 from astropy.utils import iers
@@ -60,7 +59,6 @@ __all__ = [
     "downloads_allowed",
     "utc_earth_orientation",
     "table_arrays",
-    "astropy_uses_these_arrays",
     "table_in_use",
     "TableArrays",
     "EARTH_ROTATION_RATE",
@@ -303,41 +301,6 @@ def table_arrays():
         _ARRAYS.clear()
         _ARRAYS[key] = (table, arrays)
     return arrays
-
-
-@contextlib.contextmanager
-def astropy_uses_these_arrays(mjd_min, mjd_max):
-    """Astropy's own transformations take UT1 and polar motion from `table_arrays`.
-
-    For transformations other libraries make for the package (spinifex's
-    pierce points): where astropy has not read its bundled tables yet and
-    the user set none, astropy would read them now (1-2.5 s); this gives it
-    the same values, which the package already holds, as an
-    `~astropy.utils.iers.IERS` table. A table the user set or astropy
-    loaded stays, and so does astropy's own where the epochs ``mjd_min`` to
-    ``mjd_max`` (UTC MJD) reach beyond the table (astropy warns there).
-
-    Examples
-    --------
-    >>> from astropy.coordinates import EarthLocation, HADec, SkyCoord
-    >>> from astropy.time import Time
-    >>> from astropy_feedrot.earth.eop import astropy_uses_these_arrays
-    >>> t = Time("2020-01-08T12:00")
-    >>> crab, site = SkyCoord("05h34m31.94s +22d00m52.2s"), EarthLocation.from_geodetic(6.88, 50.52)
-    >>> with astropy_uses_these_arrays(t.mjd, t.mjd):
-    ...     ha = crab.transform_to(HADec(obstime=t, location=site)).ha
-    >>> bool(ha == crab.transform_to(HADec(obstime=t, location=site)).ha)  # astropy's table
-    True
-    """
-    arrays = None if table_in_use() is not None else table_arrays()
-    if arrays is None or not arrays.mjd[0] <= mjd_min <= mjd_max <= arrays.mjd[-1]:
-        yield
-        return
-    table = iers.IERS(QTable({"MJD": arrays.mjd * u.day, "UT1_UTC": arrays.ut1_utc * u.s,
-                              "PM_x": (arrays.xp * u.rad).to(u.arcsec),
-                              "PM_y": (arrays.yp * u.rad).to(u.arcsec)}))
-    with iers.earth_orientation_table.set(table):
-        yield
 
 
 def _table_facts():

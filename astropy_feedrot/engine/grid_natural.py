@@ -10,23 +10,8 @@ Everything else (precession-nutation, annual aberration, light deflection,
 the Earth's rotation and polar motion) is the same at every site. So a network
 computes the geocentric apparent directions once per epoch and source
 (`~astropy_feedrot.earth.orientation.EarthOrientation.source_directions` with no site),
-and each antenna adds its diurnal aberration:
-
-.. math::
-
-    \\hat{s}_\\mathrm{site} = \\hat{s}\\,(1 - k) + (1 - k_V/2)\\,\\vec{\\beta}
-    + (k/2)\\,\\vec{V}, \\qquad k = \\hat{s}\\cdot\\vec{\\beta},\\;
-    k_V = \\hat{s}\\cdot\\vec{V},\\;
-    \\vec{\\beta} = \\Omega\\,(\\hat{z}\\times\\vec{r}_\\mathrm{site}) / c,
-
-with :math:`\\vec{V}` the geocentre's barycentric velocity in units of c
-(`~astropy_feedrot.earth.orientation.EarthOrientation.geocentre_velocity`): the change of
-ERFA's relativistic aberration (``ab``) from :math:`\\vec{V}` to
-:math:`\\vec{V} + \\vec{\\beta}`, to first order in :math:`\\beta` and
-:math:`\\beta V` (the first order alone is off by up to 0.006 mas; this form
-by 1e-4 mas, of unit length to 1e-12). The axis of :math:`\\Omega` is taken
-as the Earth-fixed :math:`\\hat{z}` rather than the celestial pole (below
-1e-12 rad).
+and each antenna adds its diurnal aberration
+(`~astropy_feedrot.earth.diurnal.topocentric`, to 1e-4 mas).
 
 For tracking antennas whose focus has a closed form (`feed_rotation_block`;
 fixed and sky rotators included),
@@ -44,18 +29,17 @@ engine on the corrected lines of sight.
 
 from typing import NamedTuple
 
-import erfa
 import numpy as np
 
 from ..antennas.focus import MirrorTrain
 from ..core import kernel
 from ..core.cache import helper_thread, on_helper_thread
+from ..earth.diurnal import diurnal_beta, topocentric
 from ..earth.frames import LocalFrame
-from ..earth.utc_days import OMEGA
 from . import equations
 from .grid_arrays import epoch_blocks
 
-__all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_rotation_block",
+__all__ = ["SharedBlock", "shared_block", "feed_rotation_block",
            "fast_receiver", "traced_block", "traced_receiver", "engine_block", "natural_grid",
            "PARALLEL_POINTS"]
 
@@ -63,75 +47,6 @@ __all__ = ["diurnal_beta", "topocentric", "SharedBlock", "shared_block", "feed_r
 #: Products of near-polar lines of sight are checked again from their x and y
 #: components below this value of 1 - s_z**2 (the kernel's own test).
 _NEAR_POLE = 1e-10
-
-
-def diurnal_beta(xyz):
-    """The velocity of a site from the Earth's rotation, in units of c, in ITRS.
-
-    Parameters
-    ----------
-    xyz : array-like, shape (..., 3)
-        Geocentric ITRS positions in metres.
-
-    Returns
-    -------
-    ndarray, shape (..., 3)
-        :math:`\\Omega\\,(\\hat{z}\\times\\vec{r}) / c`, with :math:`\\Omega`
-        the rate of the Earth rotation angle (ERFA's value).
-
-    Examples
-    --------
-    >>> from astropy_feedrot.engine.grid_natural import diurnal_beta
-    >>> beta = diurnal_beta([6378137.0, 0.0, 0.0])  # on the equator
-    >>> float(beta[1] * 299792458.0)  # m/s  # doctest: +FLOAT_CMP
-    465.1013911634
-    """
-    xyz = np.asarray(xyz, dtype=float)
-    beta = np.zeros(xyz.shape)
-    beta[..., 0] = -xyz[..., 1]
-    beta[..., 1] = xyz[..., 0]
-    return beta * (OMEGA / erfa.CMPS)
-
-
-def topocentric(geocentric, xyz, velocity):
-    """Geocentric apparent directions moved to a site by its diurnal aberration.
-
-    Parameters
-    ----------
-    geocentric : ndarray, shape (..., 3)
-        Apparent unit vectors seen from the geocentre, in ITRS.
-    xyz : array-like, shape (3,)
-        The site's geocentric ITRS position in metres.
-    velocity : ndarray, shape (..., 3)
-        The geocentre's barycentric velocity in ITRS, in units of c
-        (broadcast with ``geocentric``).
-
-    Returns
-    -------
-    ndarray, shape (..., 3)
-        :math:`\\hat{s}(1 - k) + (1 - k_V/2)\\vec{\\beta} + (k/2)\\vec{V}`
-        (see the module's description), normalized (its length is 1 to
-        1e-12, which moves the elevation by microradians within an arcsecond
-        of the zenith).
-
-    Examples
-    --------
-    A source at the zenith of a site on the equator moves by its speed over
-    c, 465 m/s (0.32"), towards the east:
-
-    >>> import numpy as np
-    >>> from astropy_feedrot.engine.grid_natural import topocentric
-    >>> s = topocentric(np.array([1.0, 0.0, 0.0]), [6378137.0, 0, 0], np.zeros(3))
-    >>> float(np.degrees(s[1]) * 3600)  # arcsec  # doctest: +FLOAT_CMP
-    0.32000134
-    """
-    beta = diurnal_beta(xyz)
-    k = geocentric[..., 0] * beta[0] + geocentric[..., 1] * beta[1]  # beta has no z
-    g = 1.0 - 0.5 * np.einsum("...i,...i->...", geocentric, velocity)
-    s = (geocentric * (1.0 - k)[..., np.newaxis] + g[..., np.newaxis] * beta
-         + (0.5 * k)[..., np.newaxis] * velocity)
-    s /= np.sqrt(np.einsum("...i,...i->...", s, s))[..., np.newaxis]  # 1e-12 from unit
-    return s
 
 
 class SharedBlock(NamedTuple):
@@ -228,7 +143,8 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
     -------
     phase : ndarray, shape (S, t)
         As ``equations.feed_rotation(receivers, s)`` with the site's lines of
-        sight ``s = topocentric(geocentric, site, velocity)``: Eq 13 with the fixed
+        sight ``s = topocentric(geocentric, site, velocity)``
+        (`~astropy_feedrot.earth.diurnal.topocentric`): Eq 13 with the fixed
         axis, plus the focus terms (Eqs 38-41), NaN where undefined or below
         the limit.
     below : ndarray of bool, shape (S, t), or None
@@ -249,8 +165,8 @@ def feed_rotation_block(block, receivers, *, min_sine=None):
     >>> import numpy as np
     >>> from astropy_feedrot import AltAzMount
     >>> from astropy_feedrot.engine.equations import Receivers, feed_rotation
-    >>> from astropy_feedrot.engine.grid_natural import (feed_rotation_block, shared_block,
-    ...                                                  topocentric)
+    >>> from astropy_feedrot.earth.diurnal import topocentric
+    >>> from astropy_feedrot.engine.grid_natural import feed_rotation_block, shared_block
     >>> r = np.sqrt(0.5)
     >>> enu = [[0, 1.0, 0], [-r, 0, r], [r, 0, r]]  # latitude 45 deg, longitude 0
     >>> rx = Receivers.from_mounts([[4.5e6, 0, 4.5e6]], [enu], [AltAzMount()], [None])
@@ -367,7 +283,8 @@ def traced_block(block, receivers, *, min_sine=None):
     >>> import numpy as np
     >>> from astropy_feedrot.engine.equations import Receivers, feed_rotation
     >>> from astropy_feedrot.earth.frames import location_xyz
-    >>> from astropy_feedrot.engine.grid_natural import shared_block, topocentric, traced_block
+    >>> from astropy_feedrot.earth.diurnal import topocentric
+    >>> from astropy_feedrot.engine.grid_natural import shared_block, traced_block
     >>> from astropy_feedrot.stations.catalogue import get_antenna
     >>> a = get_antenna("YEBES40M")
     >>> xyz = location_xyz(a.location)

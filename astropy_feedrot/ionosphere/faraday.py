@@ -8,7 +8,42 @@ from astropy.coordinates import Angle
 
 from .rm_table import RM_UNIT
 
-__all__ = ["faraday_rotation", "polarization_rotation"]
+__all__ = ["faraday_rotation", "polarization_rotation", "wavelength_squared"]
+
+_C = const.c.to_value(u.m / u.s)
+
+
+def wavelength_squared(hertz, message="frequency must be positive and finite, got {hertz:g} Hz"):
+    """lambda^2 = (c / nu)^2 in m^2 of frequencies in Hz, each positive and finite.
+
+    Parameters
+    ----------
+    hertz : array-like
+        Frequencies in Hz.
+    message : str, optional
+        The error's text, formatted with the first bad frequency as ``hertz``.
+
+    Returns
+    -------
+    `~numpy.ndarray`
+        Of the shape of ``hertz``.
+
+    Raises
+    ------
+    ValueError
+        If a frequency is not positive and finite: lambda^2 would be wrong.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.ionosphere.faraday import wavelength_squared
+    >>> wavelength_squared([1.4e9, 5e9])  # doctest: +FLOAT_CMP
+    array([0.04585486, 0.00359502])
+    """
+    hertz = np.asarray(hertz, dtype=float)
+    good = np.isfinite(hertz) & (hertz > 0)
+    if not np.all(good):
+        raise ValueError(message.format(hertz=hertz[~good].ravel()[0]))
+    return (_C / hertz) ** 2
 
 
 def faraday_rotation(rm, frequency):
@@ -64,13 +99,9 @@ def faraday_rotation(rm, frequency):
         unit = frequency.unit.to_string() or "dimensionless units"
         raise u.UnitsError(f"frequency must be a frequency or a wavelength (e.g. 1.4 * u.GHz), "
                            f"got a quantity in {unit}") from None
-    hertz = np.asarray(hertz, dtype=float)
-    if not np.all(np.isfinite(hertz) & (hertz > 0)):
-        bad = hertz[~(np.isfinite(hertz) & (hertz > 0))].ravel()[0]
-        raise ValueError(f"frequency must be positive and finite, got {bad:g} Hz")
-    wavelength_squared = (const.c.to_value(u.m / u.s) / hertz) ** 2
+    lambda2 = wavelength_squared(hertz)
     rm_value = np.asarray(rm_value, dtype=float)
-    chi = rm_value.reshape(rm_value.shape + (1,) * hertz.ndim) * wavelength_squared
+    chi = rm_value.reshape(rm_value.shape + (1,) * lambda2.ndim) * lambda2
     return Angle(chi, u.rad).to(u.deg)
 
 

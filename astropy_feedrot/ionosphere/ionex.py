@@ -50,9 +50,9 @@ def spinifex_modules():
     Returns
     -------
     `types.SimpleNamespace`
-        ``read_ionex``, ``interpolate_ionex``, ``get_ipp_from_skycoord``,
-        ``magnetic_models`` (IGRF through ppigrf, whose coefficients ship in
-        its wheel) and ``version``.
+        ``read_ionex``, ``interpolate_ionex``, ``IPP`` (the pierce points its
+        field model reads), ``magnetic_models`` (IGRF through ppigrf, whose
+        coefficients ship in its wheel) and ``version``.
 
     Raises
     ------
@@ -83,7 +83,7 @@ def spinifex_modules():
         _SPINIFEX = types.SimpleNamespace(
             read_ionex=parser.read_ionex,
             interpolate_ionex=manipulation.interpolate_ionex,
-            get_ipp_from_skycoord=geometry.get_ipp_from_skycoord,
+            IPP=geometry.IPP,
             magnetic_models=magnetic.magnetic_models,
             version=spinifex.__version__,
             package_dir=pathlib.Path(spinifex.__file__).parent,

@@ -12,20 +12,18 @@ by default, per site) and interpolated linearly to the epochs asked; the
 elevation is interpolated the same way to tell the epochs below the horizon.
 """
 
-import contextlib
 
 import numpy as np
 from astropy import units as u
-from astropy.coordinates import AltAz
 from astropy.time import Time
-from astropy.utils import iers
 
-from ..core.config import conf
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.inputs import as_location, as_skycoord, as_time, broadcast_shape
-from ..earth.eop import astropy_uses_these_arrays
+from ..core.kernel import dot
+from ..earth.diurnal import network_applies, network_directions
+from ..earth.frames import local_frame, location_xyz, source_direction
 from .ionex import IonexMaps
-from .line_of_sight import rm_along_line_of_sight
+from .line_of_sight import rm_along_lines_of_sight
 from .rm_table import RM_UNIT, RMTable
 from .sampling import coarse_nodes, interpolate
 
@@ -67,13 +65,6 @@ def _as_step(step):
         raise ValueError(f"step must be one non-negative time (0 evaluates every epoch), "
                          f"got {step}")
     return step.to(u.s)
-
-
-@contextlib.contextmanager
-def _earth_orientation_offline():
-    """astropy's transformations download IERS tables only if the package's config allows."""
-    with iers.conf.set_temp("auto_download", bool(conf.iers_auto_download)):
-        yield
 
 
 class Ionosphere:
@@ -318,17 +309,26 @@ class Ionosphere:
         else:
             unique, base, inverse = mjd, epochs, None
         grid = self._grid(unique) if fixed and self.step > 0 else None
-        values = np.empty((mjd.size, sites.size))
-        below = np.zeros(values.shape, dtype=bool)
-        # Astropy's transformations inside spinifex take the package's Earth-orientation
-        # arrays rather than reading astropy's tables anew (1-2.5 s a process).
-        with _earth_orientation_offline(), astropy_uses_these_arrays(mjd.min(), mjd.max()):
-            for k in range(sites.size):  # one line of sight per site; epochs vectorised
-                rm, elevation = self._one_site(sites[k], names[k], directions, base, unique,
-                                               grid)
-                if inverse is not None:
-                    rm, elevation = rm[inverse], elevation[inverse]
-                values[:, k], below[:, k] = rm, elevation < 0
+        at = base if grid is None else grid[2]
+        # The sites' apparent directions of the target (astropy's topocentric ITRS to
+        # 1e-4 mas): a fixed direction once for the network and each site's diurnal
+        # aberration; else site by site. Then every site's pierce points at once.
+        if fixed and network_applies(directions):
+            s = network_directions(directions, location_xyz(sites), at)
+        else:
+            s = np.stack([source_direction(directions, site, at) for site in sites], axis=1)
+        elevation = np.arcsin(np.clip(dot(s, local_frame(sites).up), -1.0, 1.0))
+        if self._maps is not None:
+            rm = self._rm_from_maps(sites, s, elevation, at, grid is not None)
+            if grid is not None:
+                rm = interpolate(grid[0], grid[1], rm)
+        else:
+            rm = np.column_stack([self._table.rm(name, unique) for name in names])
+        if grid is not None:
+            elevation = interpolate(grid[0], grid[1], elevation)
+        if inverse is not None:
+            rm, elevation = rm[inverse], elevation[inverse]
+        values, below = rm, elevation < 0
         count = int(np.count_nonzero(below))
         if count:
             warn_caller(
@@ -351,19 +351,25 @@ class Ionosphere:
                 "give one name per location, in the same shape")
         return names
 
-    def _one_site(self, site, name, target, base, unique, grid):
-        """RM and elevation (radians) at the epochs ``base`` (UTC MJD ``unique``) for one site."""
-        if self._maps is not None:
-            if grid is None:
-                return rm_along_line_of_sight(self._maps, site, target, base, self.height)
-            rm, elevation = rm_along_line_of_sight(self._maps, site, target, grid[2],
-                                                   self.height)
-            return interpolate(grid[0], grid[1], rm), interpolate(grid[0], grid[1], elevation)
-        rm = self._table.rm(name, unique)
-        times = base if grid is None else grid[2]
-        altaz = target.transform_to(AltAz(obstime=times, location=site))
-        elevation = np.asarray(altaz.alt.to_value(u.rad), dtype=float).reshape(-1)
-        return rm, elevation if grid is None else interpolate(grid[0], grid[1], elevation)
+    def _rm_from_maps(self, sites, s, elevation, at, nodes):
+        """RM (T, L) at the epochs ``at`` from the maps, NaN where it is not needed.
+
+        Only lines of sight above the horizon are needed, and on the coarse
+        grid (``nodes``) also those next to one above: the epochs between two
+        nodes below the horizon are below it too.
+        """
+        mjd = np.asarray(at.utc.mjd, dtype=float)
+        self._maps.file_index(mjd)  # every epoch covered, above the horizon or not
+        needed = elevation >= 0
+        if nodes:
+            needed[1:] |= needed[:-1].copy()
+            needed[:-1] |= elevation[1:] >= 0
+        rm = np.full(elevation.shape, np.nan)
+        if needed.any():
+            epoch, site = np.nonzero(needed)
+            rm[needed] = rm_along_lines_of_sight(self._maps, location_xyz(sites)[site] / 1e3,
+                                                 s[needed], mjd[epoch], self.height)
+        return rm
 
     def _grid(self, unique):
         """The coarse grid for sorted unique epochs (UTC MJD), or None to use the epochs.

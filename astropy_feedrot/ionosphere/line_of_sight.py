@@ -1,13 +1,16 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
-"""Rotation measure along one site's line of sight through a thin-shell ionosphere.
+"""Rotation measure along the lines of sight of sites through a thin-shell ionosphere.
 
-Everything physical comes from spinifex, in the steps of its own
-``get_rm_from_skycoord``: the pierce point of the line of sight through a
-shell at ``height`` above a spherical Earth of radius 6371 km and its slant
-factor (``get_ipp_from_skycoord``), the vertical TEC of the IONEX maps there
-(``interpolate_ionex``), and the IGRF field at the pierce point projected on
-the line of sight (``magnetic_models.ppigrf``). Only the height differs from
-spinifex's ``get_rm_from_skycoord``, which fixes it at 450 km for IONEX maps.
+The steps of spinifex's own ``get_rm_from_skycoord``, for every site and
+epoch at once: the pierce point of each line of sight through a shell at
+``height`` above a spherical Earth of radius 6371 km and its slant factor
+(`~astropy_feedrot.ionosphere.pierce_points`, spinifex's geometry), the
+vertical TEC of the IONEX maps there (spinifex's ``interpolate_ionex``), and
+the IGRF field at the pierce point projected on the line of sight
+(spinifex's ``magnetic_models.ppigrf``). spinifex takes one site per call and
+reads the field model's coefficients anew in each; one call for the whole
+network reads them once per day. Only the height differs from spinifex's
+``get_rm_from_skycoord``, which fixes it at 450 km for IONEX maps.
 
 Sign: spinifex's line of sight points from the site to the source, and its
 factor is negative, so a field pointing towards the observer gives a positive
@@ -17,12 +20,14 @@ chi0 + RM lambda^2, angles from north through east).
 
 import numpy as np
 from astropy import units as u
+from astropy.time import Time
 
 from .ionex import quiet_spinifex, spinifex_modules
+from .pierce_points import pierce_points
 
-__all__ = ["RM_PER_TECU_NANOTESLA", "rm_along_line_of_sight"]
+__all__ = ["RM_PER_TECU_NANOTESLA", "rm_along_lines_of_sight"]
 
-__doctest_requires__ = {("rm_along_line_of_sight",): ["spinifex"]}
+__doctest_requires__ = {("rm_along_lines_of_sight",): ["spinifex"]}
 
 #: Rotation measure in rad m^-2 of 1 TECU (1e16 electrons m^-2) along a field of
 #: 1 nT along the line of sight from the site to the source: spinifex's factor
@@ -32,29 +37,29 @@ __doctest_requires__ = {("rm_along_line_of_sight",): ["spinifex"]}
 RM_PER_TECU_NANOTESLA = -2.62e-6
 
 
-def rm_along_line_of_sight(maps, location, target, times, height):
-    """Rotation measure and elevation along one site's lines of sight.
+def rm_along_lines_of_sight(maps, site_km, s, mjd, height):
+    """Rotation measure along lines of sight from sites, at epochs.
 
     Parameters
     ----------
     maps : `~astropy_feedrot.ionosphere.ionex.IonexMaps`
         The IONEX maps; every epoch must be covered (checked).
-    location : `~astropy.coordinates.EarthLocation`
-        One site (scalar).
-    target : `~astropy.coordinates.SkyCoord`
-        The source: scalar, or of the shape of ``times``.
-    times : `~astropy.time.Time`
-        Epochs, 1-D, UTC.
+    site_km : `~numpy.ndarray`, shape (..., 3)
+        Geocentric ITRS positions of the sites in km.
+    s : `~numpy.ndarray`, shape (..., 3)
+        Apparent topocentric ITRS unit vectors from the sites towards the
+        target (`~astropy_feedrot.earth.frames.source_direction`), broadcast
+        with ``site_km``.
+    mjd : `~numpy.ndarray`
+        The epochs as UTC MJD, of the broadcast shape without the last axis.
     height : `~astropy.units.Quantity`
         Height of the thin shell above the spherical Earth.
 
     Returns
     -------
-    rm : `~numpy.ndarray`
-        RM in rad m^-2, shape of ``times``; computed below the horizon too
-        (the line continued through the Earth).
-    elevation : `~numpy.ndarray`
-        The target's elevation in radians (spinifex's AltAz, no refraction).
+    `~numpy.ndarray`
+        RM in rad m^-2, of the shape of ``mjd``; computed below the horizon
+        too (the line continued through the Earth): callers mask those.
 
     Raises
     ------
@@ -66,26 +71,31 @@ def rm_along_line_of_sight(maps, location, target, times, height):
     >>> import numpy as np, astropy.units as u
     >>> from astropy.coordinates import EarthLocation, SkyCoord
     >>> from astropy.time import Time
+    >>> from astropy_feedrot.earth.frames import location_xyz, source_direction
     >>> from astropy_feedrot.ionosphere import sample_ionex
     >>> from astropy_feedrot.ionosphere.ionex import IonexMaps
-    >>> from astropy_feedrot.ionosphere.line_of_sight import rm_along_line_of_sight
+    >>> from astropy_feedrot.ionosphere.line_of_sight import rm_along_lines_of_sight
     >>> maps = IonexMaps(sample_ionex("codg*"))
     >>> wsrt = EarthLocation.from_geodetic(6.60 * u.deg, 52.91 * u.deg, 16 * u.m)
-    >>> crab = SkyCoord("05h34m31.94s +22d00m52.2s")
-    >>> epochs = Time(["2020-01-08T22:00", "2020-01-09T10:00"])
-    >>> rm, elevation = rm_along_line_of_sight(maps, wsrt, crab, epochs, 450 * u.km)
-    >>> rm  # doctest: +FLOAT_CMP
-    array([0.31617066, 0.27793539])
-    >>> np.degrees(elevation)  # below the horizon at 10:00  # doctest: +FLOAT_CMP
-    array([ 59.1128087 , -15.05805744])
+    >>> epochs = Time(["2020-01-08T22:00", "2020-01-09T02:00"])
+    >>> s = source_direction(SkyCoord("05h34m31.94s +22d00m52.2s"), wsrt, epochs)
+    >>> rm_along_lines_of_sight(maps, location_xyz(wsrt) / 1e3, s, epochs.mjd,
+    ...                         450 * u.km)  # doctest: +FLOAT_CMP
+    array([0.31617066, 0.24714569])
     """
     sp = spinifex_modules()
-    index = maps.file_index(times.mjd)
+    shape = np.shape(mjd)
+    point = pierce_points(site_km, s, height.to_value(u.km))
+    mjd = np.asarray(mjd, dtype=float).ravel()
+    index = maps.file_index(mjd)
+    times = Time(mjd, format="mjd", scale="utc")
+    lon, lat = point.lon.ravel(), point.lat.ravel()
+    # spinifex's pierce points, as its field model reads them (one shell: a last axis of 1)
+    ipp = sp.IPP(lon=lon[:, np.newaxis] * u.deg, lat=lat[:, np.newaxis] * u.deg,
+                 height=point.radius.reshape(-1, 1) * u.km, times=times,
+                 los=np.broadcast_to(s, shape + (3,)).reshape(-1, 3),
+                 airmass=point.slant.reshape(-1, 1), altaz=None, station_loc=None)
     with quiet_spinifex():
-        ipp = sp.get_ipp_from_skycoord(loc=location, times=times, source=target,
-                                       height_array=u.Quantity([height.to_value(u.km)], u.km))
-        tec = maps.vertical_tec(ipp.lon.to_value(u.deg)[:, 0], ipp.lat.to_value(u.deg)[:, 0],
-                                times, index)
+        tec = maps.vertical_tec(lon, lat, times, index)
         field = sp.magnetic_models.ppigrf(ipp=ipp).magnetic_field.to_value(u.nT)[:, 0]
-    rm = RM_PER_TECU_NANOTESLA * tec * field * ipp.airmass[:, 0]
-    return rm, np.asarray(ipp.altaz.alt.to_value(u.rad), dtype=float).reshape(rm.shape)
+    return (RM_PER_TECU_NANOTESLA * tec * field * point.slant.ravel()).reshape(shape)

@@ -65,16 +65,16 @@ def interpolate(seconds, nodes, values):
     Parameters
     ----------
     seconds : `~numpy.ndarray`
-        Epochs in seconds, any shape, within the span of ``nodes``.
+        Epochs in seconds, 1-D, within the span of ``nodes``.
     nodes : `~numpy.ndarray`
         Sorted node epochs in seconds, 1-D.
     values : `~numpy.ndarray`
-        Values at ``nodes``, 1-D.
+        Values at ``nodes``: shape (nodes,) or (nodes, L), one series per column.
 
     Returns
     -------
     `~numpy.ndarray`
-        Of the shape of ``seconds``.
+        Shape (seconds,) or (seconds, L).
 
     Examples
     --------
@@ -82,8 +82,13 @@ def interpolate(seconds, nodes, values):
     >>> from astropy_feedrot.ionosphere.sampling import interpolate
     >>> interpolate(np.array([15.0, 30.0]), np.array([0.0, 60.0]), np.array([0.0, 4.0]))
     array([1., 2.])
+    >>> interpolate(np.array([30.0]), np.array([0.0, 60.0]), np.array([[0.0, 2.0], [4.0, 6.0]]))
+    array([[2., 4.]])
     """
     seconds = np.asarray(seconds, dtype=float)
+    values = np.asarray(values, dtype=float)
     if nodes.size == 1:
-        return np.broadcast_to(values[0], seconds.shape).astype(float)
-    return np.interp(seconds, nodes, values)
+        return np.broadcast_to(values[0], seconds.shape + values.shape[1:]).copy()
+    if values.ndim == 1:
+        return np.interp(seconds, nodes, values)
+    return np.column_stack([np.interp(seconds, nodes, column) for column in values.T])

@@ -22,26 +22,30 @@ row). Here:
   ``UV_DATA``, ``BANDFREQ`` and ``CH_WIDTH`` of ``FREQUENCY``),
   `lambda_squared` (pyuvdata's ``freq_array``);
 * `faraday_angles`: the receptors' angles per row and channel;
+* `correct_circular`: circular products corrected for both rotations in one
+  pass, from the angles and RM of each antenna and epoch;
 * `ionosphere_text`: what the history records.
 """
 
 import warnings
 
 import numpy as np
-from astropy import constants as const
 from astropy import units as u
 from astropy.coordinates import BaseCoordinateFrame, EarthLocation, SkyCoord
 
+from ..antennas.receptors import RECEPTOR_TYPES, basis_of
+from ..applied.correction import correct_receptor_visibilities
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.inputs import as_skycoord
+from ..core.polarization import polarization_sign
 from ..ionosphere import Ionosphere, IonosphereError
+from ..ionosphere.faraday import wavelength_squared
 from .rows import distinct_epochs
 
 __all__ = ["check_ionosphere", "rotation_measure_rows", "lambda_squared", "ms_lambda_squared",
-           "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "row_angles",
-           "remove_circular_faraday"]
-
-_C = const.c.to_value(u.m / u.s)
+           "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "correct_rows",
+           "rows_lambda_squared", "row_places",
+           "correct_circular"]
 
 
 def check_ionosphere(ionosphere):
@@ -228,13 +232,9 @@ def lambda_squared(frequency, where="the data"):
     """
     if isinstance(frequency, u.Quantity):
         frequency = frequency.to_value(u.Hz, equivalencies=u.spectral())
-    hertz = np.asarray(frequency, dtype=float)
-    good = np.isfinite(hertz) & (hertz > 0)
-    if not np.all(good):
-        raise ValueError(f"{where}: channel frequency {hertz[~good].ravel()[0]:g} Hz is not "
-                         "positive: the Faraday rotation RM lambda^2 needs each channel's "
-                         "frequency; fix the file's frequency axis")
-    return (_C / hertz) ** 2
+    return wavelength_squared(frequency, f"{where}: channel frequency {{hertz:g}} Hz is not "
+                              "positive: the Faraday rotation RM lambda^2 needs each channel's "
+                              "frequency; fix the file's frequency axis")
 
 
 def ms_lambda_squared(path, tables):
@@ -368,74 +368,187 @@ def faraday_angles(theta, rm, lambda2, per_row=False):
     return theta.reshape((theta.shape[0],) + (1,) * (chi.ndim - 1) + (2,)) - chi[..., None]
 
 
-def row_angles(table, time, source, key1, key2, ndim, faraday=None, freqid=None):
-    """The receptors' position angles (deg) of both antennas of rows, for the kernel.
+def correct_rows(data, angles, rm, place1, place2, products, *, lambda2=None, per_row=False,
+                 conjugate=False, direction="remove"):
+    """Correct rows of visibilities in place for the feed rotation and the Faraday rotation.
+
+    The receptors' angles (and rotation measures) are given once per place,
+    an antenna at an epoch and source, as
+    `~astropy_feedrot.visibilities.ReceptorAngleTable` holds them; each row
+    names the places of its two antennas. Circular products with one set of
+    channels take `correct_circular`; linear ones, the angles per channel
+    (`faraday_angles`) through
+    `~astropy_feedrot.applied.correction.correct_receptor_visibilities`.
 
     Parameters
     ----------
-    table : `~astropy_feedrot.visibilities.ReceptorAngleTable`
-        The angles (and, with an ionosphere, the RM) of the rows.
-    time, source, key1, key2 : `~numpy.ndarray`
-        The rows, as ``table`` looks them up.
-    ndim : int
-        The dimensions of the visibilities with the products last.
-    faraday : dict, optional
-        ``{setup: lambda^2}`` (`fitsidi_lambda_squared`), each shaped as a
-        row's samples without the products; None: no Faraday rotation.
+    data : `~numpy.ndarray`, shape (N, ..., P)
+        Visibilities with the products last, corrected in place.
+    angles : `~numpy.ndarray`, shape (K, 2)
+        The receptors' position angles (deg) of each place.
+    rm : `~numpy.ndarray`, shape (K,), or None
+        The rotation measure (rad m^-2) of each place (with ``lambda2``).
+    place1, place2 : `~numpy.ndarray` of int, shape (N,)
+        The places of the two antennas of each row.
+    products : sequence of str
+        The products, in the order of the data.
+    lambda2 : `~numpy.ndarray`, optional
+        lambda^2 (m^2) of a row's samples (or, with ``per_row``, of each
+        row's); None: the feed rotation only.
+    per_row : bool, optional
+        Whether the first axis of ``lambda2`` is the rows'.
+    conjugate : bool, optional
+        Data in pyuvdata's (and FITS-IDI's) conjugated convention.
+    direction : {'remove', 'apply'}, optional
+        As in `~astropy_feedrot.applied.correction.correct_receptor_visibilities`.
+
+    Returns
+    -------
+    `~numpy.ndarray` of bool, shape (N,)
+        The rows whose angles or rotation measures are NaN (their data are
+        NaN; the caller flags them).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.faraday import correct_rows
+    >>> data = np.exp(1j * np.radians([[[-20.0, 20.0]]]))  # RR, LL
+    >>> bad = correct_rows(data, np.array([[0.0, 0.0], [20.0, 20.0]]), None,
+    ...                    np.array([1]), np.array([0]), ["RR", "LL"])
+    >>> np.round(np.degrees(np.angle(data)), 9) + 0.0, bad
+    (array([[[0., 0.]]]), array([False]))
+    """
+    theta1, theta2 = angles[place1], angles[place2]
+    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
+    if lambda2 is not None:
+        rm1, rm2 = rm[place1], rm[place2]
+        bad |= np.isnan(rm1) | np.isnan(rm2)
+    with np.errstate(invalid="ignore"):  # NaN and inf in the data give NaN
+        if lambda2 is not None and not per_row and basis_of(products) == "circular":
+            correct_circular(data, angles, rm, place1, place2, lambda2, products,
+                             conjugate=conjugate, direction=direction)
+            return bad
+        if lambda2 is None:  # one angle pair per row, for every sample
+            expand = (theta1.shape[0],) + (1,) * (data.ndim - 2) + (2,)
+            theta1, theta2 = theta1.reshape(expand), theta2.reshape(expand)
+        else:  # the angles per sample
+            theta1 = faraday_angles(theta1, rm1, lambda2, per_row)
+            theta2 = faraday_angles(theta2, rm2, lambda2, per_row)
+        correct_receptor_visibilities(data, theta1 * u.deg, theta2 * u.deg, products,
+                                      conjugate=conjugate, out=data, direction=direction)
+    return bad
+
+
+def row_places(time, centre, antenna1, antenna2):
+    """Places of the two antennas of each row: an antenna at an epoch and phase centre.
+
+    For `correct_rows` where the rows give their own angles (pyuvdata's
+    ``UVData``): the angles of a place are those of any row at it.
+
+    Parameters
+    ----------
+    time, centre, antenna1, antenna2 : `~numpy.ndarray`, shape (N,)
+        Each row's epoch, phase centre and antennas.
+
+    Returns
+    -------
+    place1, place2 : `~numpy.ndarray` of int, shape (N,)
+        Indices from 0 to the number of places less one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.faraday import row_places
+    >>> row_places(np.array([5.0, 5.0, 6.0]), np.zeros(3), np.array([0, 0, 1]),
+    ...            np.array([1, 2, 2]))
+    (array([0, 0, 3]), array([1, 2, 4]))
+    """
+    epoch = np.unique(time, return_inverse=True)[1].reshape(-1)
+    field = np.unique(centre, return_inverse=True)[1].reshape(-1)
+    numbers, ends = np.unique(np.concatenate([antenna1, antenna2]), return_inverse=True)
+    row = (epoch * (field.max() + 1) + field) * numbers.size
+    codes = np.concatenate([row, row]) + ends.reshape(-1)
+    at = np.unique(codes, return_inverse=True)[1].reshape(-1)
+    return at[:row.size], at[row.size:]
+
+
+def rows_lambda_squared(faraday, freqid=None):
+    """lambda^2 of the rows' samples: one array for every row, or one per row.
+
+    Parameters
+    ----------
+    faraday : dict
+        ``{setup: lambda^2}`` (`fitsidi_lambda_squared`).
     freqid : `~numpy.ndarray`, optional
         The setup of each row (default: the one setup).
 
     Returns
     -------
-    theta1, theta2 : `~numpy.ndarray`
-        Shape (N, 1, ..., 1, 2) (one angle pair per row), or with
-        ``faraday`` (N, ..., 2), per sample.
+    lambda2 : `~numpy.ndarray`
+        Shaped as a row's samples, or with a first axis of the rows.
+    per_row : bool
+        Whether the first axis of ``lambda2`` is the rows'.
+
+    Raises
+    ------
+    ValueError
+        If rows use a setup that ``faraday`` lacks.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.visibilities.faraday import rows_lambda_squared
+    >>> faraday = {1: np.array([0.04, 0.05]), 2: np.array([0.01, 0.02])}
+    >>> rows_lambda_squared(faraday, np.array([1, 1]))
+    (array([0.04, 0.05]), False)
+    >>> rows_lambda_squared(faraday, np.array([2, 1]))[0]
+    array([[0.01, 0.02],
+           [0.04, 0.05]])
     """
-    theta1, theta2 = table(time, source, key1), table(time, source, key2)
-    n = theta1.shape[0]
-    if faraday is None:
-        expand = (n,) + (1,) * (ndim - 2) + (2,)
-        return theta1.reshape(expand), theta2.reshape(expand)
-    if freqid is None or len(faraday) == 1:
-        lambda2, per_row = next(iter(faraday.values())), False
-        if freqid is not None and int(freqid[0]) not in faraday:
-            lambda2 = None
-    else:
-        lambda2, per_row = None, True
-    if lambda2 is None or per_row:
-        missing = sorted(set(np.unique(freqid).astype(int).tolist()) - set(faraday))
-        if missing:
-            raise ValueError(f"rows use FREQID {missing} that the FREQUENCY table lacks "
-                             f"(it has {sorted(faraday)}): their frequencies are unknown")
-        lambda2 = np.stack([faraday[int(f)] for f in freqid])
-    rm1 = table.rm[table.places(time, source, key1)]
-    rm2 = table.rm[table.places(time, source, key2)]
-    return (faraday_angles(theta1, rm1, lambda2, per_row),
-            faraday_angles(theta2, rm2, lambda2, per_row))
+    if freqid is None:
+        return next(iter(faraday.values())), False
+    setups = np.unique(freqid).astype(int).tolist()
+    missing = sorted(set(setups) - set(faraday))
+    if missing:
+        raise ValueError(f"rows use FREQID {missing} that the FREQUENCY table lacks "
+                         f"(it has {sorted(faraday)}): their frequencies are unknown")
+    if len(setups) == 1:
+        return faraday[setups[0]], False
+    return np.stack([faraday[int(f)] for f in freqid]), True
 
 
-def remove_circular_faraday(data, rm1, rm2, lambda2, products, *, conjugate=False,
-                            direction="remove"):
-    """Remove (or apply) the Faraday rotation of circular products, in place.
+# Rows of circular products corrected at once by `correct_circular`: about this many bytes of
+# their factors (they stay in the cache between their making and their use).
+_BLOCK_BYTES = 2**18
 
-    For circular receptors the correction of each product is one phase
-    factor, so the Faraday rotation's part can be applied after the feed
-    rotation's (`~astropy_feedrot.applied.correction.correct_receptor_visibilities`
-    with one angle pair per row): with chi = RM lambda^2 the angle of product
-    pq gains :math:`-s_p \\chi_1 + s_q \\chi_2` (:math:`s_R = 1`,
-    :math:`s_L = -1`). The phasors :math:`e^{i \\chi}` are computed once per
-    distinct RM of the rows (an antenna at an epoch, shared by its baselines)
-    and channel, in the data's precision; each product then takes one
-    multiplication.
+
+def correct_circular(data, theta, rm, place1, place2, lambda2, products, *,
+                     conjugate=False, direction="remove"):
+    """Remove (or apply) the feed and Faraday rotations of circular products, in place.
+
+    For circular receptors the correction of product pq is one phase factor,
+    :math:`e^{i s_p (\\theta_{1p} - \\chi_1)} \\, e^{-i s_q (\\theta_{2q} - \\chi_2)}`
+    (:math:`s_R = 1`, :math:`s_L = -1`, :math:`\\chi = \\mathrm{RM}\\,\\lambda^2`), the
+    product of one factor per antenna: those are computed once per place (an
+    antenna at an epoch, which its baselines share) and channel, and each row
+    takes one multiplication per sample, block by block in the cache. The same
+    numbers as `~astropy_feedrot.applied.correction.correct_receptor_visibilities`
+    with the angles of `faraday_angles`, in the data's precision.
 
     Parameters
     ----------
-    data : `~numpy.ndarray`, shape (N, C, P)
-        Visibilities, corrected in place.
-    rm1, rm2 : `~numpy.ndarray`, shape (N,)
-        RM (rad m^-2) of the two antennas of each row.
-    lambda2 : `~numpy.ndarray`, shape (C,)
-        lambda^2 (m^2) of the channels.
+    data : `~numpy.ndarray`, shape (N, ..., P)
+        Visibilities with the products last, corrected in place (any byte
+        order and strides).
+    theta : `~numpy.ndarray`, shape (K, 2)
+        The receptors' position angles (deg), R and L, of each place.
+    rm : `~numpy.ndarray`, shape (K,)
+        The rotation measure (rad m^-2) of each place's line of sight.
+    place1, place2 : `~numpy.ndarray` of int, shape (N,)
+        The places of the two antennas of each row.
+    lambda2 : `~numpy.ndarray`
+        lambda^2 (m^2) of a row's samples without the products: a shape that
+        broadcasts to ``data.shape[1:-1]``, the same for every row.
     products : sequence of str
         Circular products (``'RR'``, ``'LL'``, ``'RL'``, ``'LR'``), in the
         order of the data.
@@ -447,25 +560,57 @@ def remove_circular_faraday(data, rm1, rm2, lambda2, products, *, conjugate=Fals
     Examples
     --------
     RR of a baseline whose antennas see 10 and 30 deg of Faraday rotation
-    has turned by -20 deg: it is turned back.
+    (and no feed rotation) has turned by -20 deg: it is turned back.
 
     >>> import numpy as np
-    >>> from astropy_feedrot.visibilities.faraday import remove_circular_faraday
+    >>> from astropy_feedrot.visibilities.faraday import correct_circular
     >>> data = np.exp(1j * np.radians([[[-20.0, 20.0]]]))
-    >>> remove_circular_faraday(data, np.radians([10.0]), np.radians([30.0]),
-    ...                         np.array([1.0]), ["RR", "LL"])
+    >>> correct_circular(data, np.zeros((2, 2)), np.radians([10.0, 30.0]), np.array([0]),
+    ...                  np.array([1]), np.array([1.0]), ["RR", "LL"])
     >>> np.round(np.degrees(np.angle(data)), 9) + 0.0
     array([[[0., 0.]]])
     """
     sign = (-1.0 if conjugate else 1.0) * (-1.0 if direction == "apply" else 1.0)
-    lambda2 = np.asarray(lambda2, dtype=float)
-    distinct, at = np.unique(np.concatenate([rm1, rm2]), return_inverse=True)
-    phasor = np.exp(1j * sign * np.multiply.outer(distinct, lambda2)).astype(
-        np.result_type(data.dtype, np.complex64), copy=False)
-    at = at.reshape(-1)
-    p1, p2 = phasor[at[:rm1.size]], phasor[at[rm1.size:]]
-    difference = p2 * p1.conj()  # RR: e^(i (chi2 - chi1))
-    total = (p1 * p2).conj()  # RL: e^(-i (chi1 + chi2))
-    factors = {"RR": difference, "LL": difference.conj(), "RL": total, "LR": total.conj()}
-    for k, product in enumerate(products):
-        data[..., k] *= factors[str(product).upper()]
+    n = data.shape[0]
+    samples = data.shape[1:-1]
+    lambda2 = np.broadcast_to(np.asarray(lambda2, dtype=float), samples).reshape(-1)
+    used, at1, at2 = _compact(place1, place2)
+    angle = np.radians(np.asarray(theta, dtype=float)[used])
+    chi = np.multiply.outer(np.asarray(rm, dtype=float)[used], lambda2)
+    dtype = np.result_type(data.dtype, np.complex64).newbyteorder("=")
+    phase = {}
+    with np.errstate(invalid="ignore"):  # NaN angles give NaN factors (rows made NaN)
+        for k, letter in enumerate(RECEPTOR_TYPES["circular"]):
+            if k and np.array_equal(angle[:, k], angle[:, 0], equal_nan=True):
+                phase[letter] = phase["R"].conj()  # the usual case: one angle for both
+                continue
+            phase[letter] = np.exp(1j * sign * polarization_sign(letter)
+                                   * (angle[:, k, np.newaxis] - chi)).astype(dtype)
+    names = [str(product).upper() for product in products]
+    first = np.stack([phase[p] for p, _ in names], axis=-1)  # (used, samples, products)
+    second = np.stack([phase[q].conj() for _, q in names], axis=-1)
+    step = max(1, _BLOCK_BYTES // max(1, first[0].nbytes))
+    shape = data.shape[1:]
+    for start in range(0, n, step):
+        rows = slice(start, min(start + step, n))
+        factor = first[at1[rows]]
+        factor *= second[at2[rows]]
+        data[rows] *= factor.reshape((-1,) + shape)
+
+
+def _compact(place1, place2):
+    """The places rows use, and each row's index into them (``np.unique`` with
+    ``return_inverse``, without a sort where the places lie in a short range: the
+    rows of a chunk span a few epochs)."""
+    place1, place2 = np.asarray(place1), np.asarray(place2)
+    low = int(min(place1.min(), place2.min()))
+    span = int(max(place1.max(), place2.max())) - low + 1
+    if span > 4 * place1.size + 1024:
+        used, at = np.unique(np.concatenate([place1, place2]), return_inverse=True)
+        at = at.reshape(-1)
+        return used, at[:place1.size], at[place1.size:]
+    seen = np.zeros(span, dtype=bool)
+    seen[place1 - low] = True
+    seen[place2 - low] = True
+    index = np.cumsum(seen) - 1
+    return np.flatnonzero(seen) + low, index[place1 - low], index[place2 - low]

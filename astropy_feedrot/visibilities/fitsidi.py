@@ -19,18 +19,23 @@ from pathlib import Path
 import numpy as np
 from astropy import units as u
 from astropy.coordinates import FK4, ICRS, SkyCoord
-from astropy.io import fits
 from astropy.time import Time
 
 from ..antennas.receptors import PRODUCT_CODES, basis_of
-from ..applied.correction import correct_receptor_visibilities
 from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.outputs import new_file_mode, publish, same_file
 from ..core.progress import progress_steps
 from .antenna_tables import FITSFormatError, open_fits, read_antennas
 from .catalogue import catalogue_mounts, catalogue_receptors
-from .faraday import check_ionosphere, fitsidi_lambda_squared, ionosphere_text, row_angles
+from .fits_bytes import copy_around, header_with_history
+from .faraday import (
+    check_ionosphere,
+    correct_rows,
+    fitsidi_lambda_squared,
+    ionosphere_text,
+    rows_lambda_squared,
+)
 from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
 from .poles import POLES, convention_options, pole_context
@@ -435,12 +440,13 @@ def _correct_rows(records, plan, table, sources, name, direction):
     axis = plan.stokes_axis + 1
     moved = np.moveaxis(vis, axis, -1)
     freqid = None if plan.freqid is None else _int_column(records, plan, plan.freqid)
-    theta1, theta2 = row_angles(table, jd, source, a1, a2, moved.ndim, plan.faraday, freqid)
-    correct_receptor_visibilities(moved, theta1 * u.deg, theta2 * u.deg, plan.products,
-                                  conjugate=True, out=moved, direction=direction)
+    lambda2, per_row = (None, False) if plan.faraday is None else \
+        rows_lambda_squared(plan.faraday, freqid)
+    bad = correct_rows(moved, table.table, table.rm, table.places(jd, source, a1),
+                       table.places(jd, source, a2), plan.products, lambda2=lambda2,
+                       per_row=per_row, conjugate=True, direction=direction)
     if plan.complex != 2:
         flux[..., 0], flux[..., 1] = vis.real, vis.imag
-    bad = (np.isnan(theta1) | np.isnan(theta2)).reshape(n, -1).any(axis=1)
     if bad.any():
         flux[bad, ..., 0:2] = np.nan
         if plan.complex == 3:
@@ -526,63 +532,6 @@ def _check_paths(path, output, overwrite):
             raise FITSFormatError(source, "primary header", "an uncompressed FITS file "
                                   "(beginning with SIMPLE)", None)
     return source, target
-
-
-def _with_history(source, header_end, text):
-    """The primary header of ``source`` as its bytes lie, with HISTORY cards of ``text``
-    before its END card (astropy would rewrite some cards it reads, e.g. the
-    ``NAXIS = 0`` of SFXC's random-groups header)."""
-    with open(source, "rb") as handle:
-        raw = handle.read(header_end)
-    cards = [raw[k:k + 80] for k in range(0, len(raw) - len(raw) % 80, 80)]
-    end = next((k for k, card in enumerate(cards) if card.rstrip() == b"END"), None)
-    if end is None:
-        raise FITSFormatError(source, "primary header", "an END card", None)
-    history = fits.Header()
-    history.add_history(text)
-    body = b"".join(cards[:end]) + history.tostring(endcard=False, padding=False).encode(
-        "ascii") + cards[end]
-    return body + b" " * (-len(body) % 2880)
-
-
-def _copy_around(source, target, header, header_end, rows):
-    """Write ``header``, then the bytes of ``source`` after ``header_end`` but those of
-    ``rows`` (byte ranges of the source, which the chunks write), to ``target``."""
-    size = os.path.getsize(source)
-    shift = len(header) - header_end
-    with open(source, "rb") as fin, open(target, "r+b") as fout:  # r+: mkstemp made it
-        fout.write(header)
-        position = header_end
-        for begin, end in sorted(rows) + [(size, size)]:
-            _copy_range(fin, fout, position, begin, shift)
-            position = max(position, end)
-        fout.truncate(size + shift)  # the rows' bytes until the chunks write them
-    return shift
-
-
-def _copy_range(fin, fout, begin, end, shift):
-    """Bytes [begin, end) of ``fin`` to the same place in ``fout``, ``shift`` further."""
-    fout.seek(begin + shift)
-    fout.flush()
-    offset = begin
-    try:  # in the kernel where it can (Linux), as shutil.copyfile does
-        while offset < end:
-            sent = os.sendfile(fout.fileno(), fin.fileno(), offset, min(end - offset, 2**30))
-            if sent == 0:
-                break
-            offset += sent
-    except (AttributeError, OSError):
-        pass
-    if offset < end:  # elsewhere (or what sendfile left)
-        fout.seek(offset + shift)
-        fin.seek(offset)
-        while offset < end:
-            data = fin.read(min(end - offset, 16 * 2**20))
-            if not data:
-                raise OSError(f"{fin.name!r} ended at byte {offset}, before {end}")
-            fout.write(data)
-            offset += len(data)
-        fout.flush()
 
 
 def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
@@ -749,7 +698,7 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
                                        telescope=str(primary.get("TELESCOP", "")).strip())
     antennas.update(ground)
     warn_unusual_angles(ground, source)
-    new_header = _with_history(source, header_end, history_entry(
+    new_header = header_with_history(source, header_end, history_entry(
         direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
         "both antennas of every row" + ionosphere_text(ionosphere, " "),
         frame=frame_name, vertical=vertical))
@@ -765,9 +714,9 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
             plans = [_Plan(hdul, index, source) for index in indices]
             for plan in plans if ionosphere is not None else ():
                 plan.freqid, plan.faraday = fitsidi_lambda_squared(hdul, plan.index, source)
-        shift = _copy_around(source, temporary, new_header,
-                             header_end, [(plan.offset, plan.offset + plan.rows
-                                           * plan.dtype.itemsize) for plan in plans])
+        shift = copy_around(source, temporary, new_header,
+                            header_end, [(plan.offset, plan.offset + plan.rows
+                                          * plan.dtype.itemsize) for plan in plans])
         work = []
         for plan in plans:
             per_chunk = max(1, chunk_bytes // max(plan.dtype.itemsize, 1))

@@ -17,13 +17,11 @@ import threading
 import time
 import uuid
 
-import astropy.units as u
 import numpy as np
 
-from ..applied.correction import correct_receptor_visibilities
 from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..core.extras import install_hint
-from .faraday import faraday_angles, remove_circular_faraday
+from .faraday import correct_rows
 from .tasks import in_order, task_groups, worker_count
 
 __all__ = ["Block", "Progress", "rows_of", "RECORD_SECONDS", "locked", "results",
@@ -101,7 +99,7 @@ class Block:
     ionosphere, ``table`` has a third column, the rotation measure (rad m^-2)
     of each antenna's line of sight, and ``lambda2`` the squared wavelengths
     (m^2) of the chunk's channels: the angles are then taken per channel
-    (`~astropy_feedrot.visibilities.faraday.faraday_angles`).
+    (`~astropy_feedrot.visibilities.faraday.correct_rows`).
 
     Examples
     --------
@@ -109,7 +107,7 @@ class Block:
     >>> from astropy_feedrot.visibilities.ms_chunks import Block
     >>> table = np.array([[10.0, -10.0], [20.0, -20.0]])
     >>> block = Block(range(3), ["RR", "LL"], table, np.array([0, 1, 1]), np.zeros(3, int))
-    >>> block.theta()[0][:, 0]
+    >>> block.table[block.place1][:, 0]
     array([10., 20., 20.])
     """
 
@@ -117,17 +115,6 @@ class Block:
         self.rows, self.products, self.table = rows, products, table
         self.place1, self.place2, self.index = place1, place2, index
         self.lambda2 = lambda2
-
-    def theta(self):
-        """The position angles (deg) of the receptors of both antennas, each (N, 2)."""
-        if self.lambda2 is None:
-            return self.table[self.place1], self.table[self.place2]
-        return self.table[self.place1, :2], self.table[self.place2, :2]
-
-    def rotation_measures(self):
-        """The RM (rad m^-2) of the two antennas of each row, each (N,) (with an
-        ionosphere)."""
-        return self.table[self.place1, 2], self.table[self.place2, 2]
 
     def sent(self):
         """The block without its angle table (a dask task takes that apart)."""
@@ -244,25 +231,10 @@ class Progress:
 
 def _corrected(data, block, direction):
     """``data`` (rows, channels, products) corrected in place; the NaN rows."""
-    theta1, theta2 = block.theta()
-    bad = np.isnan(theta1).any(axis=1) | np.isnan(theta2).any(axis=1)
-    circular = block.products[0][0] in "RL"
-    if block.lambda2 is None or circular:  # one angle pair per row, for every channel
-        angle1, angle2 = theta1[:, None, :], theta2[:, None, :]
-    else:  # linear receptors: the angles per channel mix the four products
-        rm1, rm2 = block.rotation_measures()
-        angle1 = faraday_angles(theta1, rm1, block.lambda2)
-        angle2 = faraday_angles(theta2, rm2, block.lambda2)
-    with np.errstate(invalid="ignore"):  # NaN and inf in the data (LWA's) give NaN
-        correct_receptor_visibilities(data, angle1 * u.deg, angle2 * u.deg, block.products,
-                                      out=data, direction=direction)
-        if block.lambda2 is not None and circular:  # one phase factor more per product
-            rm1, rm2 = block.rotation_measures()
-            remove_circular_faraday(data, rm1, rm2, block.lambda2, block.products,
-                                    direction=direction)
-    if block.lambda2 is not None:
-        rm1, rm2 = block.rotation_measures()
-        bad |= np.isnan(rm1) | np.isnan(rm2)
+    table = block.table
+    angles, rm = (table, None) if block.lambda2 is None else (table[:, :2], table[:, 2])
+    bad = correct_rows(data, angles, rm, block.place1, block.place2, block.products,
+                       lambda2=block.lambda2, direction=direction)
     if bad.any():
         data[bad] = np.nan
     return int(np.count_nonzero(bad))

@@ -34,10 +34,11 @@ from ..stations.labels import is_orbiting, mount_from_label
 from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
 from .faraday import (
     check_ionosphere,
-    faraday_angles,
+    correct_rows,
     ionosphere_text,
     lambda_squared,
     rotation_measure_rows,
+    row_places,
 )
 from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
@@ -636,10 +637,16 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     if faraday is None:
         theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
         theta2 = theta2[:, np.newaxis, :] * u.deg
-    else:  # (Nblts, Nfreqs, 2): per frequency, a chunk at a time
+    else:  # per frequency, a chunk at a time, from the angles and RM of each place
         rm1, rm2, lambda2 = faraday
         undefined = int(np.count_nonzero(np.isnan(theta1).any(-1) | np.isnan(theta2).any(-1)
                                          | np.isnan(rm1) | np.isnan(rm2)))
+        place1, place2 = row_places(target.time_array, target.phase_center_id_array,
+                                    target.ant_1_array, target.ant_2_array)
+        table = np.empty((int(max(place1.max(), place2.max())) + 1, 3))
+        table[place1] = np.column_stack([theta1, rm1])
+        table[place2] = np.column_stack([theta2, rm2])
+        angles, rm = table[:, :2], table[:, 2]
     auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
     parallel = [k for k, name in enumerate(names) if name[0] == name[1]]
     n_rows = data.shape[0]
@@ -649,13 +656,14 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
         for start in starts:
             chunk = slice(start, min(start + step, n_rows))
             block = data[chunk]
-            angle1, angle2 = theta1[chunk], theta2[chunk]
             if faraday is not None:
-                angle1 = faraday_angles(angle1, rm1[chunk], lambda2) * u.deg
-                angle2 = faraday_angles(angle2, rm2[chunk], lambda2) * u.deg
-            with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
-                correct_receptor_visibilities(block, angle1, angle2, names,
-                                              conjugate=True, out=block, direction=direction)
+                correct_rows(block, angles, rm, place1[chunk], place2[chunk], names,
+                             lambda2=lambda2, conjugate=True, direction=direction)
+            else:
+                with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
+                    correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
+                                                  conjugate=True, out=block,
+                                                  direction=direction)
             if basis == "linear":
                 for row in np.flatnonzero(auto[chunk]):
                     for k in parallel:

@@ -79,6 +79,41 @@ def test_rm_table_lacking_an_antenna_names_it(tmp_path, capsys):
         assert "CORRECTED_DATA" not in main_table.colnames()
 
 
+def test_ionex_with_its_height(tmp_path, capsys):
+    # Reference: correct_ms with Ionosphere.from_ionex(height=350 km) on a copy of the set;
+    # the command's --ionex-height reaches the maps' shell, and HISTORY says so.
+    import shutil
+
+    from helpers import import_or_skip
+
+    import_or_skip("spinifex", "ionosphere", "FEEDROT_REQUIRE_SPINIFEX")
+    import astropy.units as u
+
+    from astropy_feedrot.ionosphere import Ionosphere, sample_ionex
+    from astropy_feedrot.visibilities import correct_ms
+
+    ms, _, _, _ = faraday_ms(tmp_path)
+    with table(str(ms), readonly=False, ack=False) as main_table:  # into CODE's maps
+        time_ = main_table.getcol("TIME")
+        main_table.putcol("TIME", time_ - time_[0] + Time("2020-01-08T10:00").mjd * 86400)
+    reference = shutil.copytree(ms, tmp_path / "reference.ms")
+    files = sample_ionex("codg00[89]0.20i.Z")
+    status, out, err = run(capsys, "correct", ms, "--in-place", "--ionex", *files,
+                           "--ionex-height", "350km")
+    assert status == 0, err
+    correct_ms(reference, ionosphere=Ionosphere.from_ionex(files, height=350 * u.km))
+    with table(str(ms), ack=False) as ours, table(str(reference), ack=False) as theirs:
+        np.testing.assert_array_equal(ours.getcol("CORRECTED_DATA"),
+                                      theirs.getcol("CORRECTED_DATA"))
+    with table(str(ms / "HISTORY"), ack=False) as history:
+        assert "(shell at 350 km, IGRF through spinifex)" in history.getcol("MESSAGE")[-1]
+    status, out, err = run(capsys, "correct", ms, "--in-place", "--redo", "--ionex", *files,
+                           "--ionex-height", "25000km")
+    assert status == 1 and err.count("\n") == 1, err
+    assert err.startswith("feedrot: error: --ionex-height: height of the ionosphere's thin "
+                          "shell must be one value from 50 km to 20000 km, got 25000.0 km"), err
+
+
 def test_ionex_and_rm_table_exclude_each_other(tmp_path, capsys):
     ms, _, _, (start, stop) = faraday_ms(tmp_path)
     rm = write_rm_table(tmp_path / "rm.ecsv", start, stop)

@@ -124,7 +124,11 @@ def test_ecsv_file_round_trip_with_units(capsys, tmp_path, rm_table):
     path = tmp_path / "faraday.ecsv"
     status, out, err = run(capsys, "faraday", "EFLSBERG", "YEBES40M", "--source", SOURCE,
                            *RM_SPAN, "--rm-table", rm_table, *FREQUENCIES, "-o", path)
-    assert status == 0 and out == "" and err == ""
+    # The one summary line on success: the file, as named, and what it holds.
+    assert status == 0 and out == ""
+    assert err == (f"feedrot: {path}: 18 rows of the rotation measure, Faraday and feed "
+                   f"rotation of EFLSBERG, YEBES40M observing {SOURCE} (icrs) at 150MHz, "
+                   "1.4GHz\n")
     table = QTable.read(path)
     assert isinstance(table["time"], Time) and table["time"].scale == "utc"
     assert table["rm"].unit == u.rad / u.m**2
@@ -162,7 +166,7 @@ def test_plot(capsys, tmp_path, rm_table):
     status, out, err = run(capsys, "faraday", "EFLSBERG", "YEBES40M", "--source", SOURCE,
                            *RM_SPAN, "--rm-table", rm_table, *FREQUENCIES, "-o", table,
                            "--plot", figure)
-    assert status == 0 and err == "", err
+    assert status == 0 and err.startswith(f"feedrot: {table} and {figure}: 18 rows "), err
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert Table.read(table, format="ascii.csv").colnames[3] == "rm"
 
@@ -256,6 +260,39 @@ def test_epochs_outside_the_maps(capsys, ionex):
     assert "2020-01-08" in err and "2020-01-10" in err
 
 
+def test_ionex_height(capsys, ionex):
+    # Reference: Ionosphere.from_ionex(height=...) at the same epochs (the command's
+    # height reaches the maps' shell; 350 km gives another RM than the default 450 km).
+    argv = ["faraday", "EFLSBERG", "--source", CRAB, *IONEX_SPAN[:4], "--step", "3h",
+            "--ionex", *ionex, "--frequency", "1GHz"]
+    tables = {}
+    for height, extra in ((350, ["--ionex-height", "350km"]), (450, []),
+                          (600, ["--ionex-height", "600"])):  # plain: km
+        status, out, err = run(capsys, *argv, *extra)
+        assert status == 0 and err == "", err
+        tables[height] = table = Table.read(out, format="ascii.ecsv")
+        rm = Ionosphere.from_ionex(ionex, height=height * u.km).rotation_measure(
+            get_antenna("EFLSBERG").location, SkyCoord(CRAB), Time(table["time"]))
+        np.testing.assert_allclose(table["rm"], rm.value, rtol=1e-14, atol=0)
+    assert np.all(tables[350]["rm"] != tables[450]["rm"])
+    assert_one_line_error(*run(capsys, *argv, "--ionex-height", "30km"),
+                          "--ionex-height: height of the ionosphere's thin shell must be one "
+                          "value from 50 km to 20000 km, got 30.0 km")
+    assert_one_line_error(*run(capsys, *argv, "--ionex-height", "3deg"),
+                          "--ionex-height: '3deg' is not in a unit of length")
+    assert_one_line_error(*run(capsys, *argv, "--ionex-height", "high"),
+                          "--ionex-height: cannot read 'high' as a number with a unit "
+                          "(e.g. 450km)")
+
+
+def test_ionex_height_needs_ionex(capsys, rm_table):
+    assert_one_line_error(*run(capsys, "faraday", "EFLSBERG", "--source", SOURCE, *RM_SPAN,
+                               "--rm-table", rm_table, "--frequency", "1GHz",
+                               "--ionex-height", "300km"),
+                          "--ionex-height is the height of the IONEX maps' shell: give it "
+                          "with --ionex")
+
+
 def test_a_file_that_is_not_ionex(capsys, ionex, rm_table):
     status, out, err = run(capsys, "faraday", "EFLSBERG", "--source", CRAB, *IONEX_SPAN,
                            "--ionex", rm_table, "--frequency", "1GHz")
@@ -286,7 +323,7 @@ def test_fits_and_hdf5_keep_the_units(capsys, tmp_path, rm_table, extension):
     path = tmp_path / f"faraday{extension}"
     status, _, err = run(capsys, "faraday", "EFLSBERG", "--source", SOURCE, *RM_SPAN,
                          "--rm-table", rm_table, *FREQUENCIES, "-o", path)
-    assert status == 0 and err == "", err
+    assert status == 0 and err.startswith(f"feedrot: {path}: 9 rows "), err
     table = QTable.read(path, **({"astropy_native": True} if extension == ".fits" else {}))
     assert isinstance(table["time"], Time)
     assert table["rm"].unit == u.rad / u.m**2 and table["psi_1.4GHz"].unit == u.deg

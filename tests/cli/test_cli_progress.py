@@ -149,6 +149,23 @@ def test_rinex_draws_its_bar_on_a_terminal_and_names_the_outputs_as_given(tmp_pa
     assert (tmp_path / "out.rnx").read_bytes() == (tmp_path / "plain.rnx").read_bytes()
 
 
+def test_faraday_draws_its_bar_and_writes_the_same_file(tmp_path):
+    rm = str(sample_file("rm_effelsberg.ecsv"))
+    argv = ["faraday", "EFLSBERG", "--source", SOURCE, "--start", "2024-06-01T08:00",
+            "--stop", "2024-06-01T10:00", "--step", "1s", "--rm-table", rm, "--frequency",
+            "1.4GHz"]
+    status, _, err = feedrot(argv + ["-o", "bar.ecsv"], tmp_path, terminal=True)
+    assert status == 0, err
+    drawn = bars(err)
+    assert "( 0.00%)" in drawn[0] and "(100.00%)" in drawn[-1], err
+    summary = ("feedrot: {}: 7201 rows of the rotation measure, Faraday and feed rotation of "
+               f"EFLSBERG observing {SOURCE} (icrs) at 1.4GHz\n")
+    assert err.endswith("\n" + summary.format("bar.ecsv"))
+    status, _, err = feedrot(argv + ["-o", "plain.ecsv"], tmp_path, terminal=False)
+    assert status == 0 and err == summary.format("plain.ecsv")
+    assert (tmp_path / "bar.ecsv").read_bytes() == (tmp_path / "plain.ecsv").read_bytes()
+
+
 def test_correct_draws_its_bar_before_the_read(tmp_path):
     pytest.importorskip("pyuvdata")
     uvfits = str(sample_file("vla_day2_8chan.uvfits"))

@@ -182,14 +182,14 @@ def test_correct_fitsidi_never_replaces_a_file_made_meanwhile(idi, tmp_path, mon
     # The output is checked first (it does not exist), then appears while the copy is
     # corrected: the corrected copy is not published over it.
     output = tmp_path / "out.idifits"
-    copy = fitsidi._copy_around
+    copy = fitsidi.copy_around
 
     def copy_and_race(*args, **kwargs):
         shift = copy(*args, **kwargs)
         output.write_text("theirs")
         return shift
 
-    monkeypatch.setattr(fitsidi, "_copy_around", copy_and_race)
+    monkeypatch.setattr(fitsidi, "copy_around", copy_and_race)
     with pytest.raises(FileExistsError, match="made by another program while this one ran"):
         fitsidi.correct_fitsidi(idi, output)
     assert output.read_text() == "theirs"
