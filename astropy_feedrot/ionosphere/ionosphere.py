@@ -10,8 +10,8 @@ sites, a target and epochs, as the package's front-ends have them; an
 For many epochs the maps are evaluated on a coarse grid (every ``step``, 60 s
 by default, per site) and interpolated linearly to the epochs asked; the
 elevation is interpolated the same way to tell the epochs below the horizon.
+Every site's lines of sight go through the maps and the field in one call.
 """
-
 
 import numpy as np
 from astropy import units as u
