@@ -22,8 +22,10 @@ row). Here:
   ``UV_DATA``, ``BANDFREQ`` and ``CH_WIDTH`` of ``FREQUENCY``),
   `lambda_squared` (pyuvdata's ``freq_array``);
 * `faraday_angles`: the receptors' angles per row and channel;
-* `correct_circular`: circular products corrected for both rotations in one
-  pass, from the angles and RM of each antenna and epoch;
+* `correct_rows`: rows corrected from the angles and RM of their antennas'
+  places (`row_places` for rows that carry their own, `rows_lambda_squared`
+  for FITS-IDI's setups); circular products take `correct_circular`, both
+  rotations in one pass;
 * `ionosphere_text`: what the history records.
 """
 
@@ -44,8 +46,7 @@ from .rows import distinct_epochs
 
 __all__ = ["check_ionosphere", "rotation_measure_rows", "lambda_squared", "ms_lambda_squared",
            "fitsidi_lambda_squared", "faraday_angles", "ionosphere_text", "correct_rows",
-           "rows_lambda_squared", "row_places",
-           "correct_circular"]
+           "correct_circular", "row_places", "rows_lambda_squared"]
 
 
 def check_ionosphere(ionosphere):
@@ -375,10 +376,11 @@ def correct_rows(data, angles, rm, place1, place2, products, *, lambda2=None, pe
     The receptors' angles (and rotation measures) are given once per place,
     an antenna at an epoch and source, as
     `~astropy_feedrot.visibilities.ReceptorAngleTable` holds them; each row
-    names the places of its two antennas. Circular products with one set of
-    channels take `correct_circular`; linear ones, the angles per channel
-    (`faraday_angles`) through
-    `~astropy_feedrot.applied.correction.correct_receptor_visibilities`.
+    names the places of its two antennas. With the Faraday rotation, circular
+    products with one set of channels for every row take `correct_circular`;
+    the others, the angles per channel (`faraday_angles`) through
+    `~astropy_feedrot.applied.correction.correct_receptor_visibilities`, as
+    the feed rotation alone does with one angle pair per row.
 
     Parameters
     ----------
