@@ -83,15 +83,16 @@ def rm_table_mjd(start, stop, rm=RM, antennas=None):
                    "rm": np.full(len(names), rm) * u.rad / u.m**2, "antenna": names})
 
 
-def faraday_fitsidi(where, products=("RR", "LL", "RL", "LR")):
+def faraday_fitsidi(where, products=("RR", "LL", "RL", "LR"), n_freqid=1):
     """A FITS-IDI file of fitsidi_writer (4 VLBI stations, 2 bands of 4 channels), its
     frequencies set to 1.0-1.3 and 1.5-1.8 GHz, the source's EVPA chi0 + RM lambda^2 per
-    channel; the channels' frequencies (band, channel) and the gains."""
+    channel; the channels' frequencies (band, channel) and the gains. With ``n_freqid``,
+    the rows take turns through as many setups (FREQID), all of those frequencies."""
     parts = []
     for evpa, polarized in ((0.0, 0.0), (0.0, 0.1), (45.0, 0.1)):  # I, +Q, +U
         path = where / f"part{len(parts)}.idifits"
         info = write_fitsidi(path, products=products, evpa=evpa, polarized=polarized,
-                             n_band=2, n_chan=4)
+                             n_band=2, n_chan=4, n_freqid=n_freqid)
         with fits.open(path) as hdul:
             flux = hdul["UV_DATA"].data["FLUX"].reshape(len(info["rows"]), 1, 1, 2, 4,
                                                         len(products), 2)

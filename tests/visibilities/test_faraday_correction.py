@@ -9,6 +9,8 @@ The corrected EVPA must be chi0 at every channel, and applying the rotation
 to the corrected data must give the data back.
 """
 
+import warnings
+
 import numpy as np
 import pytest
 from astropy import units as u
@@ -110,6 +112,35 @@ def test_ms_table_lacking_an_antenna_names_it(tmp_path):
 
 
 # --- FITS-IDI ------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("products", [("RR", "LL", "RL", "LR"), ("XX", "YY", "XY", "YX")])
+def test_fitsidi_rows_of_two_setups(tmp_path, products):
+    # Rows taking turns through two FREQIDs (lambda^2 per row: the angles per channel,
+    # not the one-pass circular path): the EVPA still the intrinsic one at every channel,
+    # and the same numbers as the file of one setup (its one pass for circular feeds).
+    ionosphere = Ionosphere.from_rm(rm_table_mjd(Time("2023-01-25T20:00").mjd,
+                                                 Time("2023-01-26T02:00").mjd))
+    results = []
+    for setups in (1, 2):
+        where = tmp_path / f"setups{setups}"
+        where.mkdir()
+        path, frequency, gain, info = faraday_fitsidi(where, products, n_freqid=setups)
+        with fits.open(path) as hdul:
+            assert set(hdul["UV_DATA"].data["FREQID"]) == set(range(1, setups + 1))
+        out = where / "corrected.idifits"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DegenerateGeometryWarning)  # below a horizon
+            correct_fitsidi(path, out, ionosphere=ionosphere)
+        with fits.open(out) as hdul:
+            flux = hdul["UV_DATA"].data["FLUX"].reshape(-1, 1, 1, 2, 4, len(products), 2)
+        results.append(np.conj(flux[..., 0] + 1j * flux[..., 1].astype(float))[:, 0, 0]
+                       / gain[..., None])
+    vis = results[1]
+    up = np.isfinite(vis).all(axis=(1, 2, 3))
+    evpa = (evpa_circular if products[0] == "RR" else evpa_linear)(vis[up], list(products))
+    assert np.max(np.abs(evpa - CHI0)) < 0.01  # model: chi0 at every channel
+    np.testing.assert_allclose(vis[up], results[0][up], rtol=0, atol=2e-6)
 
 
 @pytest.mark.parametrize("products", [("RR", "LL", "RL", "LR"), ("XX", "YY", "XY", "YX")])
