@@ -478,8 +478,8 @@ def bench_ms_ionosphere(gib, results, directory, rounds=3):
         hours = (time_[-1] - time_[0]) / 3600
     ionosphere = Ionosphere.from_ionex(sample_ionex("codg00[89]0.20i.Z"))
     print(f"  {n_rows} rows over {hours:.1f} h, DATA {size / GIB:.2f} GiB; {ionosphere!r}")
-    # Two sources: the set's own, below the horizon for part of the span (no RM is needed
-    # there), and one always above it (dec +80 deg at the VLA: every RM is needed).
+    # Two sources: the set's own (the fraction of antenna-epochs above the horizon is
+    # printed: no RM is needed below it) and one always above it (dec +80 deg at the VLA).
     with table(str(path / "FIELD"), ack=False) as field:
         own = field.getcol("PHASE_DIR")
     for label, direction in (("its own source", None), ("a circumpolar source", 80.0)):
@@ -490,7 +490,7 @@ def bench_ms_ionosphere(gib, results, directory, rounds=3):
                 for column in ("PHASE_DIR", "DELAY_DIR", "REFERENCE_DIR"):
                     field.putcol(column, moved)
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # the source below the horizon for some hours
+            warnings.simplefilter("ignore")  # a source below the horizon: NaN rows, said
             correct_ms(path, redo=True)  # creates CORRECTED_DATA
             up = _fraction_up(path, ionosphere)
             print(f"  {label}: above the horizon at {100 * up:.0f}% of antenna-epochs")
