@@ -574,6 +574,8 @@ def correct_circular(data, theta, rm, place1, place2, lambda2, products, *,
     """
     sign = (-1.0 if conjugate else 1.0) * (-1.0 if direction == "apply" else 1.0)
     n = data.shape[0]
+    if n == 0:  # no rows, no places
+        return
     samples = data.shape[1:-1]
     lambda2 = np.broadcast_to(np.asarray(lambda2, dtype=float), samples).reshape(-1)
     used, at1, at2 = _compact(place1, place2)

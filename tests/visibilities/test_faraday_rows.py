@@ -85,6 +85,14 @@ def test_places_far_apart_take_the_same_numbers():
     np.testing.assert_array_equal(near, far)
 
 
+def test_no_rows():
+    data = np.empty((0, 4, 2), complex)
+    for lambda2 in (None, np.ones(4)):
+        bad = correct_rows(data, np.zeros((3, 2)), np.zeros(3), np.zeros(0, int),
+                           np.zeros(0, int), ["RR", "LL"], lambda2=lambda2)
+        assert bad.shape == (0,)
+
+
 def test_rows_with_nan_angles_or_rm_are_named():
     products = ["RR", "LL"]
     place1, place2 = np.array([0, 1, 2]), np.array([1, 2, 0])
