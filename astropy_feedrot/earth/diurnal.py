@@ -29,10 +29,10 @@ as the Earth-fixed :math:`\\hat{z}` rather than the celestial pole (below
 
 import erfa
 import numpy as np
-from astropy.coordinates import ICRS, ITRS
+from astropy.coordinates import ICRS
 
 from ..core.inputs import as_skycoord
-from .orientation import distance_less, orientation_of
+from .orientation import distance_less, fast_path_applies, orientation_of
 from .utc_days import OMEGA
 
 __all__ = ["diurnal_beta", "topocentric", "network_directions", "network_applies"]
@@ -108,24 +108,30 @@ def topocentric(geocentric, xyz, velocity):
     return s
 
 
-def network_applies(target):
-    """Whether `network_directions` serves a target: one direction fixed in a celestial
-    frame, without distance or space motion (else each site takes
-    `~astropy_feedrot.earth.frames.source_direction`: parallax, proper motion).
+def network_applies(target, obstime):
+    """Whether `network_directions` serves a target at these epochs.
+
+    Where the package's fast path serves them
+    (`~astropy_feedrot.earth.orientation.fast_path_applies`: ``conf.fast_path``
+    on, a frame fixed on the sky, no space motion) for one direction without
+    distance (the network's directions are geocentric: no parallax). Else
+    each site takes `~astropy_feedrot.earth.frames.source_direction`.
 
     Examples
     --------
     >>> import astropy.units as u
     >>> from astropy.coordinates import SkyCoord
+    >>> from astropy.time import Time
     >>> from astropy_feedrot.earth.diurnal import network_applies
-    >>> network_applies(SkyCoord("03h19m48s +41d30m42s"))
+    >>> t = Time(["2023-01-25T00:00", "2023-01-25T01:00"])
+    >>> network_applies(SkyCoord("03h19m48s +41d30m42s"), t)
     True
-    >>> network_applies(SkyCoord("03h19m48s +41d30m42s", distance=1 * u.pc))
+    >>> network_applies(SkyCoord("03h19m48s +41d30m42s", distance=1 * u.pc), t)
     False
     """
     target = as_skycoord(target)
-    return (target.isscalar and not isinstance(target.frame, ITRS)
-            and not target.data.differentials and distance_less(target.data))
+    return (target.isscalar and distance_less(target.data)
+            and fast_path_applies(target, obstime))
 
 
 def network_directions(target, xyz, obstime):
@@ -145,8 +151,9 @@ def network_directions(target, xyz, obstime):
     -------
     `~numpy.ndarray`, shape (T, L, 3)
         Unit vectors from each site towards the target in ITRS: astropy's
-        ``target.transform_to(ITRS(obstime=..., location=site))`` to about
-        1e-4 mas, with the geocentric part computed once for every site.
+        ``target.transform_to(ITRS(obstime=..., location=site))`` to 0.001
+        mas (4e-4 mas measured at Effelsberg and Yebes), with the geocentric
+        part computed once for every site.
 
     Examples
     --------

@@ -311,9 +311,9 @@ class Ionosphere:
         grid = self._grid(unique) if fixed and self.step > 0 else None
         at = base if grid is None else grid[2]
         # The sites' apparent directions of the target (astropy's topocentric ITRS to
-        # 1e-4 mas): a fixed direction once for the network and each site's diurnal
+        # 0.001 mas): a fixed direction once for the network and each site's diurnal
         # aberration; else site by site. Then every site's pierce points at once.
-        if fixed and network_applies(directions):
+        if fixed and network_applies(directions, at):
             s = network_directions(directions, location_xyz(sites), at)
         else:
             s = np.stack([source_direction(directions, site, at) for site in sites], axis=1)

@@ -351,3 +351,27 @@ def test_nan_coordinates_propagate():
     target = SkyCoord(ra=[10, np.nan] * u.deg, dec=[20, 30] * u.deg)[:, np.newaxis]
     s = source_direction(target, SITES["YEBES"], times)
     assert np.all(np.isfinite(s[0])) and np.all(np.isnan(s[1]))
+
+
+def test_network_directions_follow_the_fast_path_switch():
+    # A network's directions (earth.diurnal) are the fast path's: with conf.fast_path off
+    # each site takes astropy's transformation. Reference: astropy's ITRS(location=...).
+    from astropy.coordinates import EarthLocation
+
+    from astropy_feedrot.earth.diurnal import network_applies, network_directions
+
+    crab = SkyCoord("05h34m31.94s +22d00m52.2s")
+    times = Time("2020-01-08T20:00") + np.arange(0, 6 * 3600, 600) * u.s
+    assert network_applies(crab, times)
+    with conf.set_temp("fast_path", False):
+        assert not network_applies(crab, times)
+    assert not network_applies(SkyCoord(ra=83.6 * u.deg, dec=22.0 * u.deg,
+                                        distance=1 * u.pc), times)
+    assert not network_applies(SkyCoord([83.6, 84.0] * u.deg, [22.0, 22.0] * u.deg), times)
+    sites = EarthLocation.from_geodetic([6.88, -3.09] * u.deg, [50.52, 40.52] * u.deg)
+    xyz = np.stack([sites.x, sites.y, sites.z], axis=-1).to_value(u.m)
+    s = network_directions(crab, xyz, times)
+    for k in range(2):
+        astropy = crab.transform_to(ITRS(obstime=times, location=sites[k])).cartesian
+        # measured: 4e-4 mas
+        np.testing.assert_allclose(s[:, k], astropy.xyz.value.T, rtol=0, atol=1e-3 * MAS)
