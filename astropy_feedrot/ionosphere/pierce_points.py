@@ -28,7 +28,18 @@ EARTH_RADIUS_KM = 6371.0
 
 
 class PiercePoints(NamedTuple):
-    """Pierce points of lines of sight through a thin shell (arrays of one shape)."""
+    """Pierce points of lines of sight through a thin shell (arrays of one shape).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from astropy_feedrot.ionosphere.pierce_points import pierce_points
+    >>> point = pierce_points(np.array([0, 6371.0, 0]), np.array([0, 1.0, 0]), 450.0)
+    >>> point._fields
+    ('lon', 'lat', 'radius', 'slant')
+    >>> float(point.lon), float(point.radius)
+    (90.0, 6821.0)
+    """
 
     #: Geocentric longitude in degrees, from -180 to 180.
     lon: np.ndarray
