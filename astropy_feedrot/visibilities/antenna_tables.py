@@ -25,6 +25,7 @@ from ..stations.labels import SOFTWARE, is_orbiting, mount_from_label
 from .unusable import UnusableAntenna, check_unusable, orbiting_reason
 
 __all__ = ["FITSFormatError", "WritingProgram", "writing_program", "read_antennas",
+           "fits_telescopes",
            "open_fits", "FORMATS"]
 
 #: The file formats and the table that holds their antennas' positions.
@@ -459,6 +460,25 @@ def _check_software(software):
         raise ValueError(f"software must be a MNTSTA convention, one of {conventions}, or "
                          f"None to detect it; got {software!r}")
     return software.strip().lower()
+
+
+def fits_telescopes(path):
+    """The telescope names of a FITS-IDI or UVFITS file: the primary header's
+    ``TELESCOP`` and every antenna table's ``ARRNAM``, those that are not empty.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.antenna_tables import fits_telescopes
+    >>> fits_telescopes(sample_file("vla_day2_8chan.uvfits"))
+    ['VLA']
+    """
+    name = os.fspath(path)
+    with open_fits(name) as hdul:
+        found = [_text(hdul[0].header, "TELESCOP")]
+        found += [_text(hdu.header, "ARRNAM") for hdu in hdul[1:]
+                  if hdu.name in ("ARRAY_GEOMETRY", "AIPS AN")]
+    return list(dict.fromkeys(t for t in found if t))
 
 
 def read_antennas(path, kind, *, vertical="geodetic", software=None, unusable="raise"):

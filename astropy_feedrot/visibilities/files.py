@@ -24,6 +24,7 @@ import os
 import re
 import shutil
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -34,10 +35,9 @@ from ..core.outputs import publish, same_file
 from ..core.progress import check_progress, progress_steps
 from ..ionosphere import IonosphereError
 from ..stations.labels import label_from_mount
-from .antenna_tables import writing_program
+from .antenna_tables import fits_telescopes, writing_program
 from .catalogue import (
     CATALOGUE_TOLERANCE,
-    catalogue_mounts,
     catalogue_stations,
     check_mounts_option,
 )
@@ -45,16 +45,17 @@ from .fitsidi import correct_fitsidi, fitsidi_antennas
 from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
 from .ms import correct_ms
-from .ms_antennas import ms_antennas
+from .ms_antennas import ms_antennas, ms_telescopes
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import convention_options
+from .resolve import refuse_aperture_array, resolve_antennas
 from .unusable import UnusableAntenna
 from .uvdata import antennas_from_uvdata, correct_uvdata
 from .uvdata_files import PYUVDATA_TYPES, read_uvdata, write_uvdata
 from .uvfits import uvfits_antennas
 
-__all__ = ["read_antennas", "antenna_table", "correct_file", "FITSIDI_EXTENSIONS",
-           "OUTPUT_EXTENSIONS", "check_output_format"]
+__all__ = ["read_antennas", "file_telescopes", "antenna_table", "correct_file",
+           "FITSIDI_EXTENSIONS", "OUTPUT_EXTENSIONS", "check_output_format"]
 
 #: The kind of output each extension names (lower case; ``.idi`` followed by
 #: digits, the EVN archive's ``.IDI1``, is FITS-IDI too). ``None``: the FITS
@@ -72,6 +73,31 @@ OUTPUT_EXTENSIONS = {
 FITSIDI_EXTENSIONS = tuple(e for e, k in OUTPUT_EXTENSIONS.items() if k in ("fits-idi", None))
 
 _NUMBERED_IDI = re.compile(r"\.idi[0-9]+")
+
+
+def file_telescopes(path, kind=None):
+    """The telescope names a visibility file gives, of any kind of `FILE_KINDS`.
+
+    ``TELESCOP`` and ``ARRNAM`` of FITS-IDI and UVFITS files, ``TELESCOPE_NAME`` of
+    a Measurement Set's ``OBSERVATION`` rows, pyuvdata's ``telescope.name`` of the
+    other kinds (their metadata read, not their data).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.files import file_telescopes
+    >>> file_telescopes(sample_file("vla_sim.ms"))
+    ['VLA']
+    """
+    kind = file_kind(path) if kind is None else kind
+    if kind in ("fits-idi", "uvfits"):
+        return fits_telescopes(path)
+    if kind == "ms":
+        return ms_telescopes(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # pyuvdata's complaints come with the data's read
+        uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
+    return [uv.telescope.name] if uv.telescope.name else []
 
 
 def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
@@ -139,7 +165,9 @@ def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
         uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
         antennas = antennas_from_uvdata(uv, vertical=vertical, unusable="keep")
         software = "pyuvdata"
-    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=str(path))
+    telescope = file_telescopes(path, kind)
+    antennas = resolve_antennas(antennas, telescope=telescope, mounts=mounts,
+                                catalogue=catalogue, where=str(path))
     return antennas, software
 
 
@@ -457,6 +485,8 @@ def correct_file(path, output, *, frame="apparent", vertical=None, overwrite=Fal
     kind = file_kind(source)
     written = check_output_format(kind, output)  # before any work
     copy = kind == "ms" and written == "ms"
+    # The one refusal that needs no antenna: before any reader of the format.
+    refuse_aperture_array(file_telescopes(source, kind), catalogue, where=str(source))
     columns = dict(data_column=data_column, corrected_column=corrected_column,
                    overwrite_column=overwrite_column)
     if not copy and (data_column is not None or overwrite_column or

@@ -26,8 +26,8 @@ from ..core.cache import heap_keeps_chunks, release_thread_buffer, thread_buffer
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.outputs import new_file_mode, publish, same_file
 from ..core.progress import progress_steps
-from .antenna_tables import FITSFormatError, open_fits, read_antennas
-from .catalogue import catalogue_mounts, catalogue_receptors
+from .antenna_tables import FITSFormatError, fits_telescopes, open_fits, read_antennas
+from .catalogue import catalogue_receptors
 from .fits_bytes import copy_around, header_with_history
 from .faraday import (
     check_ionosphere,
@@ -40,8 +40,9 @@ from .history import check_direction, check_history, history_entry
 from .kinds import check_header_cards
 from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles, with_receptors
+from .resolve import resolve_antennas
 from .tasks import in_order, task_groups, worker_count
-from .unusable import UnusableAntenna, given_feeds, usable_antennas, warn_skipped
+from .unusable import UnusableAntenna, usable_antennas, warn_skipped
 
 __all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
 
@@ -689,8 +690,8 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         header_end = int(hdul.fileinfo(0)["datLoc"])
     antennas = fitsidi_antennas(source, vertical=vertical, software=software,
                                 unusable="keep")
-    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=source)
-    antennas = given_feeds(antennas, feeds)
+    antennas = resolve_antennas(antennas, telescope=fits_telescopes(source), mounts=mounts,
+                                catalogue=catalogue, feeds=feeds, where=source)
     ground = {n: a for n, a in antennas.items() if not isinstance(a, UnusableAntenna)}
     if feeds is not None:
         ground = with_receptors(ground, feeds)

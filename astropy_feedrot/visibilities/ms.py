@@ -30,15 +30,16 @@ from astropy.time import Time
 from ..antennas.receptors import basis_of
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.progress import progress_steps
-from .catalogue import catalogue_mounts, check_mounts_option
+from .catalogue import check_mounts_option
 from .faraday import check_ionosphere, ionosphere_text, ms_lambda_squared
 from .history import check_direction, history_entry
-from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, subtable
+from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, ms_telescopes, subtable
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of, tables as _tables
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
 from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles
-from .unusable import given_feeds, usable_antennas, warn_skipped
+from .resolve import resolve_antennas
+from .unusable import usable_antennas, warn_skipped
 
 __all__ = ["correct_ms", "CORR_TYPES", "MSError"]
 
@@ -510,8 +511,9 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     else:
         check_column_history(path, records, data_column, corrected_column, direction, redo)
     antennas = ms_antennas(path, vertical=vertical, unusable="keep")
-    antennas, _ = catalogue_mounts(antennas, mounts, catalogue, where=repr(str(path)))
-    every = antennas = given_feeds(antennas, feeds)
+    every = antennas = resolve_antennas(antennas, telescope=ms_telescopes(path), mounts=mounts,
+                                        catalogue=catalogue, feeds=feeds,
+                                        where=repr(str(path)))
     try:
         antennas, skip = usable_antennas(
             antennas, np.unique(np.concatenate([meta["ANTENNA1"], meta["ANTENNA2"]])),

@@ -30,7 +30,8 @@ from .ms_tables import MSError
 from .receptors import check_receptors, with_receptors
 from .unusable import UnusableAntenna, check_unusable, orbiting_reason
 
-__all__ = ["ms_antennas", "FeedReceptors", "feed_rows", "ms_path", "subtable", "cell_text"]
+__all__ = ["ms_antennas", "ms_telescopes", "FeedReceptors", "feed_rows", "ms_path", "subtable",
+           "cell_text"]
 
 
 def ms_path(ms):
@@ -53,6 +54,27 @@ def subtable(path, name):
 def cell_text(value):
     """A string cell as str."""
     return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def ms_telescopes(ms):
+    """The telescope names of a Measurement Set's ``OBSERVATION`` rows, those that are not
+    empty (none if it has no such table).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.ms_antennas import ms_telescopes
+    >>> ms_telescopes(sample_file("vla_sim.ms"))
+    ['VLA']
+    """
+    path = ms_path(ms)
+    if not (path / "OBSERVATION").is_dir():
+        return []
+    with contextlib.closing(subtable(path, "OBSERVATION")) as table:
+        if "TELESCOPE_NAME" not in table.colnames() or not table.nrows():
+            return []
+        names = [cell_text(n).strip() for n in table.getcol("TELESCOPE_NAME")]
+    return list(dict.fromkeys(n for n in names if n))
 
 
 def _positions(path):

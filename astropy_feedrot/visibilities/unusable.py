@@ -31,8 +31,10 @@ __all__ = ["UnusableAntenna", "UNUSABLE", "PROBLEMS", "check_unusable", "given_f
 #: ValueError naming it) or ``'keep'`` (an `UnusableAntenna` in its place).
 UNUSABLE = ("raise", "keep")
 
-#: The kinds of problem of an `UnusableAntenna`.
-PROBLEMS = ("orbiting", "mount", "receptors")
+#: The kinds of problem of an `UnusableAntenna`: an orbiting antenna, a mount
+#: label with no model, receptors that cannot be used, or an element of an
+#: aperture array (`~astropy_feedrot.stations.aperture_arrays`).
+PROBLEMS = ("orbiting", "mount", "receptors", "aperture array")
 
 
 class UnusableAntenna:
@@ -45,9 +47,9 @@ class UnusableAntenna:
         position the file holds, often its tracking station's).
     name : str
         Its name in the file.
-    problem : {'orbiting', 'mount', 'receptors'}
-        What is wrong: an orbiting antenna, a mount label with no model, or
-        receptors that cannot be used.
+    problem : {'orbiting', 'mount', 'receptors', 'aperture array'}
+        What is wrong: an orbiting antenna, a mount label with no model,
+        receptors that cannot be used, or an element of an aperture array.
     reason : str
         Why, with the label or the values the file holds, and what to do.
     label : object, optional

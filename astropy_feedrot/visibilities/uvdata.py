@@ -31,7 +31,7 @@ from ..earth.eop import iers_context
 from ..earth.frames import VERTICALS
 from ..engine.antenna import Antenna
 from ..stations.labels import is_orbiting, mount_from_label
-from .catalogue import catalogue_mounts, catalogue_receptors, check_mounts_option
+from .catalogue import catalogue_receptors, check_mounts_option
 from .faraday import (
     check_ionosphere,
     correct_rows,
@@ -44,6 +44,7 @@ from .history import check_direction, check_history, history_entry
 from .phase_centres import phase_centre_sources
 from .poles import convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles, with_receptors
+from .resolve import refuse_aperture_array, resolve_antennas
 from .unusable import (
     UnusableAntenna,
     check_unusable,
@@ -602,6 +603,8 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     check_uvdata(uv)
     direction = check_direction(direction)
     ionosphere = check_ionosphere(ionosphere)
+    if antennas is None:  # the data's own antennas: an aperture array's are refused first
+        refuse_aperture_array(uv.telescope.name, catalogue, where="the data")
     names, basis = _product_names(uv)
     check_history(uv.history, direction, "these data", redo=redo)
     if uv.data_array is None:
@@ -612,9 +615,9 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
             (antennas is None or hasattr(antennas, "items")):
         used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
         if antennas is None:  # the data's antennas, compared with the catalogue's
-            antennas = _antennas(uv, vertical, used, keep=True)
-            antennas, _ = catalogue_mounts(antennas, mounts, catalogue, numbers=used,
-                                           where="the data")
+            antennas = resolve_antennas(_antennas(uv, vertical, used, keep=True),
+                                        telescope=uv.telescope.name, mounts=mounts,
+                                        catalogue=catalogue, numbers=used, where="the data")
         antennas_all = antennas
         antennas, skip = usable_antennas(given_feeds(antennas, feeds), used, "the data")
         if feeds is not None:

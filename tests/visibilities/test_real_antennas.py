@@ -243,8 +243,39 @@ def test_orbiting_baselines_are_left_byte_for_byte(tmp_path):
 # --- receptors that are not a pair (LWA: RECEPTOR_ANGLE [0, 0]) ------------------------
 
 
-def test_lwa_receptors_listed_and_refused_then_given(tmp_path, capsys):
+def _rename_telescope(ms, name):
+    casacore = pytest.importorskip("casacore.tables")
+    with casacore.table(str(ms / "OBSERVATION"), readonly=False, ack=False) as t:
+        for row in range(t.nrows()):
+            t.putcell("TELESCOPE_NAME", row, name)
+
+
+def test_lwa_is_an_aperture_array_in_every_route(tmp_path, capsys):
+    """LWASV (its OBSERVATION's TELESCOPE_NAME) is refused as an aperture array by
+    every route, with its receptors given or not; feedrot antennas gives the reason."""
     ms = untar(LWA, tmp_path)
+    antennas, _ = read_antennas(ms)
+    assert all(a.problem == "aperture array" for a in antennas.values())
+    assert main(["antennas", str(ms)]) == 0
+    table = Table.read(capsys.readouterr().out, format="ascii.ecsv")
+    assert all("'LWASV' is an aperture array" in p for p in table["problem"])
+    feeds = Receptors("XY", [0, 90] * u.deg)
+    reason = r"the telescope 'LWASV' is an aperture array \(a Long Wavelength Array station\)"
+    with pytest.raises(MSError, match=r"4 antennas cannot be corrected: antennas 0 "
+                       r"\(LWA001\), 1 \(LWA002\), 2 \(LWA003\), 3 \(LWA004\): " + reason):
+        correct_ms(ms, feeds=feeds)
+    with pytest.raises(ValueError, match=reason):
+        correct_file(ms, tmp_path / "lwa.uvh5", feeds=feeds)
+    assert main(["correct", str(ms), "-o", str(tmp_path / "lwa.uvh5"), "--feeds",
+                 "X:0,Y:90"]) == 1
+    assert "is an aperture array" in capsys.readouterr().err
+    assert not (tmp_path / "lwa.uvh5").exists()
+
+
+def test_lwa_receptors_listed_and_refused_then_given(tmp_path, capsys):
+    """The same set under another telescope name: its receptors are what is wrong."""
+    ms = untar(LWA, tmp_path)
+    _rename_telescope(ms, "TEST")
     with pytest.raises(MSError, match=r"antenna 0 \(LWA001\): table FEED: the linear "
                        "receptors 'XY' are parallel"):
         ms_antennas(ms)
