@@ -471,7 +471,7 @@ def fits_telescopes(path):
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.visibilities.antenna_tables import fits_telescopes
     >>> fits_telescopes(sample_file("vla_day2_8chan.uvfits"))
-    ['VLA']
+    ['EVLA']
     """
     name = os.fspath(path)
     with open_fits(name) as hdul:
