@@ -30,8 +30,8 @@ from .ms_tables import MSError
 from .receptors import check_receptors, with_receptors
 from .unusable import UnusableAntenna, check_unusable, orbiting_reason
 
-__all__ = ["ms_antennas", "ms_telescopes", "FeedReceptors", "feed_rows", "ms_path", "subtable",
-           "cell_text"]
+__all__ = ["ms_antennas", "ms_telescopes", "describe_antenna", "FeedReceptors", "feed_rows",
+           "ms_path", "subtable", "cell_text"]
 
 
 def ms_path(ms):
@@ -122,6 +122,79 @@ def _receptors(types, angles, where):
         raise MSError(f"{where}: {error}") from None
 
 
+def describe_antenna(location, name, label, receptor_sets, *, vertical="geodetic", keep=False,
+                     where="the antenna"):
+    """One antenna of a Measurement Set (v2 or v4) as its ``MOUNT`` and receptors give it.
+
+    Parameters
+    ----------
+    location : `~astropy.coordinates.EarthLocation`
+        Its position.
+    name : str
+        Its name.
+    label : str
+        Its ``MOUNT`` (casacore's labels, `~astropy_feedrot.stations.labels`).
+    receptor_sets : set of tuple
+        The ``(types, angles in deg)`` its feed rows give: one set gives its
+        receptors, none or several leave them to each row.
+    vertical : {'geodetic', 'geocentric'}, optional
+        As `~astropy_feedrot.Antenna`.
+    keep : bool, optional
+        An antenna that cannot be described becomes an
+        `~astropy_feedrot.visibilities.UnusableAntenna` (else MSError).
+    where : str, optional
+        The antenna, for the messages.
+
+    Returns
+    -------
+    `~astropy_feedrot.Antenna` or `~astropy_feedrot.visibilities.UnusableAntenna`
+
+    Examples
+    --------
+    >>> from astropy_feedrot import get_antenna
+    >>> from astropy_feedrot.visibilities.ms_antennas import describe_antenna
+    >>> site = get_antenna("VLA_W9").location
+    >>> describe_antenna(site, "W9", "ALT-AZ", {("RL", (0.0, 0.0))}).receptors
+    Receptors('RL', [0.0, 0.0] * u.deg)
+    >>> describe_antenna(site, "W9", "", set(), keep=True).problem
+    'mount'
+    """
+    label = str(label).strip()
+    problem = mount = focus = None
+    if not label:
+        problem, reason = "mount", (
+            "MOUNT is empty (casacore takes it for alt-az, but the writer did not say "
+            "how the antenna is mounted): write its mount into the ANTENNA table, or "
+            "pass mounts='catalogue' (--mounts catalogue) to take the station "
+            "catalogue's")
+    else:
+        try:
+            mount, focus = mount_from_label(label, "casacore")
+        except ValueError as error:
+            problem, reason = "mount", f"MOUNT {label!r}: {error}"
+            if keep and is_orbiting(label, "casacore"):
+                problem, reason = "orbiting", orbiting_reason(f"MOUNT {label!r}")
+    receptors = receptors_problem = None
+    if len(receptor_sets) == 1:
+        try:
+            receptors = _receptors(*next(iter(receptor_sets)), "table FEED")
+        except MSError as error:
+            receptors_problem = (f"{error}; give its receptors (feeds=, --feeds X,Y)")
+    if not keep and (problem is not None or receptors_problem is not None):
+        raise MSError(f"{where}: {reason if problem is not None else receptors_problem}")
+    if problem is not None:
+        return UnusableAntenna(location, name, problem, reason, label=label, vertical=vertical,
+                               receptors=receptors, receptors_problem=receptors_problem)
+    if receptors_problem is not None:
+        return UnusableAntenna(location, name, "receptors", receptors_problem, label=label,
+                               mount=mount, focus=focus, vertical=vertical)
+    try:
+        return Antenna(location, mount, focus, name=name, vertical=vertical,
+                       receptors=receptors)
+    except ValueError as error:
+        raise MSError(f"{where}: {error}") from None
+
+
 def ms_antennas(ms, *, vertical="geodetic", unusable="raise"):
     """The antennas of a Measurement Set, with their receptors.
 
@@ -182,45 +255,10 @@ def ms_antennas(ms, *, vertical="geodetic", unusable="raise"):
     for number, (position, name, label) in enumerate(zip(xyz, names, mounts)):
         if empty[number]:
             continue
-        where = f"{str(path)!r}, table ANTENNA, antenna {number} ({name})"
-        location = EarthLocation.from_geocentric(*position, unit=u.m)
-        problem = mount = focus = None
-        if not label:
-            problem, reason = "mount", (
-                "MOUNT is empty (casacore takes it for alt-az, but the writer did not say "
-                "how the antenna is mounted): write its mount into the ANTENNA table, or "
-                "pass mounts='catalogue' (--mounts catalogue) to take the station "
-                "catalogue's")
-        else:
-            try:
-                mount, focus = mount_from_label(label, "casacore")
-            except ValueError as error:
-                problem, reason = "mount", f"MOUNT {label!r}: {error}"
-                if keep and is_orbiting(label, "casacore"):
-                    problem, reason = "orbiting", orbiting_reason(f"MOUNT {label!r}")
-        found = sets.get(number, set())
-        receptors = receptors_problem = None
-        if len(found) == 1:
-            try:
-                receptors = _receptors(*next(iter(found)), "table FEED")
-            except MSError as error:
-                receptors_problem = (f"{error}; give its receptors (feeds=, --feeds X,Y)")
-        if not keep and (problem is not None or receptors_problem is not None):
-            raise MSError(f"{where}: {reason if problem is not None else receptors_problem}")
-        if problem is not None:
-            antennas[number] = UnusableAntenna(
-                location, name, problem, reason, label=label, vertical=vertical,
-                receptors=receptors, receptors_problem=receptors_problem)
-        elif receptors_problem is not None:
-            antennas[number] = UnusableAntenna(
-                location, name, "receptors", receptors_problem, label=label, mount=mount,
-                focus=focus, vertical=vertical)
-        else:
-            try:
-                antennas[number] = Antenna(location, mount, focus, name=name,
-                                           vertical=vertical, receptors=receptors)
-            except ValueError as error:
-                raise MSError(f"{where}: {error}") from None
+        antennas[number] = describe_antenna(
+            EarthLocation.from_geocentric(*position, unit=u.m), name, label,
+            sets.get(number, set()), vertical=vertical, keep=keep,
+            where=f"{str(path)!r}, table ANTENNA, antenna {number} ({name})")
     return antennas
 
 
