@@ -1,0 +1,503 @@
+# Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
+"""MSv4 processing sets (xradio): the feed rotation removed lazily, as a new data group.
+
+A processing set is a tree of partitions, each one MSv4 (an
+`xarray.DataTree` whose ``VISIBILITY`` has the dimensions ``time``,
+``baseline_id``, ``frequency``, ``polarization``, with its ``antenna_xds``
+and ``field_and_source_xds``). `correct_processing_set` adds to every
+partition a data group (``corrected``) whose ``VISIBILITY_CORRECTED`` is
+the ``base`` group's ``VISIBILITY`` with the feed rotation removed, as
+`~astropy_feedrot.visibilities.correct_ms` removes it from a Measurement
+Set v2; its flags, weights, UVW and field and source table are the base
+group's. Nothing is read but the coordinates and the antenna and field
+tables: the new variable is a dask array that any scheduler computes (dask's
+threads, a dask.distributed cluster, Ray's dask scheduler). Given a store
+on disk, only the new arrays are written into it; every array that was
+there stays as it was.
+
+The steps are the pipeline's (:doc:`/correcting`): the antennas are
+resolved once (`~astropy_feedrot.visibilities.resolve.resolve_antennas`:
+aperture arrays, the catalogue's mounts, the given receptors), the angles
+computed once per epoch and antenna (`~astropy_feedrot.visibilities.
+receptor_position_angles`), and each block of visibilities turned with
+`~astropy_feedrot.applied.correction.correct_receptor_visibilities`.
+
+xradio is optional (the ``msv4`` extra: ``python -m pip install
+"astropy_feedrot[msv4]"``), imported when a function here is called.
+"""
+import datetime
+import os
+from pathlib import Path
+
+import numpy as np
+from astropy import units as u
+from astropy.coordinates import FK5, ICRS, EarthLocation, SkyCoord
+from astropy.time import Time
+
+from ..applied.correction import correct_receptor_visibilities
+from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from .catalogue import check_mounts_option
+from .history import HISTORY_MARK, APPLY_MARK, CorrectionRefused, check_direction, \
+    history_entry
+from .ms_antennas import describe_antenna
+from .poles import POLES, convention_options, pole_context
+from .receptors import receptor_position_angles, warn_unusual_angles
+from .resolve import resolve_antennas
+from .unusable import usable_antennas, warn_skipped
+
+__all__ = ["correct_processing_set", "processing_set_antennas", "is_processing_set",
+           "GROUPS", "MSv4Error"]
+
+#: Per direction: the data group read, the data group added and its variable.
+GROUPS = {"remove": ("base", "corrected", "VISIBILITY_CORRECTED"),
+          "apply": ("model", "model_corrupted", "VISIBILITY_MODEL_CORRUPTED")}
+
+_FRAMES = {"icrs": ICRS(), "fk5": FK5(equinox="J2000")}
+
+
+class MSv4Error(ValueError):
+    """A processing set that cannot be corrected as it is (the message says why)."""
+
+
+def _xradio():
+    try:
+        from xradio.measurement_set import open_processing_set  # optional dependency
+    except ImportError:
+        raise ImportError("MSv4 processing sets need xradio: python -m pip install "
+                          '"astropy_feedrot[msv4]"') from None
+    return open_processing_set
+
+
+def is_processing_set(path):
+    """Whether ``path`` is a processing set on disk (a zarr group of type
+    ``processing_set``).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.msv4 import is_processing_set
+    >>> is_processing_set(sample_file("vla_sim.ms"))
+    False
+    """
+    meta = Path(path) / "zarr.json"
+    if not meta.is_file():
+        return False
+    import json
+
+    try:
+        attributes = json.loads(meta.read_text()).get("attributes", {})
+    except (OSError, ValueError):
+        return False
+    return attributes.get("type") == "processing_set"
+
+
+def _partitions(tree, where):
+    nodes = [(name, node) for name, node in tree.children.items()
+             if node.attrs.get("type") in ("visibility", "spectrum")]
+    if not nodes:
+        raise MSv4Error(f"{where} holds no MSv4 partition (no child of type 'visibility')")
+    return nodes
+
+
+def _values(variable):
+    return np.asarray(variable.values)
+
+
+def processing_set_antennas(partition, *, vertical="geodetic", where="the partition"):
+    """The antennas of one MSv4 partition, from its ``antenna_xds``.
+
+    Parameters
+    ----------
+    partition : `xarray.DataTree`
+        One MSv4 of a processing set.
+    vertical : {'geodetic', 'geocentric'}, optional
+        As `~astropy_feedrot.Antenna`.
+    where : str, optional
+        The partition, for the messages.
+
+    Returns
+    -------
+    antennas : dict
+        ``{index in antenna_name: Antenna or UnusableAntenna}``, each with
+        the receptors of ``polarization_type`` and ``ANTENNA_RECEPTOR_ANGLE``
+        and the mount of ``mount`` (xradio's labels, which are casacore's in
+        lower case).
+    names : list of str
+        The antenna names, in the order of the indices.
+    telescopes : list of str
+        The telescope names (``telescope_name``, ``overall_telescope_name``).
+
+    Raises
+    ------
+    MSv4Error
+        For positions that are not geocentric ITRS in metres.
+
+    Examples
+    --------
+    See `correct_processing_set`.
+    """
+    antenna = partition["antenna_xds"].to_dataset()
+    position = antenna["ANTENNA_POSITION"]
+    frame = str(position.attrs.get("frame", "ITRS")).upper()
+    system = str(position.attrs.get("coordinate_system", "geocentric")).lower()
+    units = position.attrs.get("units", "m")
+    units = units[0] if isinstance(units, (list, tuple)) else units
+    if frame not in ("ITRS", "ITRF") or system != "geocentric":
+        raise MSv4Error(f"{where}: ANTENNA_POSITION is {system} {frame}, not geocentric "
+                        "ITRS; convert the positions first")
+    xyz = (_values(position) * u.Unit(units)).to_value(u.m)
+    names = [str(n) for n in _values(antenna["antenna_name"])]
+    mounts = _values(antenna["mount"]) if "mount" in antenna else [""] * len(names)
+    types = _values(antenna["polarization_type"]) if "polarization_type" in antenna \
+        else None
+    angles = np.degrees(_values(antenna["ANTENNA_RECEPTOR_ANGLE"])) \
+        if "ANTENNA_RECEPTOR_ANGLE" in antenna else None
+    antennas = {}
+    for index, name in enumerate(names):
+        found = set()
+        if types is not None:
+            letters = "".join(str(t).strip().upper() for t in np.atleast_1d(types[index]))
+            alpha = np.zeros(len(letters)) if angles is None else np.atleast_1d(angles[index])
+            found = {(letters, tuple(np.round(alpha[:len(letters)], 9)))}
+        antennas[index] = describe_antenna(
+            EarthLocation.from_geocentric(*xyz[index], unit=u.m), name,
+            str(mounts[index]).upper(), found, vertical=vertical, keep=True,
+            where=f"{where}, antenna_xds, antenna {name}")
+    telescopes = [str(t) for t in np.unique(_values(antenna["telescope_name"]))] \
+        if "telescope_name" in antenna.coords else []
+    overall = antenna.attrs.get("overall_telescope_name")
+    telescopes = list(dict.fromkeys(t for t in [*telescopes, overall] if t))
+    return antennas, names, telescopes
+
+
+class _MovingField:
+    """A field whose direction the partition gives per epoch (an ephemeris)."""
+
+    def __init__(self, seconds, ra, dec, frame, name):
+        self.seconds, self.frame, self.name = seconds, frame, name
+        self.ra, self.dec = np.unwrap(ra), dec
+
+    def __call__(self, epochs):
+        t = epochs.utc.unix
+        return SkyCoord(np.interp(t, self.seconds, self.ra) * u.rad,
+                        np.interp(t, self.seconds, self.dec) * u.rad, frame=self.frame)
+
+
+def _sources(partition, group, where):
+    """{field index: SkyCoord or moving field} and the field index of each time."""
+    table = partition[group["field_and_source"]].to_dataset()
+    direction = table["FIELD_PHASE_CENTER_DIRECTION"]
+    frame_name = str(direction.attrs.get("frame", "icrs")).lower()
+    if frame_name not in _FRAMES:
+        raise MSv4Error(f"{where}: FIELD_PHASE_CENTER_DIRECTION is in frame {frame_name!r}; "
+                        f"the frames read are {sorted(_FRAMES)}")
+    frame = _FRAMES[frame_name]
+    values = (_values(direction) * u.Unit(direction.attrs.get("units", "rad"))).to_value(u.rad)
+    time_dims = [d for d in direction.dims if str(d).startswith("time")]
+    fields = [str(f) for f in np.atleast_1d(_values(partition["field_name"]))]
+    if time_dims:  # one moving field: its direction per epoch of its own time axis
+        seconds = _values(table[time_dims[0]])
+        values = values.reshape(seconds.size, -1, 2)[:, 0]
+        source = _MovingField(seconds, values[:, 0], values[:, 1], frame, fields[0])
+        return {0: source}, np.zeros(partition["time"].size, int)
+    names = [str(n) for n in np.atleast_1d(_values(table["field_name"]))]
+    values = values.reshape(len(names), 2)
+    sources = {k: SkyCoord(values[k, 0] * u.rad, values[k, 1] * u.rad, frame=frame)
+               for k in range(len(names))}
+    missing = sorted(set(fields) - set(names))
+    if missing:
+        raise MSv4Error(f"{where}: the times use fields {missing} that "
+                        f"{group['field_and_source']} lacks")
+    index = {name: k for k, name in enumerate(names)}
+    return sources, np.array([index[f] for f in fields])
+
+
+def _times(partition, where):
+    time = partition["time"]
+    scale = str(time.attrs.get("scale", "utc")).lower()
+    form = str(time.attrs.get("format", "unix")).lower()
+    if form not in ("unix", "unix_tai"):
+        raise MSv4Error(f"{where}: time is in format {form!r}; 'unix' is read")
+    return Time(_values(time), format=form, scale=scale)
+
+
+def _group(partition, name, where):
+    groups = partition.attrs.get("data_groups", {})
+    if name not in groups:
+        raise MSv4Error(f"{where} has no data group {name!r} (it has {sorted(groups)})")
+    return groups[name]
+
+
+def _refuse_again(partition, new, direction, redo, where):
+    """Refuse to write a data group that exists, unless ``redo`` and it is ours."""
+    groups = partition.attrs.get("data_groups", {})
+    if new not in groups:
+        return
+    description = str(groups[new].get("description", ""))
+    mark = HISTORY_MARK if direction == "remove" else APPLY_MARK
+    if not description.startswith(mark):
+        raise CorrectionRefused(f"{where} has a data group {new!r} that this package did "
+                                f"not write ({description!r}); it is left as it is: "
+                                "{command} a copy of the processing set without it")
+    if not redo:
+        raise CorrectionRefused(f"{where}: its data group {new!r} holds this correction "
+                                f"already ({description}); {{redo}} to compute it again")
+
+
+def _angle_table(partition, source, antennas, names, products, frame, where):
+    """Receptor position angles (deg) per (time, antenna) and the orbiting antennas."""
+    first = [names.index(str(n)) for n in _values(partition["baseline_antenna1_name"])]
+    second = [names.index(str(n)) for n in _values(partition["baseline_antenna2_name"])]
+    used = np.unique(first + second)
+    usable, skip = usable_antennas(antennas, used, where)
+    ground = np.array([n for n in used.tolist() if n in usable], int)
+    times = _times(partition, where)
+    sources, field = _sources(partition, source, where)
+    theta = np.full((times.size, len(names), 2), np.nan)
+    if ground.size:
+        rows = np.tile(ground, times.size)
+        theta_rows, _ = receptor_position_angles(
+            usable, rows, rows, times[np.repeat(np.arange(times.size), ground.size)],
+            sources, np.repeat(field, ground.size), products=products, frame=frame,
+            where=where, hint="give them with feeds=")
+        theta[:, ground] = theta_rows.reshape(times.size, ground.size, 2)
+    warn_unusual_angles({n: usable[n] for n in ground.tolist()}, where)
+    return theta, np.array(first), np.array(second), skip
+
+
+def _correct_block(visibilities, theta1, theta2, *, products, direction):
+    out = np.empty_like(visibilities)
+    with np.errstate(invalid="ignore"):  # NaN angles give NaN, counted beforehand
+        correct_receptor_visibilities(visibilities, theta1 * u.deg, theta2 * u.deg, products,
+                                      out=out, direction=direction)
+    return out
+
+
+def _corrected(partition, source, theta, first, second, skip, products, direction):
+    import xarray as xr  # with xradio
+
+    data = partition[source["correlated_data"]]
+    table = xr.DataArray(theta, dims=("time", "feedrot_antenna", "feedrot_receptor"))
+    if data.chunks is not None:
+        table = table.chunk({"time": data.chunksizes["time"]})
+    theta1 = table.isel(feedrot_antenna=xr.DataArray(first, dims="baseline_id"))
+    theta2 = table.isel(feedrot_antenna=xr.DataArray(second, dims="baseline_id"))
+    corrected = xr.apply_ufunc(
+        _correct_block, data.variable, theta1.variable, theta2.variable,
+        input_core_dims=[["polarization"], ["feedrot_receptor"], ["feedrot_receptor"]],
+        output_core_dims=[["polarization"]], dask="parallelized",
+        output_dtypes=[data.dtype], kwargs=dict(products=products, direction=direction))
+    corrected = corrected.transpose(*data.dims)
+    if skip:  # baselines to an orbiting antenna: as they were
+        names = [i for i in range(len(first))
+                 if first[i] in skip or second[i] in skip]
+        keep = xr.DataArray(np.isin(np.arange(len(first)), names), dims="baseline_id")
+        corrected = xr.where(keep, data.variable, corrected)
+    return xr.DataArray(corrected, dims=data.dims, attrs=dict(data.attrs))
+
+
+def _check_products(products, where):
+    try:
+        correct_receptor_visibilities(np.zeros((1, len(products)), complex), [0, 0] * u.deg,
+                                      [0, 0] * u.deg, products)
+    except ValueError as error:
+        raise MSv4Error(f"{where}: {error}") from None
+
+
+def _partition(name, partition, options, where):
+    """The partition with its new data group (a new tree; the input is left as it is)."""
+    direction, frame, vertical, pole = (options[k] for k in ("direction", "frame",
+                                                              "vertical", "pole"))
+    source_name, new_name, variable = options["groups"]
+    where = f"{where}, partition {name!r}"
+    source = _group(partition, source_name, where)
+    _refuse_again(partition, new_name, direction, options["redo"], where)
+    products = [str(p).upper() for p in _values(partition["polarization"])]
+    _check_products(products, where)
+    antennas, names, telescopes = processing_set_antennas(partition, vertical=vertical,
+                                                          where=where)
+    every = antennas = resolve_antennas(antennas, telescope=telescopes,
+                                        mounts=options["mounts"],
+                                        catalogue=options["catalogue"],
+                                        feeds=options["feeds"], where=where)
+    try:
+        with pole_context(pole):
+            theta, first, second, skip = _angle_table(partition, source, antennas, names,
+                                                      products, frame, where)
+    except ValueError as error:
+        raise MSv4Error(str(error)) from None
+    partition = partition.copy()
+    bad = np.isnan(theta).any(-1)
+    undefined = int(np.count_nonzero(bad[:, first] | bad[:, second])) - \
+        int(np.count_nonzero(np.isin(first, skip) | np.isin(second, skip))) * bad.shape[0]
+    partition[variable] = _corrected(partition, source, theta, first, second, skip,
+                                     products, direction)
+    what = f"{source['correlated_data']} -> {variable}"
+    if skip:
+        what += f" (not the baselines to the orbiting antennas {', '.join(names[n] for n in skip)})"
+    description = history_entry(direction, what, frame=frame, vertical=vertical) + \
+        ("" if pole == "itrs" else f" (pole={pole})")
+    group = {key: value for key, value in source.items()
+             if key not in ("correlated_data", "description", "date")}
+    group.update(correlated_data=variable, description=description,
+                 date=datetime.datetime.now(datetime.timezone.utc).isoformat())
+    partition.attrs = dict(partition.attrs,
+                           data_groups={**partition.attrs["data_groups"], new_name: group})
+    rows = bad.shape[0] * len(first)
+    warn_skipped(every, skip, int(np.count_nonzero(np.isin(first, skip) |
+                                                   np.isin(second, skip))) * bad.shape[0],
+                 rows, where)
+    return partition, max(undefined, 0), rows
+
+
+def _options(direction, frame, convention, vertical, pole, feeds, mounts, catalogue, redo):
+    vertical, pole = convention_options(convention, vertical, pole)
+    direction = check_direction(direction)
+    check_mounts_option(mounts)
+    if pole not in POLES:
+        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
+    return dict(direction=direction, frame=frame, vertical=vertical, pole=pole, feeds=feeds,
+                mounts=mounts, catalogue=catalogue, redo=redo, groups=GROUPS[direction])
+
+
+def correct_processing_set(ps, *, direction="remove", frame="apparent", convention="rigorous",
+                           vertical=None, pole=None, feeds=None, mounts="file",
+                           catalogue=None, redo=False, write=None):
+    """Remove (or apply) the feed rotation of an MSv4 processing set, lazily.
+
+    Parameters
+    ----------
+    ps : `xarray.DataTree` or path-like
+        A processing set as xradio's ``open_processing_set`` gives it, or the
+        path of one (a ``.ps.zarr`` store).
+    direction : {'remove', 'apply'}, optional
+        ``'remove'`` (default): the data group ``base`` (``VISIBILITY``) to
+        a new data group ``corrected`` (``VISIBILITY_CORRECTED``), receptors
+        fixed on the sky. ``'apply'``: the data group ``model``
+        (``VISIBILITY_MODEL``, sky-fixed receptors) to a new data group
+        ``model_corrupted`` (``VISIBILITY_MODEL_CORRUPTED``), as the turning
+        receptors see it (`GROUPS`).
+    frame : str, optional
+        North of the sky-fixed receptors: ``'apparent'`` (default) or a
+        celestial frame such as ``'icrs'``.
+    convention : {'rigorous', 'casa'}, optional
+        As `~astropy_feedrot.visibilities.correct_ms`.
+    vertical : {'geodetic', 'geocentric'}, optional
+        Default: the convention's.
+    pole : {'itrs', 'casa'}, optional
+        Default: the convention's.
+    feeds : `~astropy_feedrot.Receptors` or mapping, optional
+        Receptors for antennas whose own cannot be used (``{antenna index
+        or name: Receptors}``, or one for all).
+    mounts : {'file', 'catalogue'}, optional
+        As `~astropy_feedrot.visibilities.correct_ms`.
+    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
+        As `~astropy_feedrot.visibilities.correct_ms`.
+    redo : bool, optional
+        Compute the new data group again where this package wrote it already
+        (its description says so); refused otherwise.
+    write : bool, optional
+        For a path: write the new variables into the store (default True);
+        every array that was there stays as it was, and the partitions'
+        ``data_groups`` attributes gain the new group, with the history
+        line as its description. Ignored for a tree.
+
+    Returns
+    -------
+    `xarray.DataTree`
+        The processing set with the new data group in every partition: a new
+        tree whose new variables are dask arrays (nothing computed) when
+        ``ps`` is a tree or ``write`` is False; the store reopened after
+        writing otherwise.
+
+    Raises
+    ------
+    ImportError
+        Without xradio (the ``msv4`` extra).
+    MSv4Error
+        For a tree that holds no partition, a partition without the data
+        group read, positions that are not geocentric ITRS, fields in an
+        unknown frame, linear products without all four, antennas that
+        cannot be corrected (each named with its reason: an aperture array,
+        a mount without a model, receptors that cannot be used); nothing is
+        written then.
+    CorrectionRefused
+        (a ValueError) If a partition has the new data group already
+        (unless ``redo`` and this package wrote it).
+
+    Warns
+    -----
+    DegenerateGeometryWarning
+        Once, with the count, if the feed rotation is undefined for some
+        time-baselines (an alt-az antenna at the zenith): they are NaN.
+    UncorrectedBaselinesWarning
+        Once per partition, if some baselines reach an orbiting antenna:
+        they are left as they are.
+
+    Notes
+    -----
+    Each partition's angles are computed once per epoch and antenna (a
+    small table); each dask block of visibilities then takes the angles of
+    its times and baselines. MSv4 follows the MSv2 convention
+    :math:`\\langle v_1 v_2^* \\rangle`.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from xradio.measurement_set import convert_msv2_to_processing_set
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import correct_processing_set
+    >>> store = str(pathlib.Path(tempfile.mkdtemp()) / "vla.ps.zarr")
+    >>> convert_msv2_to_processing_set(str(sample_file("vla_sim.ms")), store)  # doctest: +SKIP
+    >>> ps = correct_processing_set(store, write=False)  # doctest: +SKIP
+    >>> ps["vla_sim_0"]["VISIBILITY_CORRECTED"].chunks is not None  # doctest: +SKIP
+    True
+    """
+    options = _options(direction, frame, convention, vertical, pole, feeds, mounts,
+                       catalogue, redo)
+    path = None
+    if isinstance(ps, (str, os.PathLike)):
+        path = Path(ps)
+        if not is_processing_set(path):
+            raise MSv4Error(f"{str(path)!r} is not an MSv4 processing set (a zarr store "
+                            "whose root is of type 'processing_set')")
+        tree = _xradio()(str(path))
+        where = repr(str(path))
+    elif hasattr(ps, "children") and hasattr(ps, "attrs"):
+        tree, where = ps, "the processing set"
+    else:
+        raise TypeError(f"ps must be an xarray DataTree or the path of a processing set, "
+                        f"got {type(ps).__name__}")
+    done, undefined, rows = {}, 0, 0
+    for name, partition in _partitions(tree, where):
+        done[name], bad, count = _partition(name, partition, options, where)
+        undefined, rows = undefined + bad, rows + count
+    if undefined:
+        warn_caller(f"the feed rotation is undefined for {undefined} of {rows} "
+                    "time-baselines (an alt-az antenna pointing at the zenith): their "
+                    f"{options['groups'][2]} is NaN", DegenerateGeometryWarning)
+    out = tree.copy()
+    for name, partition in done.items():
+        out[name] = partition
+    if path is None or write is False:
+        return out
+    _write(path, out, done, options["groups"][2])
+    return _xradio()(str(path))
+
+
+def _write(path, tree, names, variable):
+    """The new variable and the ``data_groups`` attributes of each partition, into the
+    store; the consolidated metadata made anew."""
+    import zarr  # with xradio
+
+    for name in names:
+        data = tree[name][variable]
+        dataset = data.to_dataset(name=variable).drop_vars(list(data.coords))
+        group = zarr.open_group(str(path), path=name, mode="r")
+        encoding = {variable: {"chunks": tuple(c[0] for c in data.chunks)}} \
+            if data.chunks and variable not in group else {}
+        dataset.to_zarr(str(path), group=name, mode="a", consolidated=False,
+                        encoding=encoding)
+        group = zarr.open_group(str(path), path=name, mode="r+")
+        group.attrs["data_groups"] = tree[name].attrs["data_groups"]
+    zarr.consolidate_metadata(str(path))
