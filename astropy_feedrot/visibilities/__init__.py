@@ -30,6 +30,11 @@ One module per format, on shared steps:
   and ``FEED`` receptors), `~astropy_feedrot.visibilities.uvdata` (everything
   pyuvdata reads); `~astropy_feedrot.visibilities.antenna_tables` holds the
   antenna tables FITS-IDI and UVFITS share;
+* `~astropy_feedrot.visibilities.msv4`: MSv4 processing sets (xradio),
+  corrected lazily into a new data group (`correct_processing_set`);
+* `~astropy_feedrot.visibilities.resolve`: the antennas of a file resolved
+  once, the same way for every format (aperture arrays, the catalogue's
+  mounts, the receptors given);
 * `~astropy_feedrot.visibilities.faraday`: the ionospheric Faraday rotation
   in a correction (the RM of each row's antennas, lambda^2 of each format's
   channels), beside the feed rotation;
@@ -67,6 +72,7 @@ from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused
 from .kinds import FILE_KINDS, check_header_cards, existing_path, file_kind
 from .ms import CORR_TYPES, MSError, correct_ms
 from .ms_antennas import ms_antennas
+from .msv4 import MSv4Error, correct_processing_set, processing_set_antennas
 from .poles import POLES, pole_context
 from .receptors import (
     ReceptorAngleTable,
@@ -129,6 +135,9 @@ __all__ = [
     "correct_ms",
     "CORR_TYPES",
     "MSError",
+    "correct_processing_set",
+    "processing_set_antennas",
+    "MSv4Error",
     "antennas_from_uvdata",
     "feed_rotation_uvdata",
     "correct_uvdata",

@@ -46,6 +46,7 @@ from .history import CorrectionRefused, check_history
 from .kinds import existing_path, file_kind
 from .ms import correct_ms
 from .ms_antennas import ms_antennas, ms_telescopes
+from .msv4 import processing_set_antennas, read_processing_set
 from .ms_tables import MSError, check_column_history, column_records, copy_ms
 from .poles import convention_options
 from .resolve import refuse_aperture_array, resolve_antennas
@@ -94,10 +95,24 @@ def file_telescopes(path, kind=None):
         return fits_telescopes(path)
     if kind == "ms":
         return ms_telescopes(path)
+    if kind == "msv4":
+        return sorted({t for partition in read_processing_set(path).children.values()
+                       for t in processing_set_antennas(partition)[2]})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # pyuvdata's complaints come with the data's read
         uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
     return [uv.telescope.name] if uv.telescope.name else []
+
+
+def _processing_set_antennas(path, vertical):
+    """The antennas of every partition, numbered by their names' first appearance."""
+    antennas = {}
+    for name, partition in read_processing_set(path).children.items():
+        found, names, _ = processing_set_antennas(partition, vertical=vertical,
+                                                  where=f"{str(path)!r}, partition {name!r}")
+        for index, antenna in found.items():
+            antennas.setdefault(names[index], antenna)
+    return dict(enumerate(antennas.values()))
 
 
 def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
@@ -161,6 +176,8 @@ def read_antennas(path, *, vertical="geodetic", mounts="file", catalogue=None):
         software = writing_program(path)[1]
     elif kind == "ms":
         antennas, software = ms_antennas(path, vertical=vertical, unusable="keep"), "casacore"
+    elif kind == "msv4":
+        antennas, software = _processing_set_antennas(path, vertical), "casacore"
     else:
         uv = read_uvdata(path, read_data=False, file_type=PYUVDATA_TYPES[kind])
         antennas = antennas_from_uvdata(uv, vertical=vertical, unusable="keep")
@@ -336,6 +353,10 @@ def check_output_format(kind, output):
     else:
         named = OUTPUT_EXTENSIONS.get(extension, "unknown")
     pyuvdata = ", ".join(e for e, k in OUTPUT_EXTENSIONS.items() if k not in ("fits-idi", None))
+    if kind == "msv4":
+        raise ValueError(f"{text!r}: an MSv4 processing set is corrected in place, as a new "
+                         "data group beside its data (correct_processing_set; feedrot correct "
+                         "PS.ps.zarr --in-place), not into a copy")
     if kind == "fits-idi":
         if named in ("fits-idi", None):
             return "fits-idi"

@@ -1,6 +1,7 @@
 # Licensed under a 3-clause BSD style license - see licenses/LICENSE.rst
 """The kinds of visibility file, told from their content, and who reads each."""
 
+import json
 import os
 import warnings
 from pathlib import Path
@@ -9,7 +10,8 @@ from astropy.io import fits
 
 from .antenna_tables import FITSFormatError
 
-__all__ = ["FILE_KINDS", "file_kind", "existing_path", "check_header_cards"]
+__all__ = ["FILE_KINDS", "file_kind", "existing_path", "check_header_cards",
+           "is_processing_set"]
 
 #: The kinds of visibility file recognised, and the module of
 #: `astropy_feedrot.visibilities` that reads and corrects each (with the
@@ -21,6 +23,7 @@ FILE_KINDS = {
     "ms": "ms (python-casacore, in place) or uvdata (pyuvdata, a copy)",
     "miriad": "uvdata (pyuvdata)",
     "mir": "uvdata (pyuvdata)",
+    "msv4": "msv4 (xradio, a new data group, in place)",
 }
 
 _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
@@ -123,6 +126,27 @@ def _as_written(hdu, path, keyword):
     return keyword
 
 
+def is_processing_set(path):
+    """Whether ``path`` is an MSv4 processing set on disk: a zarr group whose root
+    ``zarr.json`` says its type is ``processing_set`` (read as JSON, without xradio).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.kinds import is_processing_set
+    >>> is_processing_set(sample_file("vla_sim.ms"))
+    False
+    """
+    meta = Path(path) / "zarr.json"
+    if not meta.is_file():
+        return False
+    try:
+        attributes = json.loads(meta.read_text()).get("attributes", {})
+    except (OSError, ValueError, AttributeError):
+        return False
+    return isinstance(attributes, dict) and attributes.get("type") == "processing_set"
+
+
 def file_kind(path):
     """The kind of a visibility file, from its content.
 
@@ -130,7 +154,7 @@ def file_kind(path):
     ----------
     path : str or path-like
         A file (FITS-IDI, UVFITS, uvh5) or a directory (Measurement Set,
-        Miriad, SMA Mir).
+        Miriad, SMA Mir, MSv4 processing set).
 
     Returns
     -------
@@ -169,9 +193,12 @@ def file_kind(path):
             return "miriad"
         if (path / "in_read").is_file() and (path / "bl_read").is_file():
             return "mir"
+        if is_processing_set(path):
+            return "msv4"
         raise ValueError(f"{str(path)!r} is a directory but not a Measurement Set (table.dat "
-                         "and ANTENNA), a Miriad data set (visdata) nor an SMA Mir data set "
-                         "(in_read)")
+                         "and ANTENNA), a Miriad data set (visdata), an SMA Mir data set "
+                         "(in_read) nor an MSv4 processing set (zarr.json of type "
+                         "'processing_set')")
     with open(path, "rb") as handle:
         start = handle.read(8)
     if start.startswith(_HDF5_SIGNATURE):

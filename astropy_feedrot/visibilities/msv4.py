@@ -37,15 +37,20 @@ from astropy.time import Time
 from ..applied.correction import correct_receptor_visibilities
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from .catalogue import check_mounts_option
-from .history import HISTORY_MARK, APPLY_MARK, CorrectionRefused, check_direction, \
+from .faraday import check_ionosphere, ionosphere_text, lambda_squared, rotation_measure_rows
+from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused, check_direction, \
     history_entry
+from .kinds import is_processing_set
 from .ms_antennas import describe_antenna
 from .poles import POLES, convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles
 from .resolve import resolve_antennas
 from .unusable import usable_antennas, warn_skipped
 
-__all__ = ["correct_processing_set", "processing_set_antennas", "is_processing_set",
+# The examples need xradio (the msv4 extra).
+__doctest_requires__ = {("correct_processing_set", "read_processing_set"): ["xradio"]}
+
+__all__ = ["correct_processing_set", "processing_set_antennas", "read_processing_set",
            "GROUPS", "MSv4Error"]
 
 #: Per direction: the data group read, the data group added and its variable.
@@ -59,36 +64,34 @@ class MSv4Error(ValueError):
     """A processing set that cannot be corrected as it is (the message says why)."""
 
 
-def _xradio():
+def read_processing_set(path):
+    """A processing set on disk, opened lazily with xradio's ``open_processing_set``.
+
+    Raises
+    ------
+    ImportError
+        Without xradio, naming the extra to install.
+    MSv4Error
+        If ``path`` is not a processing set.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.msv4 import read_processing_set
+    >>> read_processing_set(sample_file("vla_sim.ms"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    astropy_feedrot.visibilities.msv4.MSv4Error: '...vla_sim.ms' is not an MSv4 processing set ...
+    """
+    if not is_processing_set(path):
+        raise MSv4Error(f"{str(path)!r} is not an MSv4 processing set (a zarr store "
+                        "whose root is of type 'processing_set')")
     try:
         from xradio.measurement_set import open_processing_set  # optional dependency
     except ImportError:
         raise ImportError("MSv4 processing sets need xradio: python -m pip install "
                           '"astropy_feedrot[msv4]"') from None
-    return open_processing_set
-
-
-def is_processing_set(path):
-    """Whether ``path`` is a processing set on disk (a zarr group of type
-    ``processing_set``).
-
-    Examples
-    --------
-    >>> from astropy_feedrot.data import sample_file
-    >>> from astropy_feedrot.visibilities.msv4 import is_processing_set
-    >>> is_processing_set(sample_file("vla_sim.ms"))
-    False
-    """
-    meta = Path(path) / "zarr.json"
-    if not meta.is_file():
-        return False
-    import json
-
-    try:
-        attributes = json.loads(meta.read_text()).get("attributes", {})
-    except (OSError, ValueError):
-        return False
-    return attributes.get("type") == "processing_set"
+    return open_processing_set(str(path))
 
 
 def _partitions(tree, where):
@@ -244,8 +247,11 @@ def _refuse_again(partition, new, direction, redo, where):
                                 f"already ({description}); {{redo}} to compute it again")
 
 
-def _angle_table(partition, source, antennas, names, products, frame, where):
-    """Receptor position angles (deg) per (time, antenna) and the orbiting antennas."""
+def _angle_table(partition, source, antennas, names, products, frame, where,
+                 ionosphere=None):
+    """Receptor position angles (deg) and, with an ionosphere, the rotation measure
+    (rad/m^2) per (time, antenna), shape (T, A, 3); the antennas of each baseline; the
+    orbiting antennas."""
     first = [names.index(str(n)) for n in _values(partition["baseline_antenna1_name"])]
     second = [names.index(str(n)) for n in _values(partition["baseline_antenna2_name"])]
     used = np.unique(first + second)
@@ -253,19 +259,30 @@ def _angle_table(partition, source, antennas, names, products, frame, where):
     ground = np.array([n for n in used.tolist() if n in usable], int)
     times = _times(partition, where)
     sources, field = _sources(partition, source, where)
-    theta = np.full((times.size, len(names), 2), np.nan)
+    theta = np.full((times.size, len(names), 3), np.nan)
+    theta[..., 2] = 0.0
     if ground.size:
         rows = np.tile(ground, times.size)
+        epochs = times[np.repeat(np.arange(times.size), ground.size)]
+        field = np.repeat(field, ground.size)
         theta_rows, _ = receptor_position_angles(
-            usable, rows, rows, times[np.repeat(np.arange(times.size), ground.size)],
-            sources, np.repeat(field, ground.size), products=products, frame=frame,
+            usable, rows, rows, epochs, sources, field, products=products, frame=frame,
             where=where, hint="give them with feeds=")
-        theta[:, ground] = theta_rows.reshape(times.size, ground.size, 2)
+        theta[:, ground, :2] = theta_rows.reshape(times.size, ground.size, 2)
+        if ionosphere is not None:
+            rm = rotation_measure_rows(ionosphere, usable, rows, epochs, sources, field, where)
+            theta[:, ground, 2] = rm.reshape(times.size, ground.size)
     warn_unusual_angles({n: usable[n] for n in ground.tolist()}, where)
     return theta, np.array(first), np.array(second), skip
 
 
-def _correct_block(visibilities, theta1, theta2, *, products, direction):
+def _correct_block(visibilities, table1, table2, lambda2=None, *, products, direction):
+    """One block: the angles of both antennas (deg) and their RM (rad/m^2) along the
+    last axis of ``table1``, ``table2``; lambda^2 (m^2) of the block's channels."""
+    theta1, theta2 = table1[..., :2], table2[..., :2]
+    if lambda2 is not None:  # theta - RM lambda^2, per channel (faraday.faraday_angles)
+        theta1 = theta1 - np.degrees(table1[..., 2:] * lambda2[..., None])
+        theta2 = theta2 - np.degrees(table2[..., 2:] * lambda2[..., None])
     out = np.empty_like(visibilities)
     with np.errstate(invalid="ignore"):  # NaN angles give NaN, counted beforehand
         correct_receptor_visibilities(visibilities, theta1 * u.deg, theta2 * u.deg, products,
@@ -273,18 +290,28 @@ def _correct_block(visibilities, theta1, theta2, *, products, direction):
     return out
 
 
-def _corrected(partition, source, theta, first, second, skip, products, direction):
+def _corrected(partition, source, theta, first, second, skip, products, direction,
+               faraday):
     import xarray as xr  # with xradio
 
     data = partition[source["correlated_data"]]
-    table = xr.DataArray(theta, dims=("time", "feedrot_antenna", "feedrot_receptor"))
+    table = xr.DataArray(theta, dims=("time", "feedrot_antenna", "feedrot_angle"))
     if data.chunks is not None:
         table = table.chunk({"time": data.chunksizes["time"]})
     theta1 = table.isel(feedrot_antenna=xr.DataArray(first, dims="baseline_id"))
     theta2 = table.isel(feedrot_antenna=xr.DataArray(second, dims="baseline_id"))
+    inputs = [data.variable, theta1.variable, theta2.variable]
+    core = [["polarization"], ["feedrot_angle"], ["feedrot_angle"]]
+    if faraday:
+        frequency = partition["frequency"]
+        lambda2 = xr.DataArray(lambda_squared(_values(frequency) * u.Unit(
+            frequency.attrs.get("units", "Hz"))), dims="frequency")
+        if data.chunks is not None:
+            lambda2 = lambda2.chunk({"frequency": data.chunksizes["frequency"]})
+        inputs.append(lambda2.variable)
+        core.append([])
     corrected = xr.apply_ufunc(
-        _correct_block, data.variable, theta1.variable, theta2.variable,
-        input_core_dims=[["polarization"], ["feedrot_receptor"], ["feedrot_receptor"]],
+        _correct_block, *inputs, input_core_dims=core,
         output_core_dims=[["polarization"]], dask="parallelized",
         output_dtypes=[data.dtype], kwargs=dict(products=products, direction=direction))
     corrected = corrected.transpose(*data.dims)
@@ -306,8 +333,8 @@ def _check_products(products, where):
 
 def _partition(name, partition, options, where):
     """The partition with its new data group (a new tree; the input is left as it is)."""
-    direction, frame, vertical, pole = (options[k] for k in ("direction", "frame",
-                                                              "vertical", "pole"))
+    direction, frame = options["direction"], options["frame"]
+    vertical, pole = options["vertical"], options["pole"]
     source_name, new_name, variable = options["groups"]
     where = f"{where}, partition {name!r}"
     source = _group(partition, source_name, where)
@@ -323,7 +350,8 @@ def _partition(name, partition, options, where):
     try:
         with pole_context(pole):
             theta, first, second, skip = _angle_table(partition, source, antennas, names,
-                                                      products, frame, where)
+                                                      products, frame, where,
+                                                      options["ionosphere"])
     except ValueError as error:
         raise MSv4Error(str(error)) from None
     partition = partition.copy()
@@ -331,11 +359,13 @@ def _partition(name, partition, options, where):
     undefined = int(np.count_nonzero(bad[:, first] | bad[:, second])) - \
         int(np.count_nonzero(np.isin(first, skip) | np.isin(second, skip))) * bad.shape[0]
     partition[variable] = _corrected(partition, source, theta, first, second, skip,
-                                     products, direction)
+                                     products, direction, options["ionosphere"] is not None)
     what = f"{source['correlated_data']} -> {variable}"
     if skip:
         what += f" (not the baselines to the orbiting antennas {', '.join(names[n] for n in skip)})"
     description = history_entry(direction, what, frame=frame, vertical=vertical) + \
+        ("" if options["ionosphere"] is None else
+         f" {ionosphere_text(options['ionosphere'])}") + \
         ("" if pole == "itrs" else f" (pole={pole})")
     group = {key: value for key, value in source.items()
              if key not in ("correlated_data", "description", "date")}
@@ -350,19 +380,22 @@ def _partition(name, partition, options, where):
     return partition, max(undefined, 0), rows
 
 
-def _options(direction, frame, convention, vertical, pole, feeds, mounts, catalogue, redo):
+def _options(direction, frame, convention, vertical, pole, feeds, mounts, catalogue, redo,
+             ionosphere):
     vertical, pole = convention_options(convention, vertical, pole)
+    ionosphere = check_ionosphere(ionosphere)
     direction = check_direction(direction)
     check_mounts_option(mounts)
     if pole not in POLES:
         raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
     return dict(direction=direction, frame=frame, vertical=vertical, pole=pole, feeds=feeds,
-                mounts=mounts, catalogue=catalogue, redo=redo, groups=GROUPS[direction])
+                mounts=mounts, catalogue=catalogue, redo=redo, groups=GROUPS[direction],
+                ionosphere=ionosphere)
 
 
 def correct_processing_set(ps, *, direction="remove", frame="apparent", convention="rigorous",
                            vertical=None, pole=None, feeds=None, mounts="file",
-                           catalogue=None, redo=False, write=None):
+                           catalogue=None, redo=False, ionosphere=None, write=None):
     """Remove (or apply) the feed rotation of an MSv4 processing set, lazily.
 
     Parameters
@@ -396,6 +429,12 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
     redo : bool, optional
         Compute the new data group again where this package wrote it already
         (its description says so); refused otherwise.
+    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
+        Remove (apply) the ionospheric Faraday rotation too, in the same
+        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
+        \\lambda^2` per channel, with the RM of each antenna's line of sight
+        at each epoch (:doc:`/ionosphere`); the description names the IONEX
+        files.
     write : bool, optional
         For a path: write the new variables into the store (default True);
         every array that was there stays as it was, and the partitions'
@@ -421,6 +460,9 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
         cannot be corrected (each named with its reason: an aperture array,
         a mount without a model, receptors that cannot be used); nothing is
         written then.
+    IonosphereError
+        If ``ionosphere`` does not cover the epochs of the data, or its
+        table of rotation measures lacks an antenna (named).
     CorrectionRefused
         (a ValueError) If a partition has the new data group already
         (unless ``redo`` and this package wrote it).
@@ -443,25 +485,32 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
 
     Examples
     --------
-    >>> import tempfile, pathlib
+    The package's VLA sample converted by xradio, corrected lazily (nothing
+    written), then into its store:
+
+    >>> import logging, tempfile, pathlib
     >>> from xradio.measurement_set import convert_msv2_to_processing_set
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.visibilities import correct_processing_set
-    >>> store = str(pathlib.Path(tempfile.mkdtemp()) / "vla.ps.zarr")
-    >>> convert_msv2_to_processing_set(str(sample_file("vla_sim.ms")), store)  # doctest: +SKIP
-    >>> ps = correct_processing_set(store, write=False)  # doctest: +SKIP
-    >>> ps["vla_sim_0"]["VISIBILITY_CORRECTED"].chunks is not None  # doctest: +SKIP
+    >>> logging.getLogger("toolviper").setLevel(logging.WARNING)
+    >>> store = pathlib.Path(tempfile.mkdtemp()) / "vla.ps.zarr"
+    >>> ms = str(sample_file("vla_sim.ms"))
+    >>> convert_msv2_to_processing_set(ms, str(store))  # doctest: +IGNORE_OUTPUT
+    >>> ps = correct_processing_set(store, write=False)
+    >>> sorted(ps["vla_sim_0"].attrs["data_groups"])
+    ['base', 'corrected', 'model']
+    >>> ps["vla_sim_0"]["VISIBILITY_CORRECTED"].chunks is not None  # a dask array
     True
+    >>> ps = correct_processing_set(store)  # written into the store
+    >>> ps["vla_sim_0"].attrs["data_groups"]["corrected"]["correlated_data"]
+    'VISIBILITY_CORRECTED'
     """
     options = _options(direction, frame, convention, vertical, pole, feeds, mounts,
-                       catalogue, redo)
+                       catalogue, redo, ionosphere)
     path = None
     if isinstance(ps, (str, os.PathLike)):
         path = Path(ps)
-        if not is_processing_set(path):
-            raise MSv4Error(f"{str(path)!r} is not an MSv4 processing set (a zarr store "
-                            "whose root is of type 'processing_set')")
-        tree = _xradio()(str(path))
+        tree = read_processing_set(path)
         where = repr(str(path))
     elif hasattr(ps, "children") and hasattr(ps, "attrs"):
         tree, where = ps, "the processing set"
@@ -482,7 +531,7 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
     if path is None or write is False:
         return out
     _write(path, out, done, options["groups"][2])
-    return _xradio()(str(path))
+    return read_processing_set(path)
 
 
 def _write(path, tree, names, variable):
