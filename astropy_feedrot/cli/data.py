@@ -27,11 +27,13 @@ from ..visibilities import (
     check_output_format,
     correct_file,
     correct_ms,
+    correct_processing_set,
     file_kind,
     parse_feeds,
     read_antennas,
 )
 from ..ionosphere import IonosphereError
+from ..visibilities.msv4 import GROUPS
 from ..visibilities.poles import convention_options
 from .common import wrote
 from .faraday import ionosphere_option
@@ -130,9 +132,12 @@ def _run_in_place(args, options):
         kind = file_kind(args.input)
     except (OSError, ValueError) as error:
         raise CommandError(f"INPUT: {one_line(error)}") from None
+    if kind == "msv4":
+        return _run_processing_set(args, options)
     if kind != "ms":
-        raise CommandError(f"--in-place: {args.input!r} is not a Measurement Set; other "
-                           "files are corrected into a copy (-o OUTPUT)")
+        raise CommandError(f"--in-place: {args.input!r} is neither a Measurement Set nor an "
+                           "MSv4 processing set; other files are corrected into a copy "
+                           "(-o OUTPUT)")
     try:
         with _client(args) as client, _ionosphere_errors(args):
             correct_ms(args.input, client=client, **_columns(args), **options)
@@ -142,6 +147,30 @@ def _run_in_place(args, options):
         raise CommandError(one_line(error.command_line())) from None
     source = args.data_column or (args.column if args.apply and args.column else "DATA")
     _summary(args, args.input, f"in place, {source} -> {args.column or 'CORRECTED_DATA'}")
+    return 0
+
+
+def _run_processing_set(args, options):
+    """An MSv4 processing set, in place: a new data group in every partition."""
+    for option, value in (("--data-column", args.data_column is not None),
+                          ("--column", args.column is not None),
+                          ("--overwrite-column", args.overwrite_column)):
+        if value:
+            raise CommandError(f"{option} is for Measurement Sets v2; a processing set gains "
+                               "the data group 'corrected' (VISIBILITY_CORRECTED; with "
+                               "--apply, 'model_corrupted')")
+    options = {k: v for k, v in options.items() if k != "progress"}
+    try:
+        # The graph is computed on the active scheduler: the cluster's with --dask or
+        # --workers, dask's threads otherwise.
+        with _client(args), _ionosphere_errors(args):
+            correct_processing_set(args.input, write=True, **options)
+    except ImportError as error:
+        raise CommandError(one_line(error)) from None
+    except CorrectionRefused as error:  # in the command line's words (--redo)
+        raise CommandError(one_line(error.command_line())) from None
+    source, new, variable = GROUPS[options["direction"]]
+    _summary(args, args.input, f"in place, data group {source} -> {new} ({variable})")
     return 0
 
 
@@ -174,6 +203,13 @@ def _ionosphere_errors(args):
         raise CommandError(f"{option}: {one_line(error)}") from None
 
 
+def _kind(path):
+    try:
+        return file_kind(path)
+    except (OSError, ValueError):
+        return None  # said where the input is read
+
+
 def run_correct(args):
     args.vertical, args.pole = convention_options(args.convention, args.vertical, args.pole)
     ionosphere = None
@@ -183,7 +219,7 @@ def run_correct(args):
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
                    feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts,
                    ionosphere=ionosphere)
-    if args.in_place:
+    if args.in_place or (args.output is None and _kind(args.input) == "msv4"):
         return _run_in_place(args, options)
     if args.output is None:
         raise CommandError("give -o/--output OUTPUT for the corrected copy, or --in-place "

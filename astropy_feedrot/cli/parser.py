@@ -522,7 +522,8 @@ def _add_files(commands):
                          help="the corrected copy (not with --in-place)")
     correct.add_argument("--in-place", action="store_true",
                          help="correct a Measurement Set in place: read --data-column, write "
-                         "--column")
+                         "--column; an MSv4 processing set (.ps.zarr) is always corrected in "
+                         "place, into the data group 'corrected' (--apply: 'model_corrupted')")
     correct.add_argument("--data-column", metavar="COLUMN",
                          help="Measurement Sets: the column read (default DATA; with --apply, "
                          "--column itself: a model corrupted in place)")

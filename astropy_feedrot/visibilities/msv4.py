@@ -27,6 +27,7 @@ xradio is optional (the ``msv4`` extra: ``python -m pip install
 """
 import datetime
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -240,11 +241,11 @@ def _refuse_again(partition, new, direction, redo, where):
     mark = HISTORY_MARK if direction == "remove" else APPLY_MARK
     if not description.startswith(mark):
         raise CorrectionRefused(f"{where} has a data group {new!r} that this package did "
-                                f"not write ({description!r}); it is left as it is: "
-                                "{command} a copy of the processing set without it")
+                                f"not write ({description!r}); it is left as it is: correct "
+                                "a processing set without it")
     if not redo:
         raise CorrectionRefused(f"{where}: its data group {new!r} holds this correction "
-                                f"already ({description}); {{redo}} to compute it again")
+                                f"already ({description}); pass <<redo>> to compute it again")
 
 
 def _angle_table(partition, source, antennas, names, products, frame, where,
@@ -325,8 +326,9 @@ def _corrected(partition, source, theta, first, second, skip, products, directio
 
 def _check_products(products, where):
     try:
-        correct_receptor_visibilities(np.zeros((1, len(products)), complex), [0, 0] * u.deg,
-                                      [0, 0] * u.deg, products)
+        # Receptors at right angles: only the products are checked here.
+        correct_receptor_visibilities(np.zeros((1, len(products)), complex), [0, 90] * u.deg,
+                                      [0, 90] * u.deg, products)
     except ValueError as error:
         raise MSv4Error(f"{where}: {error}") from None
 
@@ -542,11 +544,15 @@ def _write(path, tree, names, variable):
     for name in names:
         data = tree[name][variable]
         dataset = data.to_dataset(name=variable).drop_vars(list(data.coords))
+        # xarray writes the dataset's attributes as the group's: all of them, with the
+        # data group added.
+        dataset.attrs = dict(tree[name].attrs)
         group = zarr.open_group(str(path), path=name, mode="r")
         encoding = {variable: {"chunks": tuple(c[0] for c in data.chunks)}} \
             if data.chunks and variable not in group else {}
         dataset.to_zarr(str(path), group=name, mode="a", consolidated=False,
                         encoding=encoding)
-        group = zarr.open_group(str(path), path=name, mode="r+")
-        group.attrs["data_groups"] = tree[name].attrs["data_groups"]
-    zarr.consolidate_metadata(str(path))
+    with warnings.catch_warnings():
+        # The store came with consolidated metadata (xradio writes it): made anew, as it was.
+        warnings.filterwarnings("ignore", message="Consolidated metadata is currently not part")
+        zarr.consolidate_metadata(str(path))
