@@ -26,8 +26,8 @@ from ..applied.correction import DIRECTIONS
 from ..core.version import version as __version__
 
 __all__ = ["HISTORY_MARK", "APPLY_MARK", "DIRECTIONS", "history_entry", "last_direction",
-           "check_history", "check_direction", "CorrectionRefused", "OPTION_WORDS",
-           "aips_records", "history_records", "compose", "refusal", "ColumnRecord",
+           "check_history", "check_direction", "CorrectionRefused", "AlreadyCorrected",
+           "OPTION_WORDS", "aips_records", "history_records", "compose", "refusal", "ColumnRecord",
            "ms_column_history"]
 
 #: The first words of the history line of data whose feed rotation was removed.
@@ -102,6 +102,20 @@ class CorrectionRefused(ValueError):
 
     def __reduce__(self):
         return type(self), (self.template,)
+
+
+class AlreadyCorrected(CorrectionRefused):
+    """The refusal of a correction whose output holds exactly this correction already
+    (this package's, in the same direction, from the same data): running it again would
+    only compute it anew. A run over many files skips such a file
+    (`~astropy_feedrot.visibilities.correct_files`).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.history import AlreadyCorrected, CorrectionRefused
+    >>> issubclass(AlreadyCorrected, CorrectionRefused)
+    True
+    """
 
 
 def _squeeze(text):
@@ -346,6 +360,7 @@ def refusal(where, direction, record, *, recompute=None):
     Returns
     -------
     CorrectionRefused
+        An `AlreadyCorrected` with ``recompute``.
 
     Examples
     --------
@@ -360,7 +375,7 @@ def refusal(where, direction, record, *, recompute=None):
     """
     done = _DONE[check_direction(direction)]
     if recompute:
-        return CorrectionRefused(
+        return AlreadyCorrected(
             f"{where}: {recompute} with the feed rotation {done} already (the history "
             f"records {record}); the same correction again would only compute it anew: "
             "pass <<redo>> to do so")

@@ -39,8 +39,14 @@ from ..applied.correction import correct_receptor_visibilities
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from .catalogue import check_mounts_option
 from .faraday import check_ionosphere, ionosphere_text, lambda_squared, rotation_measure_rows
-from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused, check_direction, \
-    history_entry
+from .history import (
+    APPLY_MARK,
+    HISTORY_MARK,
+    AlreadyCorrected,
+    CorrectionRefused,
+    check_direction,
+    history_entry,
+)
 from .kinds import is_processing_set
 from .ms_antennas import describe_antenna
 from .poles import POLES, convention_options, pole_context
@@ -244,8 +250,8 @@ def _refuse_again(partition, new, direction, redo, where):
                                 f"not write ({description!r}); it is left as it is: correct "
                                 "a processing set without it")
     if not redo:
-        raise CorrectionRefused(f"{where}: its data group {new!r} holds this correction "
-                                f"already ({description}); pass <<redo>> to compute it again")
+        raise AlreadyCorrected(f"{where}: its data group {new!r} holds this correction "
+                               f"already ({description}); pass <<redo>> to compute it again")
 
 
 def _angle_table(partition, source, antennas, names, products, frame, where,
