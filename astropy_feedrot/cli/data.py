@@ -35,6 +35,7 @@ from ..visibilities import (
 from ..ionosphere import IonosphereError
 from ..visibilities.msv4 import GROUPS
 from ..visibilities.poles import convention_options
+from .archives import run_correct_files
 from .common import wrote
 from .faraday import ionosphere_option
 from .parser import one_line
@@ -210,8 +211,19 @@ def _kind(path):
         return None  # said where the input is read
 
 
+def _many(args):
+    """Whether the command corrects an archive: several inputs, or -o naming a
+    directory (a trailing separator)."""
+    if len(args.input) > 1:
+        return True
+    return args.output is not None and args.output.endswith(("/", os.sep))
+
+
 def run_correct(args):
     args.vertical, args.pole = convention_options(args.convention, args.vertical, args.pole)
+    many = _many(args)
+    if not many:
+        args.input = args.input[0]
     ionosphere = None
     if args.ionex is not None or args.rm_table is not None:  # before any work
         ionosphere, _ = ionosphere_option(args)
@@ -219,6 +231,9 @@ def run_correct(args):
                    vertical=args.vertical, progress=not args.quiet and sys.stderr.isatty(),
                    feeds=_feeds(args), redo=args.redo, pole=args.pole, mounts=args.mounts,
                    ionosphere=ionosphere)
+    if many:
+        with _client(args) as client, _ionosphere_errors(args):
+            return run_correct_files(args, options, client)
     if args.in_place or (args.output is None and _kind(args.input) == "msv4"):
         return _run_in_place(args, options)
     if args.output is None:

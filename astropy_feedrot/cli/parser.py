@@ -517,9 +517,15 @@ def _add_files(commands):
         "and columns feedrot did not write without --overwrite-column.",
         epilog=examples(EXAMPLES["correct"]),
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    correct.add_argument("input", metavar="INPUT", help="a visibility file or directory")
+    correct.add_argument("input", metavar="INPUT", nargs="+",
+                         help="a visibility file or directory; several (an archive) are "
+                         "corrected one task per file, each file's outcome in one table at "
+                         "the end, into -o OUTDIR/ or --in-place")
     correct.add_argument("-o", "--output", metavar="OUTPUT",
-                         help="the corrected copy (not with --in-place)")
+                         help="the corrected copy (not with --in-place); for several inputs, "
+                         "or ending in /, a directory that takes each input's copy under its "
+                         "own name (made if missing; copies an earlier run left there are "
+                         "skipped unless --overwrite)")
     correct.add_argument("--in-place", action="store_true",
                          help="correct a Measurement Set in place: read --data-column, write "
                          "--column; an MSv4 processing set (.ps.zarr) is always corrected in "
@@ -581,11 +587,11 @@ def _add_files(commands):
                             "antenna names; without it one series serves every antenna)")
     _add_ionex_height(ionosphere)
     correct.add_argument("--dask", metavar="SCHEDULER",
-                         help="correct the chunks of a Measurement Set or FITS-IDI file on "
-                         "the workers of this dask.distributed scheduler (its address)")
+                         help="correct on the workers of this dask.distributed scheduler (its "
+                         "address): the chunks of one Measurement Set or FITS-IDI file, one "
+                         "task per file for several, a processing set's graph")
     correct.add_argument("--workers", type=int, metavar="N",
-                         help="correct the chunks on a local dask cluster of N worker "
-                         "processes")
+                         help="the same on a local dask cluster of N worker processes")
     correct.add_argument("--overwrite", action="store_true",
                          help="replace an existing output (never the input)")
     correct.add_argument("--quiet", action="store_true",

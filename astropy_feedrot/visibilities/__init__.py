@@ -40,7 +40,9 @@ One module per format, on shared steps:
   channels), beside the feed rotation;
 * `~astropy_feedrot.visibilities.files`: any file, by its kind
   (`read_antennas`, `antenna_table`, `correct_file`), as ``feedrot
-  antennas`` and ``feedrot correct`` use them.
+  antennas`` and ``feedrot correct`` use them;
+* `~astropy_feedrot.visibilities.archives`: many files, one task per file
+  on dask.distributed, each file's outcome in one table (`correct_files`).
 
 pyuvdata and python-casacore are optional and imported on first use.
 
@@ -48,6 +50,7 @@ May import: ``core``, ``io``, ``earth``, ``antennas``, ``transmitters``,
 ``ionosphere``, ``engine``, ``stations``, ``applied``.
 """
 
+from .archives import OUTCOMES, correct_files
 from .antenna_tables import FITSFormatError, WritingProgram, open_fits, writing_program
 from .catalogue import (
     ARRAY_TOLERANCE,
@@ -96,6 +99,8 @@ __all__ = [
     "read_antennas",
     "antenna_table",
     "correct_file",
+    "correct_files",
+    "OUTCOMES",
     "check_output_format",
     "OUTPUT_EXTENSIONS",
     "FITSIDI_EXTENSIONS",
