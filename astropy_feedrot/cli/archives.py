@@ -8,6 +8,7 @@ import numpy as np
 
 from ..core.outputs import CommandError
 from ..visibilities import OUTCOMES, correct_files
+from ..visibilities.history import OPTION_WORDS
 
 __all__ = ["run_correct_files", "outcome_summary"]
 
@@ -48,6 +49,9 @@ def run_correct_files(args, options, client):
                               overwrite=args.overwrite, **columns, **options)
     except ValueError as error:
         raise CommandError(" ".join(str(error).split())) from None
+    for api, command in OPTION_WORDS.values():  # the reasons in the command line's words
+        table["reason"] = [reason.replace(f"pass {api}", f"pass {command}")
+                           for reason in table["reason"]]
     shown = list(_SHOWN) + (["warnings"] if any(table["warnings"]) else [])
     table[shown].write(sys.stdout, format="ascii.fixed_width_two_line")
     bad = bool(np.isin(table["outcome"], ("refused", "failed")).any())
