@@ -30,16 +30,13 @@ from astropy.time import Time
 from ..antennas.receptors import basis_of
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
 from ..core.progress import progress_steps
-from .catalogue import check_mounts_option
-from .faraday import check_ionosphere, ionosphere_text, ms_lambda_squared
-from .history import check_direction, history_entry
+from .correction import Correction
+from .faraday import ms_lambda_squared
 from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, ms_telescopes, subtable
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of, tables as _tables
 from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
-from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles
-from .resolve import resolve_antennas
-from .unusable import usable_antennas, warn_skipped
+from .unusable import warn_skipped
 
 __all__ = ["correct_ms", "CORR_TYPES", "MSError"]
 
@@ -267,15 +264,15 @@ def _meta(table):
                                                   "FEED2", "FIELD_ID", "DATA_DESC_ID")}
 
 
-def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None,
-          ionosphere=None):
+def _plan(correction, path, meta, feeds, skipped):
     """Per data description: rows, products, the virtual antennas of each row (not the
     rows ``skipped``, a mask, left as they are), their angles and, with an ionosphere,
     the lambda^2 of the channels (else None).
 
     Everything is checked here, before anything is written.
     """
-    channels = None if ionosphere is None else ms_lambda_squared(path, _tables())
+    channels = None if correction.ionosphere is None else ms_lambda_squared(path, _tables())
+    descriptions, fields = _descriptions(path), _fields(path)
     ddid = meta["DATA_DESC_ID"]
     missing = sorted(set(np.unique(meta["FIELD_ID"]).tolist()) - set(fields))
     if missing:
@@ -286,7 +283,7 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None,
             raise MSError(f"{str(path)!r}: rows use DATA_DESC_ID {dd} that the "
                           "DATA_DESCRIPTION table lacks")
         spw, products = descriptions[dd]
-        rows = np.flatnonzero((ddid == dd) if skipped is None else (ddid == dd) & ~skipped)
+        rows = np.flatnonzero((ddid == dd) & ~skipped)
         if not rows.size:
             continue
         epochs = meta["TIME"][rows]
@@ -303,21 +300,127 @@ def _plan(path, meta, descriptions, fields, feeds, frame, pole, skipped=None,
                               "rotation of linear feeds mixes all four, so it cannot be "
                               "removed visibility by visibility; rotate Stokes Q + iU by "
                               "twice the feed rotation after imaging instead")
-        with pole_context(pole):
+        with correction.pole_context():
             angles = ReceptorAngleTable(
                 feeds.virtual, epochs, meta["FIELD_ID"][rows], k1, k2, fields,
                 lambda t: Time(t / 86400.0, format="mjd", scale="utc"), products=products,
-                frame=frame, where=str(path), ionosphere=ionosphere)
-        plans.append((dd, rows, products, k1, k2, angles,
+                frame=correction.frame, where=str(path), ionosphere=correction.ionosphere)
+        plans.append((rows, products, k1, k2, angles,
                       None if channels is None else channels[spw]))
     return plans
 
 
-def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
-               direction="remove", frame="apparent", vertical=None, chunk_rows=None,
-               progress=False, feeds=None, redo=False, pole=None, client=None,
-               overwrite_column=False, mounts="file", catalogue=None,
-               convention="rigorous", ionosphere=None):
+def _start(correction, path, columns, overwrite_column, chunk_rows):
+    """The run's record of progress (a new one, or an interrupted run's), the columns
+    checked, the history asked; and the columns that say what each row is."""
+    data_column, corrected_column = columns
+    what = f"{data_column} -> {corrected_column}"
+    records = column_records(path)
+    with _open(path) as table:
+        partial = None
+        if isinstance(corrected_column, str) and corrected_column in table.colnames():
+            partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
+        resuming = partial is not None and partial.get("what") == what \
+            and partial.get("direction") == correction.direction
+        meta = _meta(table)
+        firsts = np.unique(meta["DATA_DESC_ID"], return_index=True)[1].tolist()
+        check_columns(table, path, data_column, corrected_column, records, firsts,
+                      overwrite_column=overwrite_column, resuming=resuming)
+        step_rows = _chunk_rows(table, data_column, chunk_rows)
+    if not resuming:
+        check_column_history(path, records, data_column, corrected_column,
+                             correction.direction, correction.redo)
+        return Progress(what, correction.direction, step_rows), meta
+    # Go on with the chunks of the interrupted run.
+    progress_record = Progress.resumed(partial, what, correction.direction)
+    if progress_record.unknown and data_column == corrected_column:
+        raise MSError(f"{str(path)!r}: an interrupted run left "
+                      f"{progress_record.unknown_text(data_column)}; the correction "
+                      f"cannot go on from there: restore {data_column} from a copy")
+    return progress_record, meta
+
+
+def _antennas(correction, path, meta):
+    """Every antenna of the set as the correction resolves it; those the rows use that
+    can be corrected; the orbiting ones, and the mask of the rows they leave alone."""
+    where = repr(str(path))
+    every = correction.resolve(ms_antennas(path, vertical=correction.vertical,
+                                           unusable="keep"), ms_telescopes(path), where)
+    used = np.unique(np.concatenate([meta["ANTENNA1"], meta["ANTENNA2"]]))
+    antennas, skip = correction.usable(every, used, where, error=MSError)
+    skipped = np.isin(meta["ANTENNA1"], skip) | np.isin(meta["ANTENNA2"], skip)
+    return every, antennas, skip, skipped
+
+
+def _blocks(meta, chunking, to_do):
+    for index in to_do:
+        rows, products, k1, k2, angles, lambda2 = chunking[index]
+        epochs, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
+        yield Block(rows_of(rows), products, angles.packed,
+                    angles.places(epochs, field, k1), angles.places(epochs, field, k2),
+                    index, lambda2)
+
+
+def _write(path, columns, direction, meta, chunking, progress_record, progress, client):
+    """Each chunk to do corrected and written (here, or by the client's workers), the
+    record of progress kept in the output column's keyword; the rows that came out NaN."""
+    data_column, corrected_column = columns
+    to_do = progress_record.to_do(len(chunking))
+    shared = client is not None  # the workers write their chunks themselves
+    late, nan_rows = [], 0
+    with _open(path, write=True, shared=shared) as table:
+        if corrected_column not in table.colnames():
+            with locked(table, shared):
+                _add_column(table, data_column, corrected_column)
+
+        def record():
+            with locked(table, shared):
+                table.putcolkeyword(corrected_column, _PARTIAL, progress_record.keyword())
+
+        # Marked before any row is written: a run killed outright is seen as partial.
+        record()
+        stream = results(_blocks(meta, chunking, to_do), table, path, columns, direction,
+                         client, late, len(to_do))
+        try:
+            with progress_steps(progress, len(to_do)) as step:
+                for block, bad in stream:
+                    nan_rows += bad
+                    progress_record.add(block.index)
+                    # Shared: taking the table's lock costs the workers a reread of it.
+                    if not shared or progress_record.since_written() >= RECORD_SECONDS:
+                        record()
+                    step()
+        except BaseException as error:
+            stream.close()  # waits for the chunks already sent to workers: into late
+            for block, bad in late:
+                progress_record.add(block.index, known=bad is not None)
+            record()
+            with locked(table, shared):
+                table.flush()
+            message = progress_record.interrupted(path, meta["TIME"].size, data_column,
+                                                  corrected_column)
+            if isinstance(error, KeyboardInterrupt):
+                raise KeyboardInterrupt(message) from None
+            if isinstance(error, Exception):
+                raise MSError(f"{message} ({type(error).__name__}: {error})") from error
+            raise
+    return nan_rows
+
+
+def _finish(path, columns, skipped, step_rows):
+    """The rows left alone copied into the output column (when it is another), and the
+    record of progress removed: the run is whole."""
+    data_column, corrected_column = columns
+    with _open(path, write=True) as table:
+        if skipped.any() and corrected_column != data_column:
+            _copy_rows(table, np.flatnonzero(skipped), data_column, corrected_column,
+                       step_rows)
+        table.removecolkeyword(corrected_column, _PARTIAL)
+
+
+def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA", chunk_rows=None,
+               progress=False, client=None, overwrite_column=False, correction=None,
+               **options):
     """Remove (or apply) the feed rotation of a Measurement Set's data, in place.
 
     Reads ``data_column`` in chunks of rows and writes the result into
@@ -339,16 +442,6 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
         its own). It may be ``data_column`` itself. An existing column that
         this package did not write (a ``MODEL_DATA``, a ``CORRECTED_DATA``
         that CASA filled) is written only with ``overwrite_column``.
-    direction : {'remove', 'apply'}, optional
-        ``'remove'`` (default): receptors fixed on the sky (R and L, or X
-        north and Y east of ``frame``). ``'apply'``: the inverse, from a sky
-        model to what the turning receptors see.
-    frame : str, optional
-        North of the sky-fixed receptors: ``'apparent'`` (default) or a
-        celestial frame such as ``'icrs'``.
-    vertical : {'geodetic', 'geocentric'}, optional
-        Default: the convention's.
-        The antennas' local vertical (``'geocentric'`` reproduces CASA).
     chunk_rows : int, optional
         Rows read at once (default: 32 MiB of the data column); the extra
         memory is about twice a chunk, plus some 60 bytes per row for the
@@ -357,26 +450,6 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     progress : bool or callable, optional
         True shows astropy's progress bar; a callable is called as
         ``progress(done, total)`` after each chunk.
-    feeds : `~astropy_feedrot.Receptors` or mapping, optional
-        Receptors to use instead of ``FEED`` (all antennas, or ``{antenna
-        number or name: Receptors}``).
-    redo : bool, optional
-        Correct ``data_column`` although the ``HISTORY`` says its data were
-        corrected in that direction already (by this package, by CASA's
-        ``applycal(parang=True)`` into ``CORRECTED_DATA``, or by AIPS before
-        the set was imported), or recompute a ``corrected_column`` that holds
-        this correction of ``data_column`` already.
-    convention : {'rigorous', 'casa'}, optional
-        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
-        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
-        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
-        ``pole`` given explicitly replace its choices.
-    pole : {'itrs', 'casa'}, optional
-        Default: the convention's.
-        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`):
-        the Earth-fixed z axis with polar motion (default), or CASA's (no polar
-        motion). ``vertical='geocentric', pole='casa'`` reproduces
-        ``applycal(parang=True)`` (:doc:`/correcting`).
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers, a few chunks to a task: each
         worker reads, corrects and writes its chunks itself, under casacore's
@@ -387,23 +460,15 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     overwrite_column : bool, optional
         Write into an existing ``corrected_column`` that this package did
         not write (its values are replaced).
-    mounts : {'file', 'catalogue'}, optional
-        Whose mount and focus an antenna within
-        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a station of
-        ``catalogue`` takes where the two differ: the ``MOUNT`` column
-        (default) or the catalogue's
-        (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
-        ``MOUNT`` is empty or has no model takes its station's).
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
-        The station catalogue ``mounts`` compares with: the embedded one by
-        default, another, or False for none.
-    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
-        Remove (apply) the ionospheric Faraday rotation too, in the same
-        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
-        \\lambda^2` per channel, with the RM of each antenna's line of sight
-        at each epoch (computed once per epoch, field and antenna) and
-        lambda^2 from ``CHAN_FREQ`` of each row's spectral window
-        (:doc:`/ionosphere`). ``HISTORY`` names the IONEX files.
+
+    correction : `~astropy_feedrot.visibilities.Correction`, optional
+        The correction's options (direction, frame, convention, vertical,
+        pole, feeds, mounts, catalogue, ionosphere, redo), made once...
+    **options
+        ...or given here, as `~astropy_feedrot.visibilities.Correction`
+        takes them. ``feeds`` replace the receptors of ``FEED``; with an
+        ionosphere, lambda^2 comes from ``CHAN_FREQ`` of each row's
+        spectral window and ``HISTORY`` names the IONEX files.
 
     Returns
     -------
@@ -474,125 +539,34 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA",
     >>> correct_ms(where / "day2_TDEM0003_10s_norx_1src_1spw_2ints.ms").name
     'day2_TDEM0003_10s_norx_1src_1spw_2ints.ms'
     """
-    vertical, pole = convention_options(convention, vertical, pole)
-    direction = check_direction(direction)
-    check_mounts_option(mounts)
-    ionosphere = check_ionosphere(ionosphere)
-    if pole not in POLES:
-        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
+    correction = Correction.of(correction, **options)
     if data_column is None:
-        data_column = "DATA" if direction == "remove" else corrected_column
+        data_column = "DATA" if correction.direction == "remove" else corrected_column
+    columns = (data_column, corrected_column)
     path = ms_path(ms)
     _tables()
     # Before casacore opens anything: it would wait for another process's lock.
     _check_writable(path)
-    what = f"{data_column} -> {corrected_column}"
-    records = column_records(path)
-    with _open(path) as table:
-        partial = None
-        if isinstance(corrected_column, str) and corrected_column in table.colnames():
-            partial = table.getcolkeywords(corrected_column).get(_PARTIAL)
-        resuming = partial is not None and partial.get("what") == what \
-            and partial.get("direction") == direction
-        meta = _meta(table)
-        firsts = np.unique(meta["DATA_DESC_ID"], return_index=True)[1].tolist()
-        check_columns(table, path, data_column, corrected_column, records, firsts,
-                      overwrite_column=overwrite_column, resuming=resuming)
-        step_rows = _chunk_rows(table, data_column, chunk_rows)
-    progress_record = Progress(what, direction, step_rows)
-    if resuming:
-        # Go on with the chunks of the interrupted run.
-        progress_record = Progress.resumed(partial, what, direction)
-        if progress_record.unknown and data_column == corrected_column:
-            raise MSError(f"{str(path)!r}: an interrupted run left "
-                          f"{progress_record.unknown_text(data_column)}; the correction "
-                          f"cannot go on from there: restore {data_column} from a copy")
-        step_rows = progress_record.chunk_rows
-    else:
-        check_column_history(path, records, data_column, corrected_column, direction, redo)
-    antennas = ms_antennas(path, vertical=vertical, unusable="keep")
-    every = antennas = resolve_antennas(antennas, telescope=ms_telescopes(path), mounts=mounts,
-                                        catalogue=catalogue, feeds=feeds,
-                                        where=repr(str(path)))
-    try:
-        antennas, skip = usable_antennas(
-            antennas, np.unique(np.concatenate([meta["ANTENNA1"], meta["ANTENNA2"]])),
-            repr(str(path)))
-    except ValueError as error:
-        raise MSError(str(error)) from None
-    # Rows on baselines to an orbiting antenna: left as they are (copied when the
-    # output column is another).
-    skipped = np.isin(meta["ANTENNA1"], skip) | np.isin(meta["ANTENNA2"], skip)
-    fields = _fields(path)
-    feed_table = FeedReceptors(path, antennas, feeds)
-    plans = _plan(path, meta, _descriptions(path), fields, feed_table, frame, pole, skipped,
-                  ionosphere)
+    progress_record, meta = _start(correction, path, columns, overwrite_column, chunk_rows)
+    every, antennas, skip, skipped = _antennas(correction, path, meta)
+    feed_table = FeedReceptors(path, antennas, correction.feeds)
+    plans = _plan(correction, path, meta, feed_table, skipped)
     warn_unusual_angles({feed_table.number[k]: antenna
                          for k, antenna in feed_table.virtual.items()}, str(path))
+    step_rows = progress_record.chunk_rows
     chunking = [(rows[k:k + step_rows], products, k1[k:k + step_rows], k2[k:k + step_rows],
-                 angles, lambda2) for dd, rows, products, k1, k2, angles, lambda2 in plans
+                 angles, lambda2) for rows, products, k1, k2, angles, lambda2 in plans
                 for k in range(0, rows.size, step_rows)]
-    total = meta["TIME"].size
     progress_record.count_rows([item[0].size for item in chunking])
-    to_do = progress_record.to_do(len(chunking))
-    nan_rows = 0
-
-    def blocks():
-        for index in to_do:
-            rows, products, k1, k2, angles, lambda2 = chunking[index]
-            epochs, field = meta["TIME"][rows], meta["FIELD_ID"][rows]
-            yield Block(rows_of(rows), products, angles.packed,
-                        angles.places(epochs, field, k1), angles.places(epochs, field, k2),
-                        index, lambda2)
-
-    shared = client is not None  # the workers write their chunks themselves
-    late = []
-    with _open(path, write=True, shared=shared) as table:
-        if corrected_column not in table.colnames():
-            with locked(table, shared):
-                _add_column(table, data_column, corrected_column)
-
-        def record():
-            with locked(table, shared):
-                table.putcolkeyword(corrected_column, _PARTIAL, progress_record.keyword())
-
-        # Marked before any row is written: a run killed outright is seen as partial.
-        record()
-        stream = results(blocks(), table, path, (data_column, corrected_column), direction,
-                         client, late, len(to_do))
-        try:
-            with progress_steps(progress, len(to_do)) as step:
-                for block, bad in stream:
-                    nan_rows += bad
-                    progress_record.add(block.index)
-                    # Shared: taking the table's lock costs the workers a reread of it.
-                    if not shared or progress_record.since_written() >= RECORD_SECONDS:
-                        record()
-                    step()
-        except BaseException as error:
-            stream.close()  # waits for the chunks already sent to workers: into late
-            for block, bad in late:
-                progress_record.add(block.index, known=bad is not None)
-            record()
-            with locked(table, shared):
-                table.flush()
-            message = progress_record.interrupted(path, total, data_column, corrected_column)
-            if isinstance(error, KeyboardInterrupt):
-                raise KeyboardInterrupt(message) from None
-            if isinstance(error, Exception):
-                raise MSError(f"{message} ({type(error).__name__}: {error})") from error
-            raise
-        if skipped.any() and corrected_column != data_column:
-            with locked(table, shared):
-                _copy_rows(table, np.flatnonzero(skipped), data_column, corrected_column,
-                           step_rows)
-        with locked(table, shared):
-            table.removecolkeyword(corrected_column, _PARTIAL)
-    _add_history(path, history_entry(direction, what, frame=frame, vertical=vertical) +
-                 ("" if ionosphere is None else f" {ionosphere_text(ionosphere)}") +
-                 ("" if pole == "itrs" else f" (pole={pole})") +
+    nan_rows = _write(path, columns, correction.direction, meta, chunking, progress_record,
+                      progress, client)
+    _finish(path, columns, skipped, step_rows)
+    _add_history(path, correction.history(" -> ".join(columns)) +
+                 correction.ionosphere_text(" ") +
+                 ("" if correction.pole == "itrs" else f" (pole={correction.pole})") +
                  (f" (not the baselines to the orbiting antennas "
                   f"{', '.join(map(str, skip))})" if skip else ""))
+    total = meta["TIME"].size
     warn_skipped(every, skip, int(np.count_nonzero(skipped)), total, repr(str(path)))
     if nan_rows:
         warn_caller(f"the feed rotation is undefined in {nan_rows} of {total} rows (an "
