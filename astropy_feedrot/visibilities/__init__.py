@@ -62,17 +62,19 @@ from .catalogue import (
     catalogue_receptors,
     catalogue_stations,
 )
-from .files import (
-    FITSIDI_EXTENSIONS,
-    OUTPUT_EXTENSIONS,
-    antenna_table,
-    check_output_format,
-    correct_file,
-    read_antennas,
-)
+from .correction import Correction
+from .files import antenna_table, correct_file, read_antennas
 from .fitsidi import STOKES_CODES, correct_fitsidi, fitsidi_antennas
 from .history import APPLY_MARK, HISTORY_MARK, CorrectionRefused
-from .kinds import FILE_KINDS, check_header_cards, existing_path, file_kind
+from .kinds import (
+    FILE_KINDS,
+    FITSIDI_EXTENSIONS,
+    OUTPUT_EXTENSIONS,
+    check_header_cards,
+    check_output_format,
+    existing_path,
+    file_kind,
+)
 from .ms import CORR_TYPES, MSError, correct_ms
 from .ms_antennas import ms_antennas
 from .msv4 import MSv4Error, correct_processing_set, processing_set_antennas
@@ -98,6 +100,7 @@ __all__ = [
     "check_header_cards",
     "read_antennas",
     "antenna_table",
+    "Correction",
     "correct_file",
     "correct_files",
     "OUTCOMES",

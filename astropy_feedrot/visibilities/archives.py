@@ -32,11 +32,10 @@ from pathlib import Path
 from astropy.table import Table
 
 from ..core.progress import progress_steps
-from .files import correct_file
+from .correction import OPTIONS, Correction
+from .files import correct_file  # noqa: F401 (every adapter registered)
 from .history import AlreadyCorrected
 from .kinds import existing_path, file_kind
-from .ms import correct_ms
-from .msv4 import correct_processing_set
 
 __all__ = ["correct_files", "OUTCOMES"]
 
@@ -51,30 +50,7 @@ def _one_line(error):
     return " ".join(str(error).split())
 
 
-def _correct(path, kind, target, options):
-    """Correct one file; raises what the correction raises."""
-    columns = {k: v for k, v in options.items() if k in _COLUMN_OPTIONS}
-    common = {k: v for k, v in options.items() if k not in _COLUMN_OPTIONS}
-    if kind == "msv4":
-        if target is not None:
-            raise ValueError(f"{str(path)!r}: an MSv4 processing set is corrected in place "
-                             "(a new data group), not into an output directory")
-        correct_processing_set(path, write=True, **common)
-        return path
-    if target is None:
-        if kind != "ms":
-            raise ValueError(f"{str(path)!r} is a {kind} file: only Measurement Sets and MSv4 "
-                             "processing sets are corrected in place; give an output "
-                             "directory")
-        correct_ms(path, **columns, **common)
-        return path
-    if kind != "ms" or target.suffix.lower() != ".ms":
-        columns = {}
-    return correct_file(path, target, overwrite=options.get("overwrite", False),
-                        **columns, **{k: v for k, v in common.items() if k != "overwrite"})
-
-
-def correct_one(path, kind, target, options):
+def correct_one(correction, path, target, options):
     """One file's outcome: a dict with ``outcome``, ``output``, ``reason``, ``warnings``
     and ``seconds``; never raises but for an interrupt (what a task of `correct_files`
     runs).
@@ -82,8 +58,9 @@ def correct_one(path, kind, target, options):
     Examples
     --------
     >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import Correction
     >>> from astropy_feedrot.visibilities.archives import correct_one
-    >>> correct_one(sample_file("vla_day2_8chan.uvfits"), "uvfits", None, {})["outcome"]
+    >>> correct_one(Correction(), sample_file("vla_day2_8chan.uvfits"), None, {})["outcome"]
     'refused'
     """
     start = time.perf_counter()
@@ -91,7 +68,7 @@ def correct_one(path, kind, target, options):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            output = str(_correct(path, kind, target, options))
+            output = str(correction.correct(path, target, **options))
         except AlreadyCorrected as error:
             outcome, reason = "skipped", _one_line(error)
         except (ValueError, ImportError) as error:  # the package's refusals are ValueErrors
@@ -141,21 +118,22 @@ def _kinds(paths):
     return kinds
 
 
-def _run(jobs, client, progress):
-    """The outcome of each job (index, path, kind, target), in this process or on the
-    client's workers, one task per file; MSv4 sets here (their graph on the client)."""
+def _run(correction, jobs, client, progress):
+    """The outcome of each job (index, path, kind, target, options), in this process or
+    on the client's workers, one task per file; MSv4 sets here (their graph on the
+    client)."""
     results = {}
     with progress_steps(progress, len(jobs)) as step:
         local = [job for job in jobs if client is None or job[2] == "msv4"]
         remote = [job for job in jobs if job not in local]
         futures = {}
         if remote:
-            futures = {client.submit(correct_one, path, kind, target, options, pure=False,
+            futures = {client.submit(correct_one, correction, path, target, options, pure=False,
                                      key=f"feedrot-correct-{index}-{os.getpid()}-"
                                      f"{time.monotonic_ns()}"): index
                        for index, path, kind, target, options in remote}
         for index, path, kind, target, options in local:
-            results[index] = correct_one(path, kind, target, options)
+            results[index] = correct_one(correction, path, target, options)
             step()
         if futures:
             from distributed import as_completed  # with the client
@@ -172,7 +150,7 @@ def _run(jobs, client, progress):
 
 
 def correct_files(paths, output_dir=None, *, client=None, progress=False, overwrite=False,
-                  **options):
+                  correction=None, **options):
     """Correct many visibility files, one task per file; the outcome of each in a table.
 
     Parameters
@@ -194,13 +172,13 @@ def correct_files(paths, output_dir=None, *, client=None, progress=False, overwr
     overwrite : bool, optional
         Write over copies an earlier run left in ``output_dir`` (else those
         files are skipped, as done).
+    correction : `~astropy_feedrot.visibilities.Correction`, optional
+        The correction's options, made once (checked before any file is
+        touched)...
     **options
-        The options of the correction, as
-        `~astropy_feedrot.visibilities.correct_file` and
-        `~astropy_feedrot.visibilities.correct_ms` take them (``direction``,
-        ``frame``, ``convention``, ``vertical``, ``pole``, ``feeds``,
-        ``mounts``, ``catalogue``, ``redo``, ``ionosphere``; for Measurement
-        Sets ``data_column``, ``corrected_column``, ``overwrite_column``).
+        ...or given here, as `~astropy_feedrot.visibilities.Correction`
+        takes them; and for Measurement Sets ``data_column``,
+        ``corrected_column``, ``overwrite_column``.
 
     Returns
     -------
@@ -231,18 +209,19 @@ def correct_files(paths, output_dir=None, *, client=None, progress=False, overwr
     >>> correct_files([sample_file("difx_k08161.idifits")], out)["outcome"].tolist()
     ['skipped']
     """
-    unknown = sorted(set(options) - {"direction", "frame", "convention", "vertical", "pole",
-                                     "feeds", "mounts", "catalogue", "redo", "ionosphere",
-                                     *_COLUMN_OPTIONS})
+    unknown = sorted(set(options) - set(OPTIONS) - set(_COLUMN_OPTIONS))
     if unknown:
         raise TypeError(f"correct_files() got unexpected options {unknown}")
+    correction = Correction.of(correction, **{k: v for k, v in options.items()
+                                              if k in OPTIONS})
+    options = {k: v for k, v in options.items() if k in _COLUMN_OPTIONS}
     paths = [Path(os.fspath(p)) for p in paths]
     if not paths:
         raise ValueError("no input to correct")
     targets, done = _targets(paths, output_dir, overwrite)
     if output_dir is not None:
         Path(output_dir).mkdir(parents=True, exist_ok=True)
-        options = dict(options, overwrite=overwrite)
+        options["overwrite"] = overwrite
     rows, jobs = [], []
     for index, (path, (kind, problem), target) in enumerate(zip(paths, _kinds(paths), targets)):
         rows.append(dict(path=str(path), kind=kind or "", output="", warnings=[],
@@ -250,7 +229,7 @@ def correct_files(paths, output_dir=None, *, client=None, progress=False, overwr
                          reason=problem or done.get(index, "")))
         if problem is None and index not in done:
             jobs.append((index, existing_path(path), kind, target, options))
-    for index, result in _run(jobs, client, progress).items():
+    for index, result in _run(correction, jobs, client, progress).items():
         rows[index].update(result)
     table = Table(rows=[[row[k] for k in ("path", "kind", "outcome", "output", "reason")]
                         + [" | ".join(row["warnings"]), row["seconds"]] for row in rows],

@@ -27,12 +27,13 @@ from ..earth.frames import VERTICALS
 from .catalogue import check_mounts_option
 from .faraday import check_ionosphere, ionosphere_text
 from .history import check_direction, check_history, history_entry
-from .kinds import existing_path, file_kind
+from .kinds import check_output_format, check_output_path, existing_path, file_kind
 from .poles import POLES, convention_options, pole_context
 from .resolve import refuse_aperture_array, resolve_antennas
 from .unusable import usable_antennas
 
-__all__ = ["Correction", "Adapter", "register_adapter", "adapter_of", "OPTIONS"]
+__all__ = ["Correction", "Adapter", "register_adapter", "adapter_of", "OPTIONS",
+           "refuse_column_options"]
 
 #: The options a `Correction` holds, which every function of the formats takes.
 OPTIONS = ("direction", "frame", "convention", "vertical", "pole", "feeds", "mounts",
@@ -81,16 +82,35 @@ def adapter_of(kind):
     Examples
     --------
     >>> from astropy_feedrot.visibilities.correction import adapter_of
-    >>> adapter_of("vex")
+    >>> adapter_of("vex")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: no adapter corrects files of kind 'vex'; the kinds corrected are ['fits-idi', 'mir', 'miriad', 'ms', 'msv4', 'uvfits', 'uvh5']
+    ValueError: no adapter corrects files of kind 'vex'; the kinds corrected are ['fits-idi', ...
     """
     try:
         return _ADAPTERS[kind]
     except KeyError:
         raise ValueError(f"no adapter corrects files of kind {kind!r}; the kinds corrected "
                          f"are {sorted(_ADAPTERS)}") from None
+
+
+def refuse_column_options(data_column=None, corrected_column="CORRECTED_DATA",
+                          overwrite_column=False):
+    """Refuse the column options of a Measurement Set where no Measurement Set is
+    written.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.correction import refuse_column_options
+    >>> refuse_column_options()
+    >>> refuse_column_options(data_column="MODEL_DATA")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: data_column, corrected_column and overwrite_column are for a Measurement ...
+    """
+    if data_column is not None or overwrite_column or corrected_column != "CORRECTED_DATA":
+        raise ValueError("data_column, corrected_column and overwrite_column are for a "
+                         "Measurement Set written as a Measurement Set (.ms)")
 
 
 class Correction:
@@ -275,11 +295,17 @@ class Correction:
 
         Raises
         ------
-        ValueError
-            Before anything is read but the file's telescope name: an
-            aperture array; then what the adapter refuses.
+        FileNotFoundError, FileExistsError, ValueError
+            Before anything is read but the file's telescope name: a missing
+            input, an output of the wrong format, the input as output, an
+            existing output without ``overwrite``, an output in no
+            directory, an aperture array; then what the adapter refuses.
         """
         source = existing_path(path)
-        adapter = adapter_of(file_kind(source))
+        kind = file_kind(source)
+        adapter = adapter_of(kind)
+        if output is not None:  # before any work
+            check_output_format(kind, output)
+            check_output_path(source, output, options.get("overwrite", False))
         self.refuse_aperture_array(adapter.telescopes(source), str(source))
         return adapter.correct(self, source, output, **options)

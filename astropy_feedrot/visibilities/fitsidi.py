@@ -28,23 +28,15 @@ from ..core.outputs import new_file_mode, publish, same_file
 from ..core.progress import progress_steps
 from .antenna_tables import FITSFormatError, fits_telescopes, open_fits, read_antennas
 from .catalogue import catalogue_receptors
+from .correction import Correction, refuse_column_options, register_adapter
 from .fits_bytes import copy_around, header_with_history
-from .faraday import (
-    check_ionosphere,
-    correct_rows,
-    fitsidi_lambda_squared,
-    ionosphere_text,
-    rows_lambda_squared,
-)
-from .history import check_direction, check_history, history_entry
+from .faraday import correct_rows, fitsidi_lambda_squared, rows_lambda_squared
 from .kinds import check_header_cards
-from .poles import POLES, convention_options, pole_context
 from .receptors import ReceptorAngleTable, warn_unusual_angles, with_receptors
-from .resolve import resolve_antennas
 from .tasks import in_order, task_groups, worker_count
 from .unusable import UnusableAntenna, usable_antennas, warn_skipped
 
-__all__ = ["fitsidi_antennas", "correct_fitsidi", "STOKES_CODES"]
+__all__ = ["fitsidi_antennas", "correct_fitsidi", "correct_fitsidi_file", "STOKES_CODES"]
 
 #: The polarization codes of the ``STOKES`` axis (FITS-IDI, UVFITS, casacore,
 #: pyuvdata and DiFX agree) that can be corrected:
@@ -535,10 +527,106 @@ def _check_paths(path, output, overwrite):
     return source, target
 
 
-def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress=False,
-                    software=None, vertical=None, chunk_bytes=None, direction="remove",
-                    feeds=None, redo=False, pole=None, client=None, catalogue=None,
-                    mounts="file", convention="rigorous", ionosphere=None):
+def _read_header(correction, source):
+    """The UV_DATA tables, time scale, sources, end of the primary header and telescope
+    of a file, its history asked first."""
+    with open_fits(source) as hdul:
+        check_header_cards(hdul, source)
+        primary = hdul[0].header
+        correction.check_history(_history(primary), f"{source} (HISTORY of the primary "
+                                 "header)")
+        indices = [k for k, hdu in enumerate(hdul) if hdu.name == "UV_DATA"]
+        if not indices:
+            raise FITSFormatError(source, "UV_DATA", "a UV_DATA table", None)
+        return (indices, _time_scale(hdul, source), _sources(hdul, source),
+                int(hdul.fileinfo(0)["datLoc"]), str(primary.get("TELESCOP", "")).strip())
+
+
+def _antennas(correction, source, software, telescope):
+    """Every antenna, resolved, with the receptors the user or the catalogue gives;
+    what the catalogue's receptors note says."""
+    antennas = correction.resolve(
+        fitsidi_antennas(source, vertical=correction.vertical, software=software,
+                         unusable="keep"), fits_telescopes(source), source)
+    ground = {n: a for n, a in antennas.items() if not isinstance(a, UnusableAntenna)}
+    if correction.feeds is not None:
+        ground = with_receptors(ground, correction.feeds)
+    ground, note = catalogue_receptors(ground, correction.catalogue, telescope=telescope)
+    antennas.update(ground)
+    warn_unusual_angles(ground, source)
+    return antennas, note
+
+
+def _temporary(target):
+    """A new file beside ``target``, with the mode of a new file (or of the one it
+    replaces)."""
+    directory = os.path.dirname(os.path.abspath(target))
+    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{os.path.basename(target)}.",
+                                         suffix=".part")
+    os.close(handle)
+    # mkstemp makes the file 0600: the copy gets the mode of a new file under the umask
+    # (or of the file it replaces), as every other output.
+    os.chmod(temporary, new_file_mode(Path(target)))
+    return temporary
+
+
+def _write_copy(correction, source, temporary, new_header, header_end, indices, described,
+                chunk_bytes, progress, client):
+    """Everything but the rows copied byte for byte, then the rows corrected a chunk at a
+    time into their places; the plans and the NaN rows."""
+    antennas, note, sources, scale = described
+    with open_fits(source) as hdul:
+        plans = [_Plan(hdul, index, source) for index in indices]
+        for plan in plans if correction.ionosphere is not None else ():
+            plan.freqid, plan.faraday = fitsidi_lambda_squared(hdul, plan.index, source)
+    shift = copy_around(source, temporary, new_header, header_end,
+                        [(plan.offset, plan.offset + plan.rows * plan.dtype.itemsize)
+                         for plan in plans])
+    work = []
+    for plan in plans:
+        per_chunk = max(1, chunk_bytes // max(plan.dtype.itemsize, 1))
+        work += [(plan, start, min(start + per_chunk, plan.rows))
+                 for start in range(0, plan.rows, per_chunk)]
+    with correction.pole_context():
+        tables = {plan.index: _angle_table(source, plan, antennas, sources, scale,
+                                           correction.frame, source,
+                                           max(1, chunk_bytes // plan.dtype.itemsize),
+                                           note, correction.ionosphere)
+                  for plan in plans if plan.rows}
+    nan_rows = 0
+    with progress_steps(progress, len(work)) as step:
+        for count in _chunks(work, client, source, temporary, shift, tables, sources,
+                             source, correction.direction):
+            nan_rows += count
+            step()
+    return plans, nan_rows
+
+
+def correct_fitsidi_file(correction, source, output, *, overwrite=False, progress=False,
+                         client=None, **columns):
+    """The adapter of FITS-IDI files (`~astropy_feedrot.visibilities.correction`): a
+    corrected copy, never in place.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import Correction
+    >>> from astropy_feedrot.visibilities.fitsidi import correct_fitsidi_file
+    >>> correct_fitsidi_file(Correction(), sample_file("difx_k08161.idifits"), None)
+    Traceback (most recent call last):
+    ...
+    ValueError: a FITS-IDI file is corrected into a copy, never in place: give the output
+    """
+    refuse_column_options(**columns)
+    if output is None:
+        raise ValueError("a FITS-IDI file is corrected into a copy, never in place: give the "
+                         "output")
+    return Path(correct_fitsidi(source, output, overwrite=overwrite, progress=progress,
+                                client=client, correction=correction))
+
+
+def correct_fitsidi(path, output, *, overwrite=False, progress=False, software=None,
+                    chunk_bytes=None, client=None, correction=None, **options):
     """Write a copy of a FITS-IDI file with the feed rotation removed from its visibilities.
 
     Each row of each ``UV_DATA`` table (a baseline, a time, a source) has
@@ -552,9 +640,6 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         The FITS-IDI file.
     output : str or os.PathLike
         The file to write (not the input).
-    frame : str, optional
-        North of the corrected data: ``'apparent'`` (default, the pole of date) or a
-        celestial frame such as ``'icrs'`` (`~astropy_feedrot.visibilities.frame_position_angle`).
     overwrite : bool, optional
         Replace ``output`` if it exists.
     progress : bool or callable, optional
@@ -563,46 +648,21 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
         after each chunk.
     software : str, optional
         The ``MNTSTA`` convention, as in `fitsidi_antennas`.
-    vertical : {'geodetic', 'geocentric'}, optional
-        Default: the convention's.
-        The local vertical of the antennas (CASA uses the geocentric one).
     chunk_bytes : int, optional
         Bytes of rows corrected at once (default 16 MiB): the memory used
         is a few times this, whatever the size of the file.
-    direction : {'remove', 'apply'}, optional
-        ``'apply'`` does the inverse: it turns visibilities of sky-fixed
-        receptors (a model) into those the antennas would measure.
-    feeds : `~astropy_feedrot.Receptors` or mapping, optional
-        Receptors for antennas the ``ANTENNA`` table lacks (see
-        `~astropy_feedrot.visibilities.with_receptors`).
-    redo : bool, optional
-        Correct a file whose HISTORY says it was corrected in the same
-        direction already.
-    convention : {'rigorous', 'casa'}, optional
-        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
-        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
-        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
-        ``pole`` given explicitly replace its choices.
-    pole : {'itrs', 'casa'}, optional
-        Default: the convention's.
-        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`).
     client : `dask.distributed.Client`, optional
         Correct the chunks on its workers (each maps and writes its own rows
         of the copy); the output is bit for bit the serial one.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
-        Where antennas that neither the file nor ``feeds`` give receptors
-        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
-        by name, else by position, else by the primary header's
-        ``TELESCOP``): the embedded station catalogue by default, another,
-        or False. It is also the catalogue ``mounts`` compares with.
-    mounts : {'file', 'catalogue'}, optional
-        Whose mount and focus an antenna within
-        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a catalogue
-        station takes where the two differ: the file's ``MNTSTA`` (default)
-        or the catalogue's (`~astropy_feedrot.visibilities.catalogue_mounts`;
-        an antenna whose ``MNTSTA`` has no model takes its station's).
-    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
-        Remove (apply) the Faraday rotation too (`~astropy_feedrot.visibilities.faraday`).
+    correction : `~astropy_feedrot.visibilities.Correction`, optional
+        The correction's options (direction, frame, convention, vertical,
+        pole, feeds, mounts, catalogue, ionosphere, redo), made once...
+    **options
+        ...or given here, as `~astropy_feedrot.visibilities.Correction`
+        takes them. Antennas that neither the file nor ``feeds`` give
+        receptors take the catalogue's (by name, else by position, else by
+        the primary header's ``TELESCOP``); ``mounts`` compares ``MNTSTA``
+        with it.
 
     Returns
     -------
@@ -667,80 +727,27 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     >>> HISTORY_MARK
     'Feed rotation removed by astropy_feedrot'
     """
-    vertical, pole = convention_options(convention, vertical, pole)
-    direction = check_direction(direction)
-    ionosphere = check_ionosphere(ionosphere)
-    if pole not in POLES:
-        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
+    correction = Correction.of(correction, **options)
     source, target = _check_paths(path, output, overwrite)
     chunk_bytes = _CHUNK_BYTES if chunk_bytes is None else int(chunk_bytes)
     if chunk_bytes < 1:
         raise ValueError(f"chunk_bytes must be positive, got {chunk_bytes}")
-    frame_name = frame if isinstance(frame, str) else type(frame).__name__
-    with open_fits(source) as hdul:
-        check_header_cards(hdul, source)
-        primary = hdul[0].header
-        check_history(_history(primary), direction, f"{source} (HISTORY of the primary "
-                      "header)", redo=redo)
-        indices = [k for k, hdu in enumerate(hdul) if hdu.name == "UV_DATA"]
-        if not indices:
-            raise FITSFormatError(source, "UV_DATA", "a UV_DATA table", None)
-        scale = _time_scale(hdul, source)
-        sources = _sources(hdul, source)
-        header_end = int(hdul.fileinfo(0)["datLoc"])
-    antennas = fitsidi_antennas(source, vertical=vertical, software=software,
-                                unusable="keep")
-    antennas = resolve_antennas(antennas, telescope=fits_telescopes(source), mounts=mounts,
-                                catalogue=catalogue, feeds=feeds, where=source)
-    ground = {n: a for n, a in antennas.items() if not isinstance(a, UnusableAntenna)}
-    if feeds is not None:
-        ground = with_receptors(ground, feeds)
-    ground, note = catalogue_receptors(ground, catalogue,
-                                       telescope=str(primary.get("TELESCOP", "")).strip())
-    antennas.update(ground)
-    warn_unusual_angles(ground, source)
-    new_header = header_with_history(source, header_end, history_entry(
-        direction, "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
-        "both antennas of every row" + ionosphere_text(ionosphere, " "),
-        frame=frame_name, vertical=vertical))
-    directory = os.path.dirname(os.path.abspath(target))
-    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{os.path.basename(target)}.",
-                                         suffix=".part")
-    os.close(handle)
-    # mkstemp makes the file 0600: the copy gets the mode of a new file under the umask
-    # (or of the file it replaces), as every other output.
-    os.chmod(temporary, new_file_mode(Path(target)))
+    indices, scale, sources, header_end, telescope = _read_header(correction, source)
+    antennas, note = _antennas(correction, source, software, telescope)
+    new_header = header_with_history(source, header_end, correction.history(
+        "UV_DATA FLUX, the feed rotation and receptor angles (POLAA, POLAB) of "
+        "both antennas of every row" + correction.ionosphere_text(" ")))
+    temporary = _temporary(target)
     try:
-        with open_fits(source) as hdul:
-            plans = [_Plan(hdul, index, source) for index in indices]
-            for plan in plans if ionosphere is not None else ():
-                plan.freqid, plan.faraday = fitsidi_lambda_squared(hdul, plan.index, source)
-        shift = copy_around(source, temporary, new_header,
-                            header_end, [(plan.offset, plan.offset + plan.rows
-                                          * plan.dtype.itemsize) for plan in plans])
-        work = []
-        for plan in plans:
-            per_chunk = max(1, chunk_bytes // max(plan.dtype.itemsize, 1))
-            work += [(plan, start, min(start + per_chunk, plan.rows))
-                     for start in range(0, plan.rows, per_chunk)]
-        nan_rows = 0
-        total_rows = sum(plan.rows for plan in plans)
-        with pole_context(pole):
-            tables = {plan.index: _angle_table(source, plan, antennas, sources, scale,
-                                               frame, source,
-                                               max(1, chunk_bytes // plan.dtype.itemsize),
-                                               note, ionosphere)
-                      for plan in plans if plan.rows}
-        with progress_steps(progress, len(work)) as step:
-            for count in _chunks(work, client, source, temporary, shift, tables, sources,
-                                 source, direction):
-                nan_rows += count
-                step()
+        plans, nan_rows = _write_copy(correction, source, temporary, new_header, header_end,
+                                      indices, (antennas, note, sources, scale),
+                                      chunk_bytes, progress, client)
         publish(temporary, target, overwrite=overwrite)  # exclusive without overwrite
     except BaseException:
         if os.path.exists(temporary):
             os.remove(temporary)
         raise
+    total_rows = sum(plan.rows for plan in plans)
     if nan_rows:
         warn_caller(f"the feed rotation is undefined in {nan_rows} of {total_rows} rows (an "
                     "alt-az antenna pointing at the zenith, or an equatorial one at the "
@@ -748,3 +755,6 @@ def correct_fitsidi(path, output, *, frame="apparent", overwrite=False, progress
     warn_skipped(antennas, sorted({n for plan in plans for n in plan.skip}),
                  sum(plan.skipped_rows for plan in plans), total_rows, source)
     return target
+
+
+register_adapter(["fits-idi"], correct_fitsidi_file, fits_telescopes)

@@ -3,15 +3,19 @@
 
 import json
 import os
+import re
 import warnings
 from pathlib import Path
 
 from astropy.io import fits
 
+from ..core.outputs import same_file
+
 from .antenna_tables import FITSFormatError
 
 __all__ = ["FILE_KINDS", "file_kind", "existing_path", "check_header_cards",
-           "is_processing_set"]
+           "is_processing_set", "OUTPUT_EXTENSIONS", "FITSIDI_EXTENSIONS", "check_output_format",
+           "check_output_path"]
 
 #: The kinds of visibility file recognised, and the module of
 #: `astropy_feedrot.visibilities` that reads and corrects each (with the
@@ -25,6 +29,23 @@ FILE_KINDS = {
     "mir": "uvdata (pyuvdata)",
     "msv4": "msv4 (xradio, a new data group, in place)",
 }
+
+#: The kind of output each extension names (lower case; ``.idi`` followed by
+#: digits, the EVN archive's ``.IDI1``, is FITS-IDI too). ``None``: the FITS
+#: extensions that FITS-IDI and UVFITS files both use, whose kind is the input's.
+OUTPUT_EXTENSIONS = {
+    ".idifits": "fits-idi", ".fitsidi": "fits-idi", ".idi": "fits-idi",
+    ".fits": None, ".fit": None, ".fts": None,
+    ".uvfits": "uvfits", ".uvf": "uvfits",
+    ".uvh5": "uvh5", ".h5": "uvh5", ".hdf5": "uvh5",
+    ".ms": "ms", ".uv": "miriad", ".miriad": "miriad",
+}
+
+#: Extensions of a FITS-IDI output (a FITS-IDI input is corrected into
+#: FITS-IDI), and ``.idi`` followed by digits (``.IDI1``), in any case.
+FITSIDI_EXTENSIONS = tuple(e for e, k in OUTPUT_EXTENSIONS.items() if k in ("fits-idi", None))
+
+_NUMBERED_IDI = re.compile(r"\.idi[0-9]+")
 
 _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 
@@ -238,3 +259,107 @@ def file_kind(path):
                          "(a FITS-IDI file cut short loses its last tables)")
     raise ValueError(f"cannot tell the kind of {str(path)!r}: not FITS, HDF5 (uvh5), a "
                      "Measurement Set, Miriad nor SMA Mir")
+
+
+def check_output_format(kind, output):
+    """The kind of file `correct_file` writes for an input of ``kind`` into ``output``.
+
+    The output's kind follows its extension where the extension names one
+    kind (`OUTPUT_EXTENSIONS`: ``.uvfits``/``.uvf``, ``.uvh5``, ``.ms``,
+    ``.IDI1``, ``.idifits``...), and the input's kind where it names two:
+    ``.fits`` (and ``.fit``, ``.fts``, any case) is FITS-IDI for a FITS-IDI
+    input, UVFITS for a UVFITS input. A FITS-IDI input is always corrected
+    into FITS-IDI (there is no conversion); other inputs are written by
+    pyuvdata, which writes no FITS-IDI.
+
+    Parameters
+    ----------
+    kind : str
+        The input's kind, one of `~astropy_feedrot.visibilities.FILE_KINDS`
+        (`~astropy_feedrot.visibilities.file_kind`: by content, whatever
+        its name).
+    output : str or path-like
+        The output's name.
+
+    Returns
+    -------
+    str
+        The output's kind: ``'fits-idi'``, ``'uvfits'``, ``'uvh5'``,
+        ``'ms'`` or ``'miriad'``.
+
+    Raises
+    ------
+    ValueError
+        For an extension that names no kind, another kind than FITS-IDI for
+        a FITS-IDI input, FITS-IDI for another input, or ``.fits`` for an
+        input that is not FITS; the message lists the extensions to use.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities import check_output_format
+    >>> check_output_format("uvfits", "out.uvh5")
+    'uvh5'
+    >>> check_output_format("uvfits", "out.FITS"), check_output_format("fits-idi", "x.IDI1")
+    ('uvfits', 'fits-idi')
+    >>> check_output_format("fits-idi", "out.uvfits")
+    Traceback (most recent call last):
+    ...
+    ValueError: 'out.uvfits': a FITS-IDI input is corrected into a FITS-IDI copy ...
+    """
+    text = os.fspath(output)
+    extension = Path(text.rstrip("/" + os.sep)).suffix.lower()
+    if _NUMBERED_IDI.fullmatch(extension):
+        named = "fits-idi"
+    else:
+        named = OUTPUT_EXTENSIONS.get(extension, "unknown")
+    pyuvdata = ", ".join(e for e, k in OUTPUT_EXTENSIONS.items() if k not in ("fits-idi", None))
+    if kind == "msv4":
+        raise ValueError(f"{text!r}: an MSv4 processing set is corrected in place, as a new "
+                         "data group beside its data (correct_processing_set; feedrot correct "
+                         "PS.ps.zarr --in-place), not into a copy")
+    if kind == "fits-idi":
+        if named in ("fits-idi", None):
+            return "fits-idi"
+        raise ValueError(f"{text!r}: a FITS-IDI input is corrected into a FITS-IDI copy "
+                         "(there is no conversion to other formats); give the output one "
+                         f"of the extensions {', '.join(FITSIDI_EXTENSIONS)} or .idiN "
+                         "(.IDI1)")
+    if named == "fits-idi":
+        raise ValueError(f"{text!r}: {extension} names a FITS-IDI file, but a {kind} input "
+                         "is written by pyuvdata, which writes no FITS-IDI; use one of "
+                         f"{pyuvdata}")
+    if named is None:
+        if kind == "uvfits":
+            return "uvfits"
+        raise ValueError(f"{text!r}: {extension} is used by both FITS-IDI and UVFITS; a "
+                         f"{kind} input is written as UVFITS with .uvfits (or .uvf), or use "
+                         f"one of {pyuvdata}")
+    if named == "unknown":
+        raise ValueError(f"cannot tell a format from the extension of {text!r}; use one of "
+                         f"{pyuvdata}" + (", .fits" if kind == "uvfits" else ""))
+    return named
+
+
+def check_output_path(source, output, overwrite):
+    """The output path (as given, ``~`` expanded), refused if it is the input, exists
+    without ``overwrite`` or lies in no directory.
+
+    Examples
+    --------
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities.kinds import check_output_path
+    >>> check_output_path(sample_file("vla_sim.ms"), "copy.ms", False).name
+    'copy.ms'
+    """
+    target = Path(os.fspath(output)).expanduser()
+    resolved = target.resolve()
+    if same_file(resolved, source.resolve()):
+        raise ValueError(f"the output {str(target)!r} is the input; the input is never "
+                         "modified: choose another name")
+    if target.exists() and not overwrite:
+        raise FileExistsError(f"{str(target)!r} exists; pass overwrite=True (--overwrite) to "
+                              "replace it")
+    if not resolved.parent.is_dir():
+        raise FileNotFoundError(f"cannot write {str(target)!r}: directory "
+                                f"{str(resolved.parent)!r} does not exist")
+    return resolved

@@ -21,6 +21,9 @@ pip install python-casacore``), imported on first use.
 import contextlib
 import fcntl
 import os
+import shutil
+import tempfile
+from pathlib import Path
 
 import numpy as np
 from astropy import units as u
@@ -29,16 +32,28 @@ from astropy.time import Time
 
 from ..antennas.receptors import basis_of
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.outputs import publish
 from ..core.progress import progress_steps
-from .correction import Correction
+from ..ionosphere import IonosphereError
+from .correction import Correction, refuse_column_options, register_adapter
+from .history import CorrectionRefused
+from .kinds import check_output_format, check_output_path
 from .faraday import ms_lambda_squared
 from .ms_antennas import FeedReceptors, cell_text, ms_antennas, ms_path, ms_telescopes, subtable
 from .ms_chunks import RECORD_SECONDS, Block, Progress, locked, results, rows_of, tables as _tables
-from .ms_tables import OWN_COLUMN, MSError, check_column_history, check_columns, column_records
+from .ms_tables import (
+    OWN_COLUMN,
+    MSError,
+    check_column_history,
+    check_columns,
+    column_records,
+    copy_ms,
+)
 from .receptors import ReceptorAngleTable, warn_unusual_angles
 from .unusable import warn_skipped
+from .uvdata_adapter import correct_uvdata_file
 
-__all__ = ["correct_ms", "CORR_TYPES", "MSError"]
+__all__ = ["correct_ms", "correct_ms_file", "CORR_TYPES", "MSError"]
 
 #: The casacore ``Stokes`` codes of ``CORR_TYPE`` that are correlations of
 #: receptors (casacore ``Stokes.h``).
@@ -573,3 +588,64 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA", chunk
                     "alt-az antenna pointing at the zenith): their output is NaN",
                     DegenerateGeometryWarning)
     return path
+
+
+def _copy_corrected(correction, source, target, overwrite, options):
+    """A casacore copy of the set beside ``target``, corrected in place, then moved
+    onto ``target``; errors name the input, not the copy."""
+    work = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}."))
+    try:
+        temporary = copy_ms(source, work / target.name)
+        try:
+            correct_ms(temporary, correction=correction, **options)
+        except CorrectionRefused as error:  # named as the input, not the copy
+            raise type(error)(error.template.replace(str(temporary), str(source))) from None
+        except (MSError, IonosphereError) as error:
+            raise type(error)(str(error).replace(str(temporary), str(source))) from None
+        except KeyboardInterrupt:
+            raise KeyboardInterrupt(f"{str(target)!r} was not written (the copy being "
+                                    "corrected is removed)") from None
+        publish(temporary, target, overwrite=overwrite)
+    finally:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(work)
+    return target
+
+
+def correct_ms_file(correction, source, output, *, overwrite=False, progress=False,
+                    client=None, data_column=None, corrected_column="CORRECTED_DATA",
+                    overwrite_column=False):
+    """The adapter of Measurement Sets (`~astropy_feedrot.visibilities.correction`): in
+    place (``output`` None), into a casacore copy (``.ms``: the copy corrected in place,
+    ``data_column`` into ``corrected_column``), or through pyuvdata into the format the
+    output's extension names.
+
+    Examples
+    --------
+    >>> import shutil, tempfile, pathlib
+    >>> from astropy_feedrot.data import sample_file
+    >>> from astropy_feedrot.visibilities import Correction
+    >>> from astropy_feedrot.visibilities.ms import correct_ms_file
+    >>> where = pathlib.Path(tempfile.mkdtemp())
+    >>> ms = shutil.copytree(sample_file("vla_sim.ms"), where / "vla.ms")
+    >>> correct_ms_file(Correction(), ms, where / "copy.ms").name
+    'copy.ms'
+    """
+    columns = dict(data_column=data_column, corrected_column=corrected_column,
+                   overwrite_column=overwrite_column)
+    if output is None:
+        return correct_ms(source, progress=progress, client=client, correction=correction,
+                          **columns)
+    if check_output_format("ms", output) != "ms":
+        refuse_column_options(**columns)
+        # pyuvdata reads DATA: what the HISTORY says of it (CASA's too).
+        check_column_history(source, column_records(source), "DATA", "DATA",
+                             correction.direction, correction.redo)
+        return correct_uvdata_file(correction, source, output, overwrite=overwrite,
+                                   progress=progress, kind="ms")
+    target = check_output_path(source, output, overwrite)
+    return _copy_corrected(correction, source, target, overwrite,
+                           dict(progress=progress, client=client, **columns))
+
+
+register_adapter(["ms"], correct_ms_file, ms_telescopes)

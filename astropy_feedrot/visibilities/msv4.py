@@ -37,28 +37,19 @@ from astropy.time import Time
 
 from ..applied.correction import correct_receptor_visibilities
 from ..core.exceptions import DegenerateGeometryWarning, warn_caller
-from .catalogue import check_mounts_option
-from .faraday import check_ionosphere, ionosphere_text, lambda_squared, rotation_measure_rows
-from .history import (
-    APPLY_MARK,
-    HISTORY_MARK,
-    AlreadyCorrected,
-    CorrectionRefused,
-    check_direction,
-    history_entry,
-)
-from .kinds import is_processing_set
+from .correction import Correction, refuse_column_options, register_adapter
+from .faraday import lambda_squared, rotation_measure_rows
+from .history import APPLY_MARK, HISTORY_MARK, AlreadyCorrected, CorrectionRefused
+from .kinds import check_output_format, is_processing_set
 from .ms_antennas import describe_antenna
-from .poles import POLES, convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles
-from .resolve import resolve_antennas
 from .unusable import usable_antennas, warn_skipped
 
 # The examples need xradio (the msv4 extra).
 __doctest_requires__ = {("correct_processing_set", "read_processing_set"): ["xradio"]}
 
-__all__ = ["correct_processing_set", "processing_set_antennas", "read_processing_set",
-           "GROUPS", "MSv4Error"]
+__all__ = ["correct_processing_set", "correct_processing_set_file", "processing_set_antennas",
+           "processing_set_telescopes", "read_processing_set", "GROUPS", "MSv4Error"]
 
 #: Per direction: the data group read, the data group added and its variable.
 GROUPS = {"remove": ("base", "corrected", "VISIBILITY_CORRECTED"),
@@ -98,7 +89,11 @@ def read_processing_set(path):
     except ImportError:
         raise ImportError("MSv4 processing sets need xradio: python -m pip install "
                           '"astropy_feedrot[msv4]"') from None
-    return open_processing_set(str(path))
+    with warnings.catch_warnings():
+        # zarr 3 on the store xradio wrote: its consolidated metadata and string types.
+        warnings.filterwarnings("ignore", message="Consolidated metadata is currently not")
+        warnings.filterwarnings("ignore", message="The data type .* does not have a Zarr V3")
+        return open_processing_set(str(path))
 
 
 def _partitions(tree, where):
@@ -339,27 +334,23 @@ def _check_products(products, where):
         raise MSv4Error(f"{where}: {error}") from None
 
 
-def _partition(name, partition, options, where):
+def _partition(name, partition, correction, where):
     """The partition with its new data group (a new tree; the input is left as it is)."""
-    direction, frame = options["direction"], options["frame"]
-    vertical, pole = options["vertical"], options["pole"]
-    source_name, new_name, variable = options["groups"]
+    direction, frame = correction.direction, correction.frame
+    source_name, new_name, variable = GROUPS[direction]
     where = f"{where}, partition {name!r}"
     source = _group(partition, source_name, where)
-    _refuse_again(partition, new_name, direction, options["redo"], where)
+    _refuse_again(partition, new_name, direction, correction.redo, where)
     products = [str(p).upper() for p in _values(partition["polarization"])]
     _check_products(products, where)
-    antennas, names, telescopes = processing_set_antennas(partition, vertical=vertical,
-                                                          where=where)
-    every = antennas = resolve_antennas(antennas, telescope=telescopes,
-                                        mounts=options["mounts"],
-                                        catalogue=options["catalogue"],
-                                        feeds=options["feeds"], where=where)
+    antennas, names, telescopes = processing_set_antennas(
+        partition, vertical=correction.vertical, where=where)
+    every = antennas = correction.resolve(antennas, telescopes, where)
     try:
-        with pole_context(pole):
+        with correction.pole_context():
             theta, first, second, skip = _angle_table(partition, source, antennas, names,
                                                       products, frame, where,
-                                                      options["ionosphere"])
+                                                      correction.ionosphere)
     except ValueError as error:
         raise MSv4Error(str(error)) from None
     partition = partition.copy()
@@ -367,14 +358,12 @@ def _partition(name, partition, options, where):
     undefined = int(np.count_nonzero(bad[:, first] | bad[:, second])) - \
         int(np.count_nonzero(np.isin(first, skip) | np.isin(second, skip))) * bad.shape[0]
     partition[variable] = _corrected(partition, source, theta, first, second, skip,
-                                     products, direction, options["ionosphere"] is not None)
+                                     products, direction, correction.ionosphere is not None)
     what = f"{source['correlated_data']} -> {variable}"
     if skip:
         what += f" (not the baselines to the orbiting antennas {', '.join(names[n] for n in skip)})"
-    description = history_entry(direction, what, frame=frame, vertical=vertical) + \
-        ("" if options["ionosphere"] is None else
-         f" {ionosphere_text(options['ionosphere'])}") + \
-        ("" if pole == "itrs" else f" (pole={pole})")
+    description = correction.history(what) + correction.ionosphere_text(" ") + \
+        ("" if correction.pole == "itrs" else f" (pole={correction.pole})")
     group = {key: value for key, value in source.items()
              if key not in ("correlated_data", "description", "date")}
     group.update(correlated_data=variable, description=description,
@@ -388,22 +377,7 @@ def _partition(name, partition, options, where):
     return partition, max(undefined, 0), rows
 
 
-def _options(direction, frame, convention, vertical, pole, feeds, mounts, catalogue, redo,
-             ionosphere):
-    vertical, pole = convention_options(convention, vertical, pole)
-    ionosphere = check_ionosphere(ionosphere)
-    direction = check_direction(direction)
-    check_mounts_option(mounts)
-    if pole not in POLES:
-        raise ValueError(f"pole must be one of {POLES}, got {pole!r}")
-    return dict(direction=direction, frame=frame, vertical=vertical, pole=pole, feeds=feeds,
-                mounts=mounts, catalogue=catalogue, redo=redo, groups=GROUPS[direction],
-                ionosphere=ionosphere)
-
-
-def correct_processing_set(ps, *, direction="remove", frame="apparent", convention="rigorous",
-                           vertical=None, pole=None, feeds=None, mounts="file",
-                           catalogue=None, redo=False, ionosphere=None, write=None):
+def correct_processing_set(ps, *, write=None, correction=None, **options):
     """Remove (or apply) the feed rotation of an MSv4 processing set, lazily.
 
     Parameters
@@ -411,43 +385,26 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
     ps : `xarray.DataTree` or path-like
         A processing set as xradio's ``open_processing_set`` gives it, or the
         path of one (a ``.ps.zarr`` store).
-    direction : {'remove', 'apply'}, optional
-        ``'remove'`` (default): the data group ``base`` (``VISIBILITY``) to
-        a new data group ``corrected`` (``VISIBILITY_CORRECTED``), receptors
-        fixed on the sky. ``'apply'``: the data group ``model``
-        (``VISIBILITY_MODEL``, sky-fixed receptors) to a new data group
-        ``model_corrupted`` (``VISIBILITY_MODEL_CORRUPTED``), as the turning
-        receptors see it (`GROUPS`).
-    frame : str, optional
-        North of the sky-fixed receptors: ``'apparent'`` (default) or a
-        celestial frame such as ``'icrs'``.
-    convention : {'rigorous', 'casa'}, optional
-        As `~astropy_feedrot.visibilities.correct_ms`.
-    vertical : {'geodetic', 'geocentric'}, optional
-        Default: the convention's.
-    pole : {'itrs', 'casa'}, optional
-        Default: the convention's.
-    feeds : `~astropy_feedrot.Receptors` or mapping, optional
-        Receptors for antennas whose own cannot be used (``{antenna index
-        or name: Receptors}``, or one for all).
-    mounts : {'file', 'catalogue'}, optional
-        As `~astropy_feedrot.visibilities.correct_ms`.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
-        As `~astropy_feedrot.visibilities.correct_ms`.
-    redo : bool, optional
-        Compute the new data group again where this package wrote it already
-        (its description says so); refused otherwise.
-    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
-        Remove (apply) the ionospheric Faraday rotation too, in the same
-        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
-        \\lambda^2` per channel, with the RM of each antenna's line of sight
-        at each epoch (:doc:`/ionosphere`); the description names the IONEX
-        files.
     write : bool, optional
         For a path: write the new variables into the store (default True);
         every array that was there stays as it was, and the partitions'
         ``data_groups`` attributes gain the new group, with the history
         line as its description. Ignored for a tree.
+    correction : `~astropy_feedrot.visibilities.Correction`, optional
+        The correction's options (direction, frame, convention, vertical,
+        pole, feeds, mounts, catalogue, ionosphere, redo), made once...
+    **options
+        ...or given here, as `~astropy_feedrot.visibilities.Correction`
+        takes them. ``direction='remove'`` (default) reads the data group
+        ``base`` (``VISIBILITY``) and adds ``corrected``
+        (``VISIBILITY_CORRECTED``); ``'apply'`` reads ``model``
+        (``VISIBILITY_MODEL``, sky-fixed receptors) and adds
+        ``model_corrupted`` (``VISIBILITY_MODEL_CORRUPTED``), as the turning
+        receptors see it (`GROUPS`). ``feeds`` are keyed by antenna index
+        or name; ``redo`` computes a data group this package wrote again.
+        With an ionosphere, each receptor's angle becomes :math:`\\theta -
+        \\mathrm{RM}\\,\\lambda^2` per channel, and the group's description
+        names the IONEX files.
 
     Returns
     -------
@@ -496,14 +453,16 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
     The package's VLA sample converted by xradio, corrected lazily (nothing
     written), then into its store:
 
-    >>> import logging, tempfile, pathlib
+    >>> import logging, tempfile, pathlib, warnings
     >>> from xradio.measurement_set import convert_msv2_to_processing_set
     >>> from astropy_feedrot.data import sample_file
     >>> from astropy_feedrot.visibilities import correct_processing_set
     >>> logging.getLogger("toolviper").setLevel(logging.WARNING)
     >>> store = pathlib.Path(tempfile.mkdtemp()) / "vla.ps.zarr"
     >>> ms = str(sample_file("vla_sim.ms"))
-    >>> convert_msv2_to_processing_set(ms, str(store))  # doctest: +IGNORE_OUTPUT
+    >>> with warnings.catch_warnings():  # zarr's, on the strings xradio stores
+    ...     warnings.simplefilter("ignore")
+    ...     convert_msv2_to_processing_set(ms, str(store))  # doctest: +IGNORE_OUTPUT
     >>> ps = correct_processing_set(store, write=False)
     >>> sorted(ps["vla_sim_0"].attrs["data_groups"])
     ['base', 'corrected', 'model']
@@ -513,8 +472,7 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
     >>> ps["vla_sim_0"].attrs["data_groups"]["corrected"]["correlated_data"]
     'VISIBILITY_CORRECTED'
     """
-    options = _options(direction, frame, convention, vertical, pole, feeds, mounts,
-                       catalogue, redo, ionosphere)
+    correction = Correction.of(correction, **options)
     path = None
     if isinstance(ps, (str, os.PathLike)):
         path = Path(ps)
@@ -527,18 +485,18 @@ def correct_processing_set(ps, *, direction="remove", frame="apparent", conventi
                         f"got {type(ps).__name__}")
     done, undefined, rows = {}, 0, 0
     for name, partition in _partitions(tree, where):
-        done[name], bad, count = _partition(name, partition, options, where)
+        done[name], bad, count = _partition(name, partition, correction, where)
         undefined, rows = undefined + bad, rows + count
     if undefined:
         warn_caller(f"the feed rotation is undefined for {undefined} of {rows} "
                     "time-baselines (an alt-az antenna pointing at the zenith): their "
-                    f"{options['groups'][2]} is NaN", DegenerateGeometryWarning)
+                    f"{GROUPS[correction.direction][2]} is NaN", DegenerateGeometryWarning)
     out = tree.copy()
     for name, partition in done.items():
         out[name] = partition
     if path is None or write is False:
         return out
-    _write(path, out, done, options["groups"][2])
+    _write(path, out, done, GROUPS[correction.direction][2])
     return read_processing_set(path)
 
 
@@ -562,3 +520,33 @@ def _write(path, tree, names, variable):
         # The store came with consolidated metadata (xradio writes it): made anew, as it was.
         warnings.filterwarnings("ignore", message="Consolidated metadata is currently not part")
         zarr.consolidate_metadata(str(path))
+
+
+def processing_set_telescopes(path):
+    """The telescope names of a processing set's partitions (their antenna tables).
+
+    Examples
+    --------
+    See `correct_processing_set`.
+    """
+    return sorted({t for partition in read_processing_set(path).children.values()
+                   for t in processing_set_antennas(partition)[2]})
+
+
+def correct_processing_set_file(correction, source, output, *, overwrite=False,
+                                progress=False, client=None, **columns):
+    """The adapter of MSv4 processing sets (`~astropy_feedrot.visibilities.correction`):
+    in place only, the graph computed on the active dask scheduler (the client's).
+
+    Examples
+    --------
+    See `correct_processing_set`.
+    """
+    refuse_column_options(**columns)
+    if output is not None:
+        check_output_format("msv4", output)  # says: in place
+    correct_processing_set(source, write=True, correction=correction)
+    return Path(source)
+
+
+register_adapter(["msv4"], correct_processing_set_file, processing_set_telescopes)

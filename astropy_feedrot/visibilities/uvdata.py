@@ -31,20 +31,17 @@ from ..earth.eop import iers_context
 from ..earth.frames import VERTICALS
 from ..engine.antenna import Antenna
 from ..stations.labels import is_orbiting, mount_from_label
-from .catalogue import catalogue_receptors, check_mounts_option
+from .catalogue import catalogue_receptors
+from .correction import Correction
 from .faraday import (
-    check_ionosphere,
     correct_rows,
-    ionosphere_text,
     lambda_squared,
     rotation_measure_rows,
     row_places,
 )
-from .history import check_direction, check_history, history_entry
+from .history import history_entry
 from .phase_centres import phase_centre_sources
-from .poles import convention_options, pole_context
 from .receptors import receptor_position_angles, warn_unusual_angles, with_receptors
-from .resolve import refuse_aperture_array, resolve_antennas
 from .unusable import (
     UnusableAntenna,
     check_unusable,
@@ -450,10 +447,99 @@ def _chunk_rows(uv):
 
 
 @iers_context()
-def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antennas=None,
-                   progress=False, direction="remove", feeds=None, redo=False,
-                   catalogue=None, mounts="file", pole=None, convention="rigorous",
-                   ionosphere=None):
+def _resolved(correction, uv, antennas):
+    """The antennas the rows use (the data's, resolved, unless given), the orbiting
+    ones, every antenna, and what the catalogue's receptors note says."""
+    note, skip, antennas_all = "", [], antennas
+    if (correction.feeds is not None or correction.catalogue is not False) and \
+            (antennas is None or hasattr(antennas, "items")):
+        used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
+        if antennas is None:  # the data's antennas, compared with the catalogue's
+            antennas = correction.resolve(_antennas(uv, correction.vertical, used, keep=True),
+                                          uv.telescope.name, "the data", numbers=used)
+        antennas_all = antennas
+        antennas, skip = usable_antennas(given_feeds(antennas, correction.feeds), used,
+                                         "the data")
+        if correction.feeds is not None:
+            antennas = with_receptors(antennas, correction.feeds)
+        antennas, note = catalogue_receptors(antennas, correction.catalogue, numbers=used,
+                                             telescope=uv.telescope.name)
+    return antennas, skip, antennas_all, note
+
+
+def _turn(target, names, basis, theta1, theta2, faraday, direction, progress):
+    """The data turned in place, a chunk of baseline-times at a time."""
+    data = target.data_array
+    if faraday is None:
+        theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
+        theta2 = theta2[:, np.newaxis, :] * u.deg
+    else:  # per frequency, from the angles and RM of each place
+        rm1, rm2, lambda2 = faraday
+        place1, place2 = row_places(target.time_array, target.phase_center_id_array,
+                                    target.ant_1_array, target.ant_2_array)
+        table = np.empty((int(max(place1.max(), place2.max())) + 1, 3))
+        table[place1] = np.column_stack([theta1, rm1])
+        table[place2] = np.column_stack([theta2, rm2])
+        angles, rm = table[:, :2], table[:, 2]
+    auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
+    parallel = [k for k, name in enumerate(names) if name[0] == name[1]]
+    n_rows = data.shape[0]
+    step = _chunk_rows(target)
+    starts = range(0, n_rows, step)
+    with progress_steps(progress, len(starts)) as done_step:
+        for start in starts:
+            chunk = slice(start, min(start + step, n_rows))
+            block = data[chunk]
+            if faraday is not None:
+                correct_rows(block, angles, rm, place1[chunk], place2[chunk], names,
+                             lambda2=lambda2, conjugate=True, direction=direction)
+            else:
+                with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
+                    correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
+                                                  conjugate=True, out=block,
+                                                  direction=direction)
+            if basis == "linear":
+                for row in np.flatnonzero(auto[chunk]):
+                    for k in parallel:
+                        block[row, ..., k].imag = 0
+            done_step()
+
+
+def _flag_undefined(target, theta1, theta2, faraday, undefined):
+    """The baseline-times whose angles are undefined set to NaN and flagged, said once."""
+    n_rows = target.data_array.shape[0]
+    bad = np.isnan(theta1).any(axis=-1) | np.isnan(theta2).any(axis=-1)
+    bad = bad.reshape(n_rows, -1).any(axis=1)
+    if faraday is not None:
+        bad |= np.isnan(faraday[0]) | np.isnan(faraday[1])
+    target.data_array[bad] = np.nan
+    target.flag_array[bad] = True
+    warn_caller(f"the feed rotation is undefined in {undefined} of {n_rows} "
+                "baseline-times (an alt-az antenna pointing at the zenith): their data "
+                "are NaN and flagged", DegenerateGeometryWarning)
+
+
+def _record(target, correction, skip):
+    """``feed_angle`` set to the sky-fixed receptors' (removed), the history line."""
+    tel = target.telescope
+    if correction.direction == "remove" and tel.feed_array is not None:
+        sky = {"x": 0.0, "y": np.pi / 2, "r": 0.0, "l": 0.0}
+        angles = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(tel.feed_array)
+        untouched = np.isin(tel.antenna_numbers, skip)  # orbiting: as they were
+        angles[untouched] = np.asarray(tel.feed_angle, dtype=float)[untouched]
+        tel.feed_angle = angles
+    what = "data_array" + ("; feed_angle set to match" if correction.direction == "remove"
+                           else "")
+    if skip:
+        what += f" (not the baselines to the orbiting antennas {', '.join(map(str, skip))})"
+    what += correction.ionosphere_text(" ")
+    target.history += " " + history_entry(correction.direction, what,
+                                          frame=_frame_text(correction.frame),
+                                          vertical=correction.vertical) + "."
+
+
+def correct_uvdata(uv, *, inplace=False, antennas=None, progress=False, correction=None,
+                   **options):
     """Remove the feed rotation from the visibilities of a `~pyuvdata.UVData` object.
 
     Parameters
@@ -467,56 +553,20 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
         True: correct ``uv`` itself, in chunks of baseline-times whose
         temporaries stay below a quarter of ``data_array``'s size, and
         return it.
-    frame : str or `~astropy.coordinates.BaseCoordinateFrame`, optional
-        The north the corrected receptors refer to: ``'apparent'`` (default,
-        the true pole of date) or a celestial frame such as ``'icrs'``.
-    vertical : {'geodetic', 'geocentric'}, optional
-        Local vertical (``'geocentric'`` reproduces CASA); default: the
-        convention's.
-    pole : {'itrs', 'casa'}, optional
-        The pole of the parallactic angle (`~astropy_feedrot.visibilities.poles`);
-        default: the convention's.
-    convention : {'rigorous', 'casa'}, optional
-        The vertical and pole of `~astropy_feedrot.visibilities.poles.CONVENTIONS`:
-        ``'rigorous'`` (default: geodetic, Earth-fixed pole) or ``'casa'``
-        (CASA's applycal: geocentric, no polar motion); ``vertical`` and
-        ``pole`` given explicitly replace its choices.
     antennas : mapping, optional
         ``{antenna number: Antenna}`` to use instead of the telescope of ``uv``.
     progress : bool or callable, optional
         True shows astropy's `~astropy.utils.console.ProgressBar` over the
         chunks; a callable is called as ``progress(done, total)`` after each.
-    direction : {'remove', 'apply'}, optional
-        ``'apply'`` does the inverse: visibilities of sky-fixed receptors (a
-        model) become those the antennas measure; ``feed_angle`` is left as
-        it is.
-    feeds : `~astropy_feedrot.Receptors` or mapping, optional
-        Receptors for antennas the data give none (see
-        `~astropy_feedrot.visibilities.with_receptors`).
-    redo : bool, optional
-        Correct data whose history says they were corrected in the same
-        direction already.
-    catalogue : `~astropy_feedrot.stations.StationCatalogue`, path or False, optional
-        Where antennas that neither the data nor ``feeds`` give receptors
-        take theirs (`~astropy_feedrot.visibilities.catalogue_receptors`:
-        by name, by position, or by ``telescope.name``): the embedded
-        station catalogue by default, another one, or False for none. It is
-        also the catalogue ``mounts`` compares with.
-    mounts : {'file', 'catalogue'}, optional
-        Whose mount and focus an antenna within
-        `~astropy_feedrot.visibilities.CATALOGUE_TOLERANCE` of a catalogue
-        station takes where the two differ: ``telescope.mount_type``
-        (default) or the catalogue's
-        (`~astropy_feedrot.visibilities.catalogue_mounts`; an antenna whose
-        ``mount_type`` has no model takes its station's). Not for
-        ``antennas`` given: those are used as given.
-    ionosphere : `~astropy_feedrot.ionosphere.Ionosphere`, optional
-        Remove (apply) the ionospheric Faraday rotation too, in the same
-        pass: each receptor's angle becomes :math:`\\theta - \\mathrm{RM}\\,
-        \\lambda^2` per channel (lambda^2 from ``freq_array``), with the RM
-        of each antenna's line of sight at each time (computed once per
-        time, phase centre and antenna; :doc:`/ionosphere`). The history
-        names the IONEX files.
+    correction : `~astropy_feedrot.visibilities.Correction`, optional
+        The correction's options (direction, frame, convention, vertical,
+        pole, feeds, mounts, catalogue, ionosphere, redo), made once...
+    **options
+        ...or given here, as `~astropy_feedrot.visibilities.Correction`
+        takes them. With ``direction='apply'``, ``feed_angle`` is left as
+        it is; the catalogue also gives receptors by ``telescope.name``;
+        ``mounts`` is not for ``antennas`` given (those are used as given);
+        with an ionosphere, lambda^2 comes from ``freq_array``.
 
     Returns
     -------
@@ -599,103 +649,36 @@ def correct_uvdata(uv, *, inplace=False, frame="apparent", vertical=None, antenn
     >>> float(np.abs(uv.data_array[0, 0, 2] - 1))  # uv itself is unchanged
     0.0
     """
-    vertical, pole = convention_options(convention, vertical, pole)
+    correction = Correction.of(correction, **options)
     check_uvdata(uv)
-    direction = check_direction(direction)
-    ionosphere = check_ionosphere(ionosphere)
     if antennas is None:  # the data's own antennas: an aperture array's are refused first
-        refuse_aperture_array(uv.telescope.name, catalogue, where="the data")
+        correction.refuse_aperture_array(uv.telescope.name, "the data")
     names, basis = _product_names(uv)
-    check_history(uv.history, direction, "these data", redo=redo)
+    correction.check_history(uv.history, "these data")
     if uv.data_array is None:
         raise ValueError("uv has no data_array (metadata only); read the data too")
-    check_mounts_option(mounts)
-    note, skip, antennas_all = "", [], antennas
-    if (feeds is not None or catalogue is not False) and \
-            (antennas is None or hasattr(antennas, "items")):
-        used = np.unique(np.concatenate([uv.ant_1_array, uv.ant_2_array]))
-        if antennas is None:  # the data's antennas, compared with the catalogue's
-            antennas = resolve_antennas(_antennas(uv, vertical, used, keep=True),
-                                        telescope=uv.telescope.name, mounts=mounts,
-                                        catalogue=catalogue, numbers=used, where="the data")
-        antennas_all = antennas
-        antennas, skip = usable_antennas(given_feeds(antennas, feeds), used, "the data")
-        if feeds is not None:
-            antennas = with_receptors(antennas, feeds)
-        antennas, note = catalogue_receptors(antennas, catalogue, numbers=used,
-                                             telescope=uv.telescope.name)
-    with pole_context(pole):
-        theta1, theta2, basis_feeds, undefined = _position_angles(uv, antennas, frame, vertical,
-                                                                  note, skip, warn=True)
+    antennas, skip, antennas_all, note = _resolved(correction, uv, antennas)
+    with correction.pole_context():
+        theta1, theta2, basis_feeds, undefined = _position_angles(
+            uv, antennas, correction.frame, correction.vertical, note, skip, warn=True)
     if basis_feeds is not None and basis_feeds != basis:
         raise ValueError(f"the data hold {basis} products {names} but the feeds are "
                          f"{basis_feeds}")
-    faraday = None if ionosphere is None else _faraday(uv, antennas, vertical, skip, ionosphere)
+    faraday = None if correction.ionosphere is None else \
+        _faraday(uv, antennas, correction.vertical, skip, correction.ionosphere)
     target = uv if inplace else uv.copy()
     data = target.data_array
     # Rows on baselines to an orbiting antenna: kept as they are.
     skipped = np.flatnonzero(np.isin(target.ant_1_array, skip) |
                              np.isin(target.ant_2_array, skip)) if skip else np.zeros(0, int)
     kept_rows = data[skipped].copy()
-    if faraday is None:
-        theta1 = theta1[:, np.newaxis, :] * u.deg  # (Nblts, 1, 2): one angle per frequency
-        theta2 = theta2[:, np.newaxis, :] * u.deg
-    else:  # per frequency, a chunk at a time, from the angles and RM of each place
-        rm1, rm2, lambda2 = faraday
+    if faraday is not None:  # per frequency, a chunk at a time
         undefined = int(np.count_nonzero(np.isnan(theta1).any(-1) | np.isnan(theta2).any(-1)
-                                         | np.isnan(rm1) | np.isnan(rm2)))
-        place1, place2 = row_places(target.time_array, target.phase_center_id_array,
-                                    target.ant_1_array, target.ant_2_array)
-        table = np.empty((int(max(place1.max(), place2.max())) + 1, 3))
-        table[place1] = np.column_stack([theta1, rm1])
-        table[place2] = np.column_stack([theta2, rm2])
-        angles, rm = table[:, :2], table[:, 2]
-    auto = np.asarray(target.ant_1_array) == np.asarray(target.ant_2_array)
-    parallel = [k for k, name in enumerate(names) if name[0] == name[1]]
-    n_rows = data.shape[0]
-    step = _chunk_rows(target)
-    starts = range(0, n_rows, step)
-    with progress_steps(progress, len(starts)) as done_step:
-        for start in starts:
-            chunk = slice(start, min(start + step, n_rows))
-            block = data[chunk]
-            if faraday is not None:
-                correct_rows(block, angles, rm, place1[chunk], place2[chunk], names,
-                             lambda2=lambda2, conjugate=True, direction=direction)
-            else:
-                with np.errstate(invalid="ignore"):  # NaN in the data stay NaN
-                    correct_receptor_visibilities(block, theta1[chunk], theta2[chunk], names,
-                                                  conjugate=True, out=block,
-                                                  direction=direction)
-            if basis == "linear":
-                for row in np.flatnonzero(auto[chunk]):
-                    for k in parallel:
-                        block[row, ..., k].imag = 0
-            done_step()
+                                         | np.isnan(faraday[0]) | np.isnan(faraday[1])))
+    _turn(target, names, basis, theta1, theta2, faraday, correction.direction, progress)
     data[skipped] = kept_rows
     if undefined:
-        bad = np.isnan(theta1).any(axis=-1) | np.isnan(theta2).any(axis=-1)
-        bad = bad.reshape(n_rows, -1).any(axis=1)
-        if faraday is not None:
-            bad |= np.isnan(faraday[0]) | np.isnan(faraday[1])
-        data[bad] = np.nan
-        target.flag_array[bad] = True
-        warn_caller(f"the feed rotation is undefined in {undefined} of {n_rows} "
-                    "baseline-times (an alt-az antenna pointing at the zenith): their data "
-                    "are NaN and flagged", DegenerateGeometryWarning)
-    tel = target.telescope
-    if direction == "remove" and tel.feed_array is not None:
-        sky = {"x": 0.0, "y": np.pi / 2, "r": 0.0, "l": 0.0}
-        angles = np.vectorize(lambda f: sky[str(f).lower()], otypes=[float])(tel.feed_array)
-        untouched = np.isin(tel.antenna_numbers, skip)  # orbiting: as they were
-        angles[untouched] = np.asarray(tel.feed_angle, dtype=float)[untouched]
-        tel.feed_angle = angles
-    what = "data_array" + ("; feed_angle set to match" if direction == "remove" else "")
-    if skip:
-        what += f" (not the baselines to the orbiting antennas {', '.join(map(str, skip))})"
-    if ionosphere is not None:
-        what += f" {ionosphere_text(ionosphere)}"
-    target.history += " " + history_entry(direction, what, frame=_frame_text(frame),
-                                          vertical=vertical) + "."
-    warn_skipped(antennas_all, skip, skipped.size, n_rows, "the data")
+        _flag_undefined(target, theta1, theta2, faraday, undefined)
+    _record(target, correction, skip)
+    warn_skipped(antennas_all, skip, skipped.size, data.shape[0], "the data")
     return target

@@ -108,7 +108,7 @@ def test_in_place_serial_then_resumed(tmp_path):
     # In place, only Measurement Sets and processing sets.
     fitsidi = correct_files(paths[:1])
     assert fitsidi["outcome"].tolist() == ["refused"]
-    assert "only Measurement Sets and MSv4 processing sets" in fitsidi["reason"][0]
+    assert "corrected into a copy, never in place" in fitsidi["reason"][0]
 
 
 def test_warnings_in_the_table(tmp_path):

@@ -74,7 +74,7 @@ def test_kinds(tmp_path, idi):
     assert file_kind(idi[0]) == "fits-idi"
     assert file_kind(untar("lwasv_cor_58342_05_00_14.ms.tar.gz", tmp_path)) == "ms"
     assert file_kind(untar("sma_test_corrchunk1.mir.tar.gz", tmp_path)) == "mir"
-    assert set(FILE_KINDS) == {"fits-idi", "uvfits", "uvh5", "ms", "miriad", "mir"}
+    assert set(FILE_KINDS) == {"fits-idi", "uvfits", "uvh5", "ms", "miriad", "mir", "msv4"}
 
 
 def test_kinds_refused(tmp_path):
