@@ -37,7 +37,8 @@ May import: every subpackage (``core``, ``io``, ``earth``, ``antennas``,
 import sys
 
 from ..core.outputs import TABLE_FORMATS, CommandError
-from .parser import CELESTIAL_FRAMES, MAX_EPOCHS, UsageError, build_parser, one_line
+from .parser import build_parser
+from .shared import CELESTIAL_FRAMES, MAX_EPOCHS, UsageError, one_line
 
 __all__ = ["main", "build_parser", "CommandError", "MAX_EPOCHS", "TABLE_FORMATS",
            "CELESTIAL_FRAMES"]
@@ -83,7 +84,7 @@ def main(argv=None):
     except UsageError as error:
         print(f"feedrot: error: {one_line(error)}", file=sys.stderr)
         return 2
-    if not hasattr(args, "run"):
+    if args.command is None:
         parser.print_help()
         return 2
     if getattr(args, "light", False):

@@ -29,7 +29,7 @@ from ..engine.antenna import Antenna
 from ..io import FileFormatError
 from ..stations.catalogue import default_catalogue, focus_from_name, read_catalogue
 from ..stations.labels import mount_from_label
-from .parser import CELESTIAL_FRAMES, MAX_EPOCHS, PHASE_UNIT_NAMES, SITE_FORMAT, one_line
+from .shared import CELESTIAL_FRAMES, MAX_EPOCHS, PHASE_UNIT_NAMES, SITE_FORMAT, one_line
 from .views import output_format, print_table
 
 __all__ = [

@@ -26,7 +26,7 @@ from .common import (
     show_progress,
     time_span,
 )
-from .parser import one_line
+from .shared import one_line
 
 __all__ = ["run_coverage"]
 

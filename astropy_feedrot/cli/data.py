@@ -38,7 +38,7 @@ from ..visibilities.poles import convention_options
 from .archives import run_correct_files
 from .common import wrote
 from .faraday import ionosphere_option
-from .parser import one_line
+from .shared import one_line
 
 __all__ = ["run_antennas", "run_correct", "check_correct_output"]
 

@@ -10,7 +10,7 @@ from ..applied.simulations import gps_short_baseline
 from ..core.extras import install_hint
 from ..core.outputs import CommandError, check_outputs, table_writer, write_files
 from .common import drawer, figure_types, parse_quantity
-from .parser import MAX_EPOCHS
+from .shared import MAX_EPOCHS
 
 __all__ = ["run_demo"]
 

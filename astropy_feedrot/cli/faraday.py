@@ -29,7 +29,7 @@ from .common import (
     write_table,
     wrote,
 )
-from .parser import one_line
+from .shared import one_line
 
 __all__ = ["run_faraday", "ionosphere_option"]
 

@@ -6,8 +6,10 @@ The parser is built from plain constants (here and in
 modules that do the work: ``feedrot --version`` and ``feedrot --help`` start
 in a tenth of a second instead of a second. Each command runs from the module
 of its family (``tables``, ``faraday``, ``demo``, ``stations``, ``coverage``,
-``data``, ``rinex``, ``samples``), imported only when the command runs (``_run_*``
-below: the function-level imports that tests/test_layers.py names).
+``data``, ``rinex``, ``samples``), named in `COMMANDS` and imported only when the
+command runs (`astropy_feedrot.cli.running.run_command`). The constants and
+helpers the commands share with the parser are `astropy_feedrot.cli.shared`'s: no
+command imports the parser.
 """
 
 import argparse
@@ -16,11 +18,22 @@ from ..core.choices import ATTITUDES, CONVENTIONS, FOCI, MOUNTS, POLES
 from ..core.outputs import TABLE_FORMATS
 from ..core.version import version
 from .samples import run_samples
+from .shared import (
+    ANTENNA_HELP,
+    CELESTIAL_FRAMES,
+    FORMATS,
+    MAX_EPOCHS,
+    MOUNTS_HELP,
+    NEAR_LIMIT,
+    PHASE_UNIT_NAMES,
+    SITE_FORMAT,
+    UsageError,
+)
 
 __all__ = [
     "build_parser", "EXAMPLES", "MAX_EPOCHS", "CELESTIAL_FRAMES", "ANTENNA_HELP", "SITE_FORMAT",
     "FORMATS", "PHASE_UNIT_NAMES", "NEAR_LIMIT", "MOUNTS_HELP", "UsageError", "Parser",
-    "one_line", "examples", "add_units_option", "add_time_options", "add_natural_options",
+    "COMMANDS", "examples", "add_units_option", "add_time_options", "add_natural_options",
     "add_common_options",
 ]
 
@@ -118,50 +131,6 @@ EXAMPLES = {
 }
 
 
-#: Most epochs one command may compute (about 1.6 GB and half a minute for
-#: a natural source; a satellite with the nominal attitude is ten times slower).
-MAX_EPOCHS = 1_000_000
-
-
-#: Frames accepted by ``--frame``: celestial frames, whose coordinates need
-#: no observing time or place (unlike altaz or hadec).
-CELESTIAL_FRAMES = ("icrs", "fk5", "fk4", "fk4noeterms", "galactic", "supergalactic",
-                    "barycentricmeanecliptic", "barycentrictrueecliptic")
-
-
-#: The help of an antenna argument.
-ANTENNA_HELP = (
-    "a station name of the catalogue (see 'feedrot stations'; case and punctuation do "
-    "not matter; NAME@NETWORK for a name two stations share, e.g. KP@EHT) or a site "
-    "'LAT,LON,HEIGHT' in degrees, degrees and metres with --mount and --focus"
-)
-
-
-#: How a site is written.
-SITE_FORMAT = "LAT,LON,HEIGHT in degrees, degrees and metres, e.g. 40.5247,-3.0869,988"
-
-
-#: What ``--format`` takes: the table on standard output
-#: (`astropy_feedrot.cli.views.output_format`).
-FORMATS = ("text", "ecsv", "csv")
-
-
-#: What ``--units`` takes: a phase in cycles, radians or degrees
-#: (`astropy_feedrot.cli.common.PHASE_UNITS` gives their units).
-PHASE_UNIT_NAMES = ("cycles", "rad", "deg")
-
-
-#: Stations ``feedrot stations --near`` lists unless ``--limit`` says otherwise.
-NEAR_LIMIT = 10
-
-
-#: The help of ``--mounts``.
-MOUNTS_HELP = ("whose mount and focus an antenna within 100 m of a station of the catalogue "
-               "takes where the two differ (said in a warning): the file's (default; many "
-               "writers put MNTSTA 0, alt-az, for every antenna) or the catalogue's, which "
-               "also gives its mount to an antenna whose MOUNT is empty or unknown")
-
-
 # Parsers and shared options ----------------------------------------------------------------
 
 
@@ -175,10 +144,6 @@ def examples(commands):
         if "\n" in command or command.rstrip().endswith("\\"):
             raise ValueError(f"an example must be one line: {command!r}")
     return "examples:\n" + "\n".join(f"  {command}" for command in commands)
-
-
-class UsageError(Exception):
-    """A command line that argparse cannot read."""
 
 
 class Parser(argparse.ArgumentParser):
@@ -196,11 +161,6 @@ class Parser(argparse.ArgumentParser):
         if "expected one argument" in message:
             message += " (write --option=VALUE for a value that starts with '-')"
         raise UsageError(f"{message}; see '{self.prog} --help'")
-
-
-def one_line(text):
-    """``text`` on one line: its lines joined with '; '."""
-    return "; ".join(" ".join(line.split()) for line in str(text).splitlines() if line.strip())
 
 
 def add_units_option(parser, default):
@@ -327,7 +287,6 @@ def _add_tables(commands):
     add_natural_options(natural)
     add_time_options(natural)
     add_common_options(natural)
-    natural.set_defaults(run=_run_natural)
 
     satellite = commands.add_parser(
         "satellite", help="a satellite seen by one antenna",
@@ -340,7 +299,6 @@ def _add_tables(commands):
     add_units_option(satellite, "deg")
     add_time_options(satellite, required=False)
     add_common_options(satellite)
-    satellite.set_defaults(run=_run_satellite)
 
     baseline = commands.add_parser(
         "baseline", help="both antennas of a baseline and the rotation delay",
@@ -356,7 +314,6 @@ def _add_tables(commands):
     add_units_option(baseline, "deg")
     add_time_options(baseline, required=False)
     add_common_options(baseline)
-    baseline.set_defaults(run=_run_baseline)
 
 
 def _add_faraday(commands):
@@ -387,7 +344,6 @@ def _add_faraday(commands):
     add_common_options(faraday, polarization=False,
                        min_elevation="every value but the elevation NaN below this elevation "
                        "(degrees, or with a unit; from 0 to 90; default: the horizon)")
-    faraday.set_defaults(run=_run_faraday)
 
 
 def _add_ionex_height(group):
@@ -412,7 +368,6 @@ def _add_demo(commands):
                       help="sampling interval (default 60s)")
     demo.add_argument("--overwrite", action="store_true",
                       help="replace feedrot_demo.ecsv and feedrot_demo.png if they exist")
-    demo.set_defaults(run=_run_demo)
 
 
 def _add_stations(commands):
@@ -446,7 +401,6 @@ def _add_stations(commands):
                                "of its extension: " + ", ".join(TABLE_FORMATS))
     stations.add_argument("--overwrite", action="store_true",
                           help="replace an existing output file (never an input)")
-    stations.set_defaults(run=_run_stations)
 
 
 def _add_coverage(commands):
@@ -477,7 +431,6 @@ def _add_coverage(commands):
                           "(needs matplotlib)")
     coverage.add_argument("--overwrite", action="store_true",
                           help="replace existing output files")
-    coverage.set_defaults(run=_run_coverage)
 
 
 def _add_files(commands):
@@ -502,7 +455,6 @@ def _add_files(commands):
                           "standard output")
     antennas.add_argument("--overwrite", action="store_true",
                           help="replace an existing output file")
-    antennas.set_defaults(run=_run_antennas)
 
     correct = commands.add_parser(
         "correct", help="remove (or apply) the feed rotation of a visibility file",
@@ -596,7 +548,6 @@ def _add_files(commands):
                          help="replace an existing output (never the input)")
     correct.add_argument("--quiet", action="store_true",
                          help="no progress bar, and no summary line on success")
-    correct.set_defaults(run=_run_correct)
 
 
 def _add_rinex(commands):
@@ -647,7 +598,6 @@ def _add_rinex(commands):
     add_units_option(rinex, "cycles")
     rinex.add_argument("--overwrite", action="store_true",
                        help="replace existing outputs (never the input)")
-    rinex.set_defaults(run=_run_rinex)
 
 
 def _add_samples(commands):
@@ -667,54 +617,20 @@ def _add_samples(commands):
     samples.set_defaults(run=run_samples, light=True)  # run without astropy
 
 
-# The commands: each imports its family's module when it runs (and astropy with it).
+# The commands: each runs from its family's module, imported when it runs (and astropy
+# with it) by astropy_feedrot.cli.running.run_command, which finds it here by its name
+# (args.command, the subparsers' dest).
 
-
-def _run_natural(args):
-    from .tables import run_natural
-    return run_natural(args)
-
-
-def _run_satellite(args):
-    from .tables import run_satellite
-    return run_satellite(args)
-
-
-def _run_baseline(args):
-    from .tables import run_baseline
-    return run_baseline(args)
-
-
-def _run_faraday(args):
-    from .faraday import run_faraday
-    return run_faraday(args)
-
-
-def _run_demo(args):
-    from .demo import run_demo
-    return run_demo(args)
-
-
-def _run_stations(args):
-    from .stations import run_stations
-    return run_stations(args)
-
-
-def _run_coverage(args):
-    from .coverage import run_coverage
-    return run_coverage(args)
-
-
-def _run_antennas(args):
-    from .data import run_antennas
-    return run_antennas(args)
-
-
-def _run_correct(args):
-    from .data import run_correct
-    return run_correct(args)
-
-
-def _run_rinex(args):
-    from .rinex import run_rinex
-    return run_rinex(args)
+#: Each command's module of `astropy_feedrot.cli` and the function that runs it.
+COMMANDS = {
+    "natural": ("tables", "run_natural"),
+    "satellite": ("tables", "run_satellite"),
+    "baseline": ("tables", "run_baseline"),
+    "faraday": ("faraday", "run_faraday"),
+    "demo": ("demo", "run_demo"),
+    "stations": ("stations", "run_stations"),
+    "coverage": ("coverage", "run_coverage"),
+    "antennas": ("data", "run_antennas"),
+    "correct": ("data", "run_correct"),
+    "rinex": ("rinex", "run_rinex"),
+}

@@ -19,7 +19,7 @@ from ..core.outputs import (
 from ..core.progress import progress_steps
 from ..gnss import correct_rinex
 from .common import in_units, parse_quantity, read_path, show_progress
-from .parser import one_line
+from .shared import one_line
 
 __all__ = ["run_rinex", "summary"]
 

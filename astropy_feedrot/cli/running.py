@@ -8,6 +8,7 @@ turns every error into one line on standard error and an exit status.
 """
 
 import contextlib
+import importlib
 import os
 import sys
 import warnings
@@ -18,13 +19,29 @@ from ..core.outputs import CommandError
 from ..core.progress import bar_drawn
 from ..earth.eop import iers_context
 from ..io import FileFormatError
-from .parser import one_line
+from .parser import COMMANDS
+from .shared import one_line
 
-__all__ = ["run_command"]
+__all__ = ["run_command", "command_function"]
+
+
+def command_function(name):
+    """The function that runs a command: from its module, named in the parser's table
+    (`astropy_feedrot.cli.parser.COMMANDS`), imported now (with astropy, and what the
+    command's family needs).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.cli.running import command_function
+    >>> command_function("correct").__module__
+    'astropy_feedrot.cli.data'
+    """
+    module, function = COMMANDS[name]
+    return getattr(importlib.import_module(f"{__package__}.{module}"), function)
 
 
 def run_command(args):
-    """Run the command ``args.run`` of parsed arguments ``args``.
+    """Run the command of parsed arguments ``args`` (``args.command``).
 
     Parameters
     ----------
@@ -68,7 +85,7 @@ def _warning_printer():
 def _run(args):
     """Run a parsed command: its exit status, and any error as one line on stderr."""
     try:
-        status = args.run(args)
+        status = command_function(args.command)(args)
         sys.stdout.flush()
         return status
     except (CommandError, FileFormatError, ValueError, TypeError, KeyError, OSError,

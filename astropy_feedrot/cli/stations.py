@@ -20,7 +20,7 @@ from astropy.table import Table
 
 from ..core.outputs import TABLE_FORMATS, CommandError, check_outputs
 from .common import input_files, station_catalogue, write_table, wrote
-from .parser import NEAR_LIMIT, one_line
+from .shared import NEAR_LIMIT, one_line
 from .views import output_format
 
 __all__ = ["run_stations"]

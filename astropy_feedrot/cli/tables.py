@@ -33,7 +33,7 @@ from .common import (
     write_table,
     wrote,
 )
-from .parser import one_line
+from .shared import one_line
 
 __all__ = ["run_natural", "run_satellite", "run_baseline"]
 
