@@ -36,7 +36,11 @@ from astropy.coordinates import FK5, ICRS, EarthLocation, SkyCoord
 from astropy.time import Time
 
 from ..applied.correction import correct_receptor_visibilities
-from ..core.exceptions import DegenerateGeometryWarning, warn_caller
+from ..core.exceptions import (
+    DegenerateGeometryWarning,
+    UncorrectedBaselinesWarning,
+    warn_caller,
+)
 from .correction import Correction, refuse_column_options, register_adapter
 from .faraday import lambda_squared, rotation_measure_rows
 from .history import APPLY_MARK, HISTORY_MARK, AlreadyCorrected, CorrectionRefused
@@ -97,10 +101,18 @@ def read_processing_set(path):
 
 
 def _partitions(tree, where):
+    """The partitions of visibilities; those of single-dish spectra are named in a
+    warning and left as they are (a feed rotation per antenna, not per baseline)."""
     nodes = [(name, node) for name, node in tree.children.items()
-             if node.attrs.get("type") in ("visibility", "spectrum")]
+             if node.attrs.get("type") == "visibility"]
+    spectra = [name for name, node in tree.children.items()
+               if node.attrs.get("type") == "spectrum"]
+    if spectra:
+        warn_caller(f"{where}: the partitions of single-dish spectra {spectra} are left as "
+                    "they are: only visibilities are corrected", UncorrectedBaselinesWarning)
     if not nodes:
-        raise MSv4Error(f"{where} holds no MSv4 partition (no child of type 'visibility')")
+        raise MSv4Error(f"{where} holds no MSv4 partition of visibilities (no child of type "
+                        "'visibility')")
     return nodes
 
 
@@ -297,9 +309,11 @@ def _corrected(partition, source, theta, first, second, skip, products, directio
     import xarray as xr  # with xradio
 
     data = partition[source["correlated_data"]]
+    # The variable's own chunks (its coordinates may be chunked otherwise).
+    chunks = data.variable.chunksizes if data.variable.chunks is not None else None
     table = xr.DataArray(theta, dims=("time", "feedrot_antenna", "feedrot_angle"))
-    if data.chunks is not None:
-        table = table.chunk({"time": data.chunksizes["time"]})
+    if chunks:
+        table = table.chunk({"time": chunks["time"]})
     theta1 = table.isel(feedrot_antenna=xr.DataArray(first, dims="baseline_id"))
     theta2 = table.isel(feedrot_antenna=xr.DataArray(second, dims="baseline_id"))
     inputs = [data.variable, theta1.variable, theta2.variable]
@@ -308,8 +322,8 @@ def _corrected(partition, source, theta, first, second, skip, products, directio
         frequency = partition["frequency"]
         lambda2 = xr.DataArray(lambda_squared(_values(frequency) * u.Unit(
             frequency.attrs.get("units", "Hz"))), dims="frequency")
-        if data.chunks is not None:
-            lambda2 = lambda2.chunk({"frequency": data.chunksizes["frequency"]})
+        if chunks:
+            lambda2 = lambda2.chunk({"frequency": chunks["frequency"]})
         inputs.append(lambda2.variable)
         core.append([])
     corrected = xr.apply_ufunc(

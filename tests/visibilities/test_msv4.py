@@ -26,6 +26,7 @@ from casacore.tables import table  # noqa: E402
 from ms_model import make_linear, set_feed  # noqa: E402
 
 from astropy_feedrot.cli import main  # noqa: E402
+from astropy_feedrot.core.exceptions import UncorrectedBaselinesWarning  # noqa: E402
 from astropy_feedrot.data import sample_file  # noqa: E402
 from astropy_feedrot.ionosphere import Ionosphere  # noqa: E402
 from astropy_feedrot.visibilities import (  # noqa: E402
@@ -49,8 +50,8 @@ pytestmark = [
 ]
 
 
-def _convert(ms, store):
-    xradio_ms.convert_msv2_to_processing_set(str(ms), str(store))
+def _convert(ms, store, **options):
+    xradio_ms.convert_msv2_to_processing_set(str(ms), str(store), **options)
     return store
 
 
@@ -114,6 +115,25 @@ def test_equals_correct_ms(tmp_path, kind):
     options = dict(catalogue=False) if kind == "nasmyth" else {}
     tree = correct_processing_set(store, write=False, **options)
     correct_ms(ms, **options)
+    assert _largest_difference(ms, "CORRECTED_DATA", tree, "VISIBILITY_CORRECTED") < 1e-6
+
+
+def test_many_chunks_equal_correct_ms(tmp_path):
+    """Stored in chunks of 7 times and one channel (with its ionosphere's Faraday
+    rotation, whose lambda^2 follows the channel chunks): the same numbers."""
+    ms = shutil.copytree(sample_file("vla_sim.ms"), tmp_path / "chunks.ms")
+    store = _convert(ms, tmp_path / "chunks.ps.zarr",
+                     main_chunksize={"time": 7, "frequency": 1})
+    with table(str(ms), ack=False) as t:
+        seconds = t.getcol("TIME")
+    ionosphere = Ionosphere.from_rm(QTable({
+        "time": Time(np.array([seconds.min() - 60, seconds.max() + 60]) / 86400,
+                     format="mjd", scale="utc"),
+        "rm": [2.0, 9.0] * u.rad / u.m**2}))
+    tree = correct_processing_set(store, write=False, ionosphere=ionosphere)
+    visibility = tree["chunks_0"]["VISIBILITY_CORRECTED"]
+    assert len(visibility.chunks[0]) > 1 and len(visibility.chunks[2]) > 1
+    correct_ms(ms, ionosphere=ionosphere)
     assert _largest_difference(ms, "CORRECTED_DATA", tree, "VISIBILITY_CORRECTED") < 1e-6
 
 
@@ -249,6 +269,13 @@ def test_refusals(tmp_path):
         del empty[name]
     with pytest.raises(MSv4Error, match="holds no MSv4 partition"):
         correct_processing_set(empty)
+    # A partition of single-dish spectra (here one relabelled): named, left as it is.
+    mixed = xradio_ms.open_processing_set(str(store))
+    mixed["circular_1"].attrs = dict(mixed["circular_1"].attrs, type="spectrum")
+    with pytest.warns(UncorrectedBaselinesWarning, match=r"single-dish spectra \['circular_1'\]"):
+        done = correct_processing_set(mixed)
+    assert "VISIBILITY_CORRECTED" in done["circular_0"] and \
+        "VISIBILITY_CORRECTED" not in done["circular_1"]
     with pytest.raises(ValueError, match="corrected in place, as a new data group"):
         correct_file(store, tmp_path / "copy.uvh5")
 
