@@ -187,19 +187,6 @@ def processing_set_antennas(partition, *, vertical="geodetic", where="the partit
     return antennas, names, telescopes
 
 
-class _MovingField:
-    """A field whose direction the partition gives per epoch (an ephemeris)."""
-
-    def __init__(self, seconds, ra, dec, frame, name):
-        self.seconds, self.frame, self.name = seconds, frame, name
-        self.ra, self.dec = np.unwrap(ra), dec
-
-    def __call__(self, epochs):
-        t = epochs.utc.unix
-        return SkyCoord(np.interp(t, self.seconds, self.ra) * u.rad,
-                        np.interp(t, self.seconds, self.dec) * u.rad, frame=self.frame)
-
-
 def _sources(partition, group, where):
     """{field index: SkyCoord or moving field} and the field index of each time."""
     table = partition[group["field_and_source"]].to_dataset()
@@ -210,13 +197,17 @@ def _sources(partition, group, where):
                         f"the frames read are {sorted(_FRAMES)}")
     frame = _FRAMES[frame_name]
     values = (_values(direction) * u.Unit(direction.attrs.get("units", "rad"))).to_value(u.rad)
-    time_dims = [d for d in direction.dims if str(d).startswith("time")]
+    moving = sorted({str(d) for name in ("FIELD_PHASE_CENTER_DIRECTION", "SOURCE_DIRECTION")
+                     if name in table for d in table[name].dims if str(d).startswith("time")})
+    if moving:
+        # xradio's ephemeris fields (JPL-Horizons tables: SOURCE_DIRECTION on
+        # time_ephemeris, the phase centre relative to it): not read yet; refused
+        # rather than corrected as a fixed source.
+        raise MSv4Error(f"{where}: {group['field_and_source']} describes a moving field (its "
+                        f"dimensions {moving}); ephemeris fields are not corrected in MSv4 "
+                        "yet: correct the Measurement Set v2 it came from with correct_ms "
+                        "(it reads CASA's ephemeris tables), or convert that")
     fields = [str(f) for f in np.atleast_1d(_values(partition["field_name"]))]
-    if time_dims:  # one moving field: its direction per epoch of its own time axis
-        seconds = _values(table[time_dims[0]])
-        values = values.reshape(seconds.size, -1, 2)[:, 0]
-        source = _MovingField(seconds, values[:, 0], values[:, 1], frame, fields[0])
-        return {0: source}, np.zeros(partition["time"].size, int)
     names = [str(n) for n in np.atleast_1d(_values(table["field_name"]))]
     values = values.reshape(len(names), 2)
     sources = {k: SkyCoord(values[k, 0] * u.rad, values[k, 1] * u.rad, frame=frame)
@@ -435,10 +426,10 @@ def correct_processing_set(ps, *, write=None, correction=None, **options):
     MSv4Error
         For a tree that holds no partition, a partition without the data
         group read, positions that are not geocentric ITRS, fields in an
-        unknown frame, linear products without all four, antennas that
-        cannot be corrected (each named with its reason: an aperture array,
-        a mount without a model, receptors that cannot be used); nothing is
-        written then.
+        unknown frame, ephemeris fields (moving sources, not read yet),
+        linear products without all four, antennas that cannot be corrected
+        (each named with its reason: an aperture array, a mount without a
+        model, receptors that cannot be used); nothing is written then.
     IonosphereError
         If ``ionosphere`` does not cover the epochs of the data, or its
         table of rotation measures lacks an antenna (named).

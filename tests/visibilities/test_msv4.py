@@ -269,6 +269,14 @@ def test_refusals(tmp_path):
         del empty[name]
     with pytest.raises(MSv4Error, match="holds no MSv4 partition"):
         correct_processing_set(empty)
+    # A moving field (an ephemeris: the field table on a time axis): refused, not taken
+    # for a fixed source.
+    moving = xradio_ms.open_processing_set(str(store))
+    fields = moving["circular_0"]["field_and_source_base_xds"].to_dataset()
+    moving["circular_0"]["field_and_source_base_xds"] = \
+        fields.expand_dims(time_ephemeris=[1.675e9, 1.676e9])
+    with pytest.raises(MSv4Error, match=r"moving field .*time_ephemeris.*correct_ms"):
+        correct_processing_set(moving)
     # A partition of single-dish spectra (here one relabelled): named, left as it is.
     mixed = xradio_ms.open_processing_set(str(store))
     mixed["circular_1"].attrs = dict(mixed["circular_1"].attrs, type="spectrum")
