@@ -501,11 +501,22 @@ def correct_processing_set(ps, *, write=None, correction=None, **options):
         out[name] = partition
     if path is None or write is False:
         return out
-    _write(path, out, done, GROUPS[correction.direction][2])
+    source_group, _, variable = GROUPS[correction.direction]
+    _write(path, out, done, variable, source_group)
     return read_processing_set(path)
 
 
-def _write(path, tree, names, variable):
+def _encoding(source, data):
+    """How the new variable is stored: as the variable it came from (its codecs; xradio's
+    Blosc LZ4 writes several times faster than zarr's default), in its dask chunks."""
+    kept = {key: source.encoding[key] for key in ("compressors", "filters", "serializer")
+            if key in source.encoding}
+    if data.chunks:
+        kept["chunks"] = tuple(c[0] for c in data.chunks)
+    return kept
+
+
+def _write(path, tree, names, variable, source_group):
     """The new variable and the ``data_groups`` attributes of each partition, into the
     store; the consolidated metadata made anew."""
     import zarr  # with xradio
@@ -517,8 +528,9 @@ def _write(path, tree, names, variable):
         # data group added.
         dataset.attrs = dict(tree[name].attrs)
         group = zarr.open_group(str(path), path=name, mode="r")
-        encoding = {variable: {"chunks": tuple(c[0] for c in data.chunks)}} \
-            if data.chunks and variable not in group else {}
+        source = tree[name].attrs["data_groups"][source_group]["correlated_data"]
+        encoding = {} if variable in group else \
+            {variable: _encoding(tree[name][source], data)}
         dataset.to_zarr(str(path), group=name, mode="a", consolidated=False,
                         encoding=encoding)
     with warnings.catch_warnings():
