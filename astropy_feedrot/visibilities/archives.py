@@ -124,8 +124,9 @@ def _run(correction, jobs, client, progress):
     client)."""
     results = {}
     with progress_steps(progress, len(jobs)) as step:
-        local = [job for job in jobs if client is None or job[2] == "msv4"]
-        remote = [job for job in jobs if job not in local]
+        here = [client is None or kind == "msv4" for _, _, kind, _, _ in jobs]
+        local = [job for job, there in zip(jobs, here) if there]
+        remote = [job for job, there in zip(jobs, here) if not there]
         futures = {}
         if remote:
             futures = {client.submit(correct_one, correction, path, target, options, pure=False,
