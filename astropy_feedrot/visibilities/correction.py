@@ -171,6 +171,25 @@ class Correction:
         For an ``ionosphere`` that is no
         `~astropy_feedrot.ionosphere.Ionosphere`.
 
+    Notes
+    -----
+    What every correction of data refuses, before anything is written: an
+    aperture array; antennas whose mount label has no model (orbiting ones
+    aside) or whose receptors cannot be used (unless ``feeds`` gives them),
+    all named in one message with their reasons; data whose history says
+    they were corrected already (unless ``redo``); an ``ionosphere`` that
+    does not cover the epochs, or a table of rotation measures that lacks an
+    antenna (`~astropy_feedrot.ionosphere.IonosphereError`).
+
+    What every correction warns, once each: ``CatalogueMountWarning`` if the
+    file's mount or focus of some antennas differs from their catalogue
+    station's (naming them with both); ``CatalogueReceptorsWarning`` if some
+    antennas took their receptors from the catalogue;
+    ``UncorrectedBaselinesWarning`` if some rows are on baselines to an
+    orbiting antenna (left as they were, the others corrected);
+    ``DegenerateGeometryWarning``, with the count, if the feed rotation is
+    undefined in some rows (an alt-az antenna at the zenith).
+
     Examples
     --------
     >>> import tempfile, pathlib

@@ -679,32 +679,20 @@ def correct_fitsidi(path, output, *, overwrite=False, progress=False, software=N
         For a file that is not uncompressed FITS-IDI or lacks what the
         correction needs (tables, columns, keywords, time system, source
         positions, valid baselines).
-    ValueError
-        If ``output`` is the input; if the file was already corrected in
-        the same direction (its HISTORY, `HISTORY_MARK`) and ``redo`` is
-        False; for Stokes parameters instead of
+    ValueError, IonosphereError
+        As every correction (`~astropy_feedrot.visibilities.Correction`);
+        and if ``output`` is the input, for Stokes parameters instead of
         correlation products, linear products without all four, receptors of
-        the other basis or missing, and everything `fitsidi_antennas`
-        refuses but orbiting antennas; antennas whose ``MNTSTA`` has no model
-        or whose receptors cannot be used (linear ones at one angle, unless
-        ``feeds`` gives them) are named, all in one message.
+        the other basis or missing, and everything `fitsidi_antennas` refuses
+        but orbiting antennas.
 
     Warns
     -----
-    DegenerateGeometryWarning
-        Once, with the number of rows, if the feed rotation is undefined in
-        some rows (an alt-az antenna at the zenith): their ``FLUX`` is set
-        to NaN and their weight to 0.
-    CatalogueReceptorsWarning
-        Once, naming them, if antennas took their receptors from the
-        station catalogue.
-    CatalogueMountWarning
-        Once, naming them with both, if the ``MNTSTA`` of some antennas
-        differs from their catalogue station's mount or focus.
-    UncorrectedBaselinesWarning
-        Once, naming them and counting the rows, if some rows are on
-        baselines to an orbiting antenna (``MNTSTA`` 2): those rows are
-        left byte for byte as they were, the others corrected.
+    DegenerateGeometryWarning, CatalogueMountWarning, UncorrectedBaselinesWarning
+        As every correction (`~astropy_feedrot.visibilities.Correction`):
+        rows whose feed rotation is undefined get a NaN ``FLUX`` and weight
+        0; rows on baselines to an orbiting antenna (``MNTSTA`` 2) are left
+        byte for byte as they were.
 
     Notes
     -----

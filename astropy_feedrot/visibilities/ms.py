@@ -509,28 +509,18 @@ def correct_ms(ms, *, data_column=None, corrected_column="CORRECTED_DATA", chunk
         (``UVW``, ``FLAG``, a name that is no column name), or one this
         package did not write (unless ``overwrite_column``); nothing is
         written then.
-    IonosphereError
-        If ``ionosphere`` does not cover the epochs of the data, or its
-        table of rotation measures lacks an antenna (named); nothing is
-        written then.
-    MSError
-        For antennas whose ``MOUNT`` is empty or has no model (orbiting ones
-        aside) or whose receptors cannot be used (``RECEPTOR_ANGLE`` [0, 0]
-        of linear dipoles, as LWA and PAPER sets give; unless ``feeds``
-        gives them), all named in one message; nothing is written then.
+    MSError, IonosphereError
+        As every correction (`~astropy_feedrot.visibilities.Correction`:
+        an aperture array, antennas named with their reasons, an ionosphere
+        that does not cover the data); nothing is written then.
 
     Warns
     -----
-    DegenerateGeometryWarning
-        Once, with the count, if the feed rotation is undefined in some rows
-        (an alt-az antenna at the zenith): their output is NaN.
-    CatalogueMountWarning
-        Once, naming them with both, if the ``MOUNT`` of some antennas
-        differs from their catalogue station's mount or focus.
-    UncorrectedBaselinesWarning
-        Once, if some rows are on baselines to an orbiting antenna
-        (``MOUNT`` ``'SPACE-HALCA'``, ``'ORBITING'``): they are left as they
-        are (copied from ``data_column``), the others corrected.
+    DegenerateGeometryWarning, CatalogueMountWarning, UncorrectedBaselinesWarning
+        As every correction (`~astropy_feedrot.visibilities.Correction`):
+        rows whose feed rotation is undefined are NaN; rows on baselines to
+        an orbiting antenna (``MOUNT`` ``'SPACE-HALCA'``, ``'ORBITING'``)
+        are copied from ``data_column``.
 
     Notes
     -----

@@ -585,31 +585,20 @@ def correct_uvdata(uv, *, inplace=False, antennas=None, progress=False, correcti
     TypeError
         If ``uv`` is not a `~pyuvdata.UVData` object, or ``progress`` is
         neither a bool nor a callable.
-    IonosphereError
-        If ``ionosphere`` does not cover the times of the data, or its table
-        of rotation measures lacks an antenna (named); ``uv`` is unchanged.
-    ValueError
-        For Stokes or pseudo-Stokes data, linear data without all four
-        products (parallel hands only: rotate Stokes Q + iU after imaging),
-        products or feeds mixing circular and linear, data whose history says
-        they were corrected already, no data_array, and as
-        `feed_rotation_uvdata`.
+    IonosphereError, ValueError
+        As every correction (`~astropy_feedrot.visibilities.Correction`),
+        ``uv`` unchanged; and for Stokes or pseudo-Stokes data, linear data
+        without all four products (parallel hands only: rotate Stokes Q + iU
+        after imaging), products or feeds mixing circular and linear, no
+        data_array, and as `feed_rotation_uvdata`.
 
     Warns
     -----
-    DegenerateGeometryWarning
-        Once, with the count, if the feed rotation is undefined in some
-        baseline-times: their data are set to NaN and flagged.
-    CatalogueReceptorsWarning
-        Once, naming them, if antennas took their receptors from the
-        station catalogue.
-    CatalogueMountWarning
-        Once, naming them with both, if the ``mount_type`` of some antennas
-        differs from their catalogue station's mount or focus.
-    UncorrectedBaselinesWarning
-        Once, naming them and counting the baseline-times, if some are on
-        baselines to an orbiting antenna: those are left as they were (and
-        its ``feed_angle``), the others corrected.
+    DegenerateGeometryWarning, CatalogueMountWarning, UncorrectedBaselinesWarning
+        As every correction (`~astropy_feedrot.visibilities.Correction`):
+        baseline-times whose feed rotation is undefined are NaN and flagged;
+        those on baselines to an orbiting antenna are left as they were (and
+        its ``feed_angle``).
 
     Notes
     -----
