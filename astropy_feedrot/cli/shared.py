@@ -65,7 +65,7 @@ def one_line(text):
     Examples
     --------
     >>> from astropy_feedrot.cli.shared import one_line
-    >>> one_line("no such file\n  try again")
+    >>> one_line("no such file\\n  try again")
     'no such file; try again'
     """
     return "; ".join(" ".join(line.split()) for line in str(text).splitlines() if line.strip())
