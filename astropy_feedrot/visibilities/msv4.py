@@ -25,6 +25,7 @@ receptor_position_angles`), and each block of visibilities turned with
 xradio is optional (the ``msv4`` extra: ``python -m pip install
 "astropy_feedrot[msv4]"``), imported when a function here is called.
 """
+import contextlib
 import datetime
 import os
 import warnings
@@ -93,11 +94,18 @@ def read_processing_set(path):
     except ImportError:
         raise ImportError("MSv4 processing sets need xradio: python -m pip install "
                           '"astropy_feedrot[msv4]"') from None
+    with _zarr_quiet():
+        return open_processing_set(str(path))
+
+
+@contextlib.contextmanager
+def _zarr_quiet():
+    """Without zarr 3's warnings on the stores xradio writes: their consolidated metadata
+    and their strings (neither in zarr 3's specification yet; the user can do nothing)."""
     with warnings.catch_warnings():
-        # zarr 3 on the store xradio wrote: its consolidated metadata and string types.
         warnings.filterwarnings("ignore", message="Consolidated metadata is currently not")
         warnings.filterwarnings("ignore", message="The data type .* does not have a Zarr V3")
-        return open_processing_set(str(path))
+        yield
 
 
 def _partitions(tree, where):
@@ -531,11 +539,10 @@ def _write(path, tree, names, variable, source_group):
         source = tree[name].attrs["data_groups"][source_group]["correlated_data"]
         encoding = {} if variable in group else \
             {variable: _encoding(tree[name][source], data)}
-        dataset.to_zarr(str(path), group=name, mode="a", consolidated=False,
-                        encoding=encoding)
-    with warnings.catch_warnings():
-        # The store came with consolidated metadata (xradio writes it): made anew, as it was.
-        warnings.filterwarnings("ignore", message="Consolidated metadata is currently not part")
+        with _zarr_quiet():
+            dataset.to_zarr(str(path), group=name, mode="a", consolidated=False,
+                            encoding=encoding)
+    with _zarr_quiet():  # the store came with consolidated metadata: made anew, as it was
         zarr.consolidate_metadata(str(path))
 
 

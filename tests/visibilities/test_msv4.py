@@ -336,3 +336,15 @@ def test_on_dask_distributed(tmp_path):
     for name, values in serial.items():
         assert np.array_equal(reopened[name]["VISIBILITY_CORRECTED"].values, values)
     assert os.path.isdir(Path(store) / "circular_0" / "VISIBILITY_CORRECTED")
+
+
+def test_quiet_on_xradio_stores(tmp_path):
+    """Reading, correcting and writing a store xradio wrote warns nothing (zarr 3's
+    warnings on xradio's own layout are not the user's to act on)."""
+    import warnings
+
+    _, store = _sets(tmp_path, "circular")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        correct_processing_set(store)
+    assert [str(w.message) for w in caught] == []
