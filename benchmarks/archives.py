@@ -153,8 +153,8 @@ def bench_archive(master, directory, files, workers, gib, results):
 
 def _zarr_floor(store):
     """What any correction of a processing set must do, with zarr alone: read each
-    partition's VISIBILITY a chunk at a time, multiply it by a phase, and write it into a
-    new array of the same codecs and chunks."""
+    partition's VISIBILITY a chunk at a time, multiply it by a phase per time and
+    baseline, and write it into a new array of the same codecs and chunks."""
     import zarr
 
     root = zarr.open_group(str(store), mode="r+")
@@ -165,10 +165,12 @@ def _zarr_floor(store):
             compressors=source.compressors, filters=source.filters,
             serializer=source.serializer, overwrite=True)
         step = source.chunks[0]
-        phase = np.exp(0.5j).astype(source.dtype)
         for start in range(0, source.shape[0], step):
             block = source[start:start + step]
-            block *= phase
+            # A phase of each time and baseline, as a correction's (a constant one would
+            # leave the shipped pattern as compressible as it was, and the write cheaper).
+            phase = np.exp(1j * np.linspace(0, 6, block.shape[0] * block.shape[1]))
+            block *= phase.astype(source.dtype).reshape(block.shape[:2] + (1, 1))
             target[start:start + step] = block
 
 
@@ -221,7 +223,7 @@ def bench_msv4(master, directory, gib, results):
         correct_processing_set(store)
         t_threads = time.perf_counter() - start
     print(f"  correct_processing_set (2 threads)       {t_threads:8.2f} s   "
-          f"{t_ms / t_threads:5.2f}x correct_ms")
+          f"{t_threads / t_ms:5.2f}x correct_ms (one core)")
 
 
 def main(argv=None):
