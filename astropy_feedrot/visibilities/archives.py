@@ -24,7 +24,6 @@ rows done, `~astropy_feedrot.visibilities.correct_ms`). MSv4 processing
 sets are corrected in this process, their dask graph computed on the
 client's workers.
 """
-import contextlib
 import os
 import time
 import warnings
@@ -32,7 +31,6 @@ from pathlib import Path
 
 from astropy.table import Table
 
-from ..core.cache import heap_keeps_chunks
 from ..core.progress import progress_steps
 from .correction import OPTIONS, Correction
 from .files import correct_file  # noqa: F401 (every adapter registered)
@@ -131,39 +129,25 @@ def _run(correction, jobs, client, progress):
         remote = [job for job, there in zip(jobs, here) if not there]
         futures = {}
         if remote:
-            # dask's workers give freed memory back at once (MALLOC_TRIM_THRESHOLD_): each
-            # chunk of each file would be faulted in afresh (core.cache.heap_keeps_chunks).
-            client.run(heap_keeps_chunks)
             futures = {client.submit(correct_one, correction, path, target, options, pure=False,
                                      key=f"feedrot-correct-{index}-{os.getpid()}-"
                                      f"{time.monotonic_ns()}"): index
                        for index, path, kind, target, options in remote}
-        try:
-            for index, path, kind, target, options in local:
-                results[index] = correct_one(correction, path, target, options)
+        for index, path, kind, target, options in local:
+            results[index] = correct_one(correction, path, target, options)
+            step()
+        if futures:
+            from distributed import as_completed  # with the client
+
+            for future in as_completed(futures):
+                try:
+                    results[futures[future]] = future.result()
+                except Exception as error:  # noqa: BLE001 - a worker lost, say
+                    results[futures[future]] = dict(
+                        outcome="failed", output="", warnings=[], seconds=0.0,
+                        reason=f"{type(error).__name__}: {_one_line(error)}")
                 step()
-            _collect(futures, results, step)
-        finally:
-            if remote:
-                with contextlib.suppress(Exception):
-                    client.run(heap_keeps_chunks, False)
     return results
-
-
-def _collect(futures, results, step):
-    """The outcome of each file corrected on a worker, as each ends."""
-    if not futures:
-        return
-    from distributed import as_completed  # with the client
-
-    for future in as_completed(futures):
-        try:
-            results[futures[future]] = future.result()
-        except Exception as error:  # noqa: BLE001 - a worker lost, say
-            results[futures[future]] = dict(
-                outcome="failed", output="", warnings=[], seconds=0.0,
-                reason=f"{type(error).__name__}: {_one_line(error)}")
-        step()
 
 
 def correct_files(paths, output_dir=None, *, client=None, progress=False, overwrite=False,
