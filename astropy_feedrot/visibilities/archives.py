@@ -68,7 +68,8 @@ def correct_one(correction, path, target, options):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            output = str(correction.correct(path, target, **options))
+            # Absolute, as every format's adapter does not give it alike.
+            output = os.path.abspath(correction.correct(path, target, **options))
         except AlreadyCorrected as error:
             outcome, reason = "skipped", _one_line(error)
         except (ValueError, ImportError) as error:  # the package's refusals are ValueErrors

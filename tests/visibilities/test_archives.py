@@ -73,6 +73,10 @@ def test_copies_on_a_cluster(tmp_path, cluster):
     assert table["outcome"].tolist() == ["corrected"] * 4 + ["failed", "refused"]
     assert table.meta["outcomes"] == dict(zip(OUTCOMES, (4, 0, 1, 1)))
     assert "cannot be read as FITS" in table["reason"][4]
+    # Each output named as one absolute path, whichever adapter wrote it.
+    expected = [(out / p.name).absolute() for p in paths[:4]]
+    assert [Path(o) for o in table["output"][:4]] == expected
+    assert list(table["output"][4:]) == ["", ""]
     assert "'MWA' is an aperture array" in table["reason"][5]
     # The inputs are as they were; the bad ones have no output.
     assert {p.name: _digest(p) for p in paths} == before
