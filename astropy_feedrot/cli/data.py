@@ -33,7 +33,7 @@ from ..visibilities import (
     read_antennas,
 )
 from ..ionosphere import IonosphereError
-from ..visibilities.msv4 import GROUPS
+from ..visibilities.msv4 import data_groups
 from ..visibilities.poles import convention_options
 from .archives import run_correct_files
 from .common import wrote
@@ -162,15 +162,19 @@ def _run_processing_set(args, options):
                                "--apply, 'model_corrupted')")
     options = {k: v for k, v in options.items() if k != "progress"}
     try:
+        source, new, variable = data_groups(options["direction"], args.data_group, args.group)
         # The graph is computed on the active scheduler: the cluster's with --dask or
         # --workers, dask's threads otherwise.
         with _client(args), _ionosphere_errors(args):
-            correct_processing_set(args.input, write=True, **options)
+            correct_processing_set(args.input, data_group=source, new_group=new, write=True,
+                                   **options)
     except ImportError as error:
         raise CommandError(one_line(error)) from None
     except CorrectionRefused as error:  # in the command line's words (--redo)
         raise CommandError(one_line(error.command_line())) from None
-    source, new, variable = GROUPS[options["direction"]]
+    except ValueError as error:
+        raise CommandError(one_line(str(error).replace("new_group=, ", "")
+                                    .replace("new_group", "--group"))) from None
     _summary(args, args.input, f"in place, data group {source} -> {new} ({variable})")
     return 0
 
@@ -224,6 +228,11 @@ def run_correct(args):
     many = _many(args)
     if not many:
         args.input = args.input[0]
+    for option, value in (("--data-group", args.data_group), ("--group", args.group)):
+        if value is not None and (many or _kind(args.input) != "msv4"):
+            raise CommandError(f"{option} is for one MSv4 processing set, corrected in "
+                               "place; a Measurement Set is read from --data-column into "
+                               "--column")
     ionosphere = None
     if args.ionex is not None or args.rm_table is not None:  # before any work
         ionosphere, _ = ionosphere_option(args)

@@ -489,6 +489,13 @@ def _add_files(commands):
                          help="Measurement Sets (--in-place, or -o OUTPUT.ms: a casacore copy "
                          "corrected in place): the visibility column written, created if "
                          "missing (default CORRECTED_DATA)")
+    correct.add_argument("--data-group", metavar="NAME",
+                         help="MSv4 processing sets: the data group read (default base; with "
+                         "--apply, model), e.g. corrected for data CASA calibrated")
+    correct.add_argument("--group", metavar="NAME",
+                         help="MSv4 processing sets: the data group written, its variable "
+                         "VISIBILITY_NAME (default corrected; with --apply, model_corrupted): "
+                         "another name where the set has a corrected group already")
     correct.add_argument("--overwrite-column", action="store_true",
                          help="write into an existing column that feedrot did not write "
                          "(MODEL_DATA, a CORRECTED_DATA that CASA filled): its values are "

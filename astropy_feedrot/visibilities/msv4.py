@@ -54,11 +54,37 @@ from .unusable import usable_antennas, warn_skipped
 __doctest_requires__ = {("correct_processing_set", "read_processing_set"): ["xradio"]}
 
 __all__ = ["correct_processing_set", "correct_processing_set_file", "processing_set_antennas",
-           "processing_set_telescopes", "read_processing_set", "GROUPS", "MSv4Error"]
+           "processing_set_telescopes", "read_processing_set", "data_groups", "GROUPS",
+           "MSv4Error"]
 
 #: Per direction: the data group read, the data group added and its variable.
 GROUPS = {"remove": ("base", "corrected", "VISIBILITY_CORRECTED"),
           "apply": ("model", "model_corrupted", "VISIBILITY_MODEL_CORRUPTED")}
+
+
+def data_groups(direction, data_group=None, new_group=None):
+    """The data group read, the data group added and its variable (``VISIBILITY_`` and
+    the group's name in capitals, as xradio names ``corrected`` and ``model``'s).
+
+    Examples
+    --------
+    >>> from astropy_feedrot.visibilities.msv4 import data_groups
+    >>> data_groups("remove")
+    ('base', 'corrected', 'VISIBILITY_CORRECTED')
+    >>> data_groups("remove", "corrected", "feedrot")
+    ('corrected', 'feedrot', 'VISIBILITY_FEEDROT')
+    """
+    source, new, _ = GROUPS[direction]
+    source = source if data_group is None else str(data_group)
+    new = new if new_group is None else str(new_group)
+    if not new.isidentifier():
+        raise ValueError(f"new_group must be a name of letters, digits and underscores, got "
+                         f"{new!r}")
+    if new == source:
+        raise ValueError(f"new_group {new!r} is the data group read: the correction goes "
+                         "into a data group of its own")
+    return source, new, f"VISIBILITY_{new.upper()}"
+
 
 _FRAMES = {"icrs": ICRS(), "fk5": FK5(equinox="J2000")}
 
@@ -253,8 +279,9 @@ def _refuse_again(partition, new, direction, redo, where):
     mark = HISTORY_MARK if direction == "remove" else APPLY_MARK
     if not description.startswith(mark):
         raise CorrectionRefused(f"{where} has a data group {new!r} that this package did "
-                                f"not write ({description!r}); it is left as it is: correct "
-                                "a processing set without it")
+                                f"not write ({description!r}); it is left as it is: give "
+                                "the correction a data group of another name (new_group=, "
+                                "--group NAME)")
     if not redo:
         raise AlreadyCorrected(f"{where}: its data group {new!r} holds this correction "
                                f"already ({description}); pass <<redo>> to compute it again")
@@ -347,10 +374,10 @@ def _check_products(products, where):
         raise MSv4Error(f"{where}: {error}") from None
 
 
-def _partition(name, partition, correction, where):
+def _partition(name, partition, correction, groups, where):
     """The partition with its new data group (a new tree; the input is left as it is)."""
     direction, frame = correction.direction, correction.frame
-    source_name, new_name, variable = GROUPS[direction]
+    source_name, new_name, variable = groups
     where = f"{where}, partition {name!r}"
     source = _group(partition, source_name, where)
     _refuse_again(partition, new_name, direction, correction.redo, where)
@@ -390,7 +417,8 @@ def _partition(name, partition, correction, where):
     return partition, max(undefined, 0), rows
 
 
-def correct_processing_set(ps, *, write=None, correction=None, **options):
+def correct_processing_set(ps, *, data_group=None, new_group=None, write=None, correction=None,
+                           **options):
     """Remove (or apply) the feed rotation of an MSv4 processing set, lazily.
 
     Parameters
@@ -398,6 +426,14 @@ def correct_processing_set(ps, *, write=None, correction=None, **options):
     ps : `xarray.DataTree` or path-like
         A processing set as xradio's ``open_processing_set`` gives it, or the
         path of one (a ``.ps.zarr`` store).
+    data_group : str, optional
+        The data group read (default: ``base``; with ``direction='apply'``,
+        ``model``); e.g. ``corrected`` for data CASA calibrated.
+    new_group : str, optional
+        The data group added (default: ``corrected``; with
+        ``direction='apply'``, ``model_corrupted``), its variable
+        ``VISIBILITY_`` and its name in capitals: another name where the set
+        has a ``corrected`` group already (an MSv2's ``CORRECTED_DATA``).
     write : bool, optional
         For a path: write the new variables into the store (default True);
         every array that was there stays as it was, and the partitions'
@@ -496,21 +532,21 @@ def correct_processing_set(ps, *, write=None, correction=None, **options):
     else:
         raise TypeError(f"ps must be an xarray DataTree or the path of a processing set, "
                         f"got {type(ps).__name__}")
+    groups = data_groups(correction.direction, data_group, new_group)
     done, undefined, rows = {}, 0, 0
     for name, partition in _partitions(tree, where):
-        done[name], bad, count = _partition(name, partition, correction, where)
+        done[name], bad, count = _partition(name, partition, correction, groups, where)
         undefined, rows = undefined + bad, rows + count
     if undefined:
         warn_caller(f"the feed rotation is undefined for {undefined} of {rows} "
                     "time-baselines (an alt-az antenna pointing at the zenith): their "
-                    f"{GROUPS[correction.direction][2]} is NaN", DegenerateGeometryWarning)
+                    f"{groups[2]} is NaN", DegenerateGeometryWarning)
     out = tree.copy()
     for name, partition in done.items():
         out[name] = partition
     if path is None or write is False:
         return out
-    source_group, _, variable = GROUPS[correction.direction]
-    _write(path, out, done, variable, source_group)
+    _write(path, out, done, groups[2], groups[0])
     return read_processing_set(path)
 
 
@@ -558,7 +594,8 @@ def processing_set_telescopes(path):
 
 
 def correct_processing_set_file(correction, source, output, *, overwrite=False,
-                                progress=False, client=None, **columns):
+                                progress=False, client=None, data_group=None, new_group=None,
+                                **columns):
     """The adapter of MSv4 processing sets (`~astropy_feedrot.visibilities.correction`):
     in place only, the graph computed on the active dask scheduler (the client's).
 
@@ -569,7 +606,8 @@ def correct_processing_set_file(correction, source, output, *, overwrite=False,
     refuse_column_options(**columns)
     if output is not None:
         check_output_format("msv4", output)  # says: in place
-    correct_processing_set(source, write=True, correction=correction)
+    correct_processing_set(source, data_group=data_group, new_group=new_group, write=True,
+                           correction=correction)
     return Path(source)
 
 

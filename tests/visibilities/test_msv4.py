@@ -241,12 +241,43 @@ def test_foreign_group_refused(tmp_path):
     """A 'corrected' group another program wrote (CASA's CORRECTED_DATA) is left alone."""
     _, store = _sets(tmp_path, "circular")
     tree = xradio_ms.open_processing_set(str(store))
-    partition = tree["circular_0"]
-    groups = dict(partition.attrs["data_groups"])
-    groups["corrected"] = dict(groups["base"], description="from CASA's CORRECTED_DATA")
-    partition.attrs["data_groups"] = groups
-    with pytest.raises(CorrectionRefused, match="did not write .*CASA's CORRECTED_DATA"):
+    for partition in tree.children.values():
+        groups = dict(partition.attrs["data_groups"])
+        groups["corrected"] = dict(groups["base"], description="from CASA's CORRECTED_DATA")
+        partition.attrs["data_groups"] = groups
+    with pytest.raises(CorrectionRefused, match="did not write .*CASA's CORRECTED_DATA.*"
+                       "new_group="):
         correct_processing_set(tree)
+    # Into a group of another name; or from the corrected group itself.
+    done = correct_processing_set(tree, new_group="feedrot")
+    group = done["circular_0"].attrs["data_groups"]["feedrot"]
+    assert group["correlated_data"] == "VISIBILITY_FEEDROT" and "VISIBILITY_FEEDROT" in \
+        done["circular_0"]
+    again = correct_processing_set(tree, data_group="corrected", new_group="twice")
+    assert "VISIBILITY -> VISIBILITY_TWICE" in \
+        again["circular_0"].attrs["data_groups"]["twice"]["description"]
+    with pytest.raises(ValueError, match="new_group 'base' is the data group read"):
+        correct_processing_set(tree, new_group="base")
+    with pytest.raises(ValueError, match="new_group must be a name of letters"):
+        correct_processing_set(tree, new_group="feed rot")
+
+
+def test_a_set_casa_wrote(tmp_path):
+    """CASA's simulator wrote this set, with a CORRECTED_DATA of its own (xradio makes it
+    the group 'corrected'): corrected into a group of another name, the same numbers as
+    correct_ms into a column of another name."""
+    import tarfile
+
+    with tarfile.open(Path(__file__).parent.parent / "data" / "real" /
+                      "casa_sim_vla_2spw.ms.tar.gz") as archive:
+        archive.extractall(tmp_path, filter="data")
+    ms = tmp_path / "casa_sim_vla_2spw.ms"
+    store = _convert(ms, tmp_path / "casa.ps.zarr")
+    with pytest.raises(CorrectionRefused, match="data group 'corrected' that this package"):
+        correct_processing_set(store)
+    tree = correct_processing_set(store, new_group="feedrot")
+    correct_ms(ms, corrected_column="FEEDROT_DATA")
+    assert _largest_difference(ms, "FEEDROT_DATA", tree, "VISIBILITY_FEEDROT") < 1e-6
 
 
 def test_refusals(tmp_path):
@@ -317,6 +348,12 @@ def test_command_line(tmp_path, capsys):
     assert "corrected in place" in capsys.readouterr().err
     assert main(["antennas", str(store)]) == 0
     assert "A0_P" in capsys.readouterr().out
+    assert main(["correct", str(store), "--group", "feedrot", "--quiet"]) == 0
+    assert "VISIBILITY_FEEDROT" in xradio_ms.open_processing_set(str(store))["circular_0"]
+    assert main(["correct", str(store), "--group", "base"]) == 1
+    assert "--group 'base' is the data group read" in capsys.readouterr().err
+    assert main(["correct", str(ms), "--in-place", "--group", "feedrot"]) == 1
+    assert "--group is for one MSv4 processing set" in capsys.readouterr().err
     correct_ms(ms)
     tree = xradio_ms.open_processing_set(str(store))
     assert _largest_difference(ms, "CORRECTED_DATA", tree, "VISIBILITY_CORRECTED") < 1e-6
