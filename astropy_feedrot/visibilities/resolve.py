@@ -28,6 +28,17 @@ from .unusable import UnusableAntenna, given_feeds
 __all__ = ["resolve_antennas", "mark_aperture_array", "refuse_aperture_array"]
 
 
+def _aperture_reason(telescope, catalogue):
+    """Why the first of the telescope names that is an aperture array is refused, or
+    None."""
+    names = [telescope] if telescope is None or isinstance(telescope, str) else telescope
+    for name in names:
+        description = aperture_array(name, catalogue)
+        if description is not None:
+            return aperture_array_reason(name, description)
+    return None
+
+
 def mark_aperture_array(antennas, telescope, catalogue=None):
     """The antennas, every one unusable if ``telescope`` is an aperture array.
 
@@ -56,12 +67,9 @@ def mark_aperture_array(antennas, telescope, catalogue=None):
     >>> aperture, antennas[0].problem
     (True, 'aperture array')
     """
-    names = [telescope] if telescope is None or isinstance(telescope, str) else telescope
-    found = [(name, aperture_array(name, catalogue)) for name in names]
-    found = [(name, description) for name, description in found if description is not None]
-    if not found:
+    reason = _aperture_reason(telescope, catalogue)
+    if reason is None:
         return dict(antennas), False
-    reason = aperture_array_reason(*found[0])
     out = {}
     for number, antenna in antennas.items():
         label = getattr(antenna, "label", None)
@@ -97,11 +105,9 @@ def refuse_aperture_array(telescope, catalogue=None, where="the file"):
     ...
     ValueError: x.ms: the telescope 'MWA' is an aperture array (the Murchison ...
     """
-    names = [telescope] if telescope is None or isinstance(telescope, str) else telescope
-    for name in names:
-        description = aperture_array(name, catalogue)
-        if description is not None:
-            raise ValueError(f"{where}: {aperture_array_reason(name, description)}")
+    reason = _aperture_reason(telescope, catalogue)
+    if reason is not None:
+        raise ValueError(f"{where}: {reason}")
 
 
 def resolve_antennas(antennas, *, telescope=None, mounts="file", catalogue=None, feeds=None,
