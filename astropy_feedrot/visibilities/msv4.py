@@ -214,11 +214,16 @@ def processing_set_antennas(partition, *, vertical="geodetic", where="the partit
             EarthLocation.from_geocentric(*xyz[index], unit=u.m), name,
             str(mounts[index]).upper(), found, vertical=vertical, keep=True,
             where=f"{where}, antenna_xds, antenna {name}")
+    return antennas, names, _telescopes(antenna)
+
+
+def _telescopes(antenna):
+    """The telescope names of an ``antenna_xds`` (``telescope_name``,
+    ``overall_telescope_name``)."""
     telescopes = [str(t) for t in np.unique(_values(antenna["telescope_name"]))] \
         if "telescope_name" in antenna.coords else []
     overall = antenna.attrs.get("overall_telescope_name")
-    telescopes = list(dict.fromkeys(t for t in [*telescopes, overall] if t))
-    return antennas, names, telescopes
+    return list(dict.fromkeys(t for t in [*telescopes, overall] if t))
 
 
 def _sources(partition, group, where):
@@ -590,7 +595,7 @@ def processing_set_telescopes(path):
     See `correct_processing_set`.
     """
     return sorted({t for partition in read_processing_set(path).children.values()
-                   for t in processing_set_antennas(partition)[2]})
+                   for t in _telescopes(partition["antenna_xds"].to_dataset())})
 
 
 def correct_processing_set_file(correction, source, output, *, overwrite=False,
